@@ -1,0 +1,2 @@
+//! The `trajkit` command line tool.
+fn main() {}

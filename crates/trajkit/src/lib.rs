@@ -1,0 +1,53 @@
+//! # trajkit
+//!
+//! Robot paths in, trajectories out. A planner returns waypoints in joint space; a controller
+//! needs position, velocity, acceleration and jerk at every instant, within the robot's limits.
+//! trajkit does that step.
+//!
+//! ```
+//! use trajkit::{poly::{Degree, PolyMove}, Limits, Order, Trajectory};
+//!
+//! // A minimum-jerk (quintic) move of a Panda's first two joints, as fast as the limits allow.
+//! let limits = Limits::preset("panda")?;
+//! let q0 = [0.0, 0.0];
+//! let q1 = [1.0, -0.5];
+//! let two = trajkit::Limits::new(limits.joints()[..2].to_vec())?;
+//! let t = trajkit::poly::min_duration_rest_to_rest(Degree::Quintic, &q0, &q1, &two)?;
+//! let mv = PolyMove::rest_to_rest(Degree::Quintic, &q0, &q1, t)?;
+//! let mut qd = [0.0; 2];
+//! mv.eval(t / 2.0, Order::Velocity, &mut qd); // peak velocity at mid-time
+//! assert!(qd[0] <= 2.175 * (1.0 + 1e-12));
+//! # Ok::<(), trajkit::Error>(())
+//! ```
+//!
+//! ## Map
+//! - [`traj`]: the trajectory model ([`Trajectory`], [`Order`]), shared by every family.
+//! - [`path`]: geometric paths σ(s), the input of time parameterization.
+//! - [`limits`]: per-joint limits, robot presets, limits files and URDF.
+//! - [`poly`]: point-to-point polynomials (cubic, quintic/minimum-jerk, septic) and
+//!   multi-waypoint piecewise polynomials.
+//! - [`sample`], [`check`], [`plot`], [`io`]: sampling into tables, limit checking, SVG plots,
+//!   CSV/JSON reading and writing.
+//!
+//! - [`spline`]: splines and curves (issue in progress).
+//! - [`topp`]: time-optimal path parameterization (issue in progress).
+//! - [`primitives`]: movement primitives, DMP, ProMP and KMP (issue in progress).
+//!
+//! See ARCHITECTURE.md in the repository for how data flows between them.
+
+#![forbid(unsafe_code)]
+
+pub mod error;
+pub mod limits;
+pub mod path;
+pub mod primitives;
+pub mod spline;
+pub mod topp;
+pub mod sample;
+pub mod traj;
+
+pub use error::{Error, Result};
+pub use limits::{JointLimits, Limits};
+pub use path::Path;
+pub use sample::SampleTable;
+pub use traj::{Order, State, Trajectory};

@@ -1,0 +1,62 @@
+//! Geometric paths σ(s): the input of time parameterization.
+//!
+//! A [`Path`] is a vector-valued curve in joint space over a parameter interval
+//! `[s_start, s_end]`, with no notion of time. Time-optimal parameterization (TOPP-RA, TOTG,
+//! numerical integration) chooses s(t) and produces the trajectory ξ(t) = σ(s(t)) with
+//! ξ̇ = σ′ṡ, ξ̈ = σ″ṡ² + σ′s̈ (and ξ⃛ = σ‴ṡ³ + 3σ″ṡs̈ + σ′s⃛).
+//!
+//! Splines implement `Path`; so can user code. As for trajectories, evaluation writes into a
+//! caller buffer and never allocates; `s` outside the interval is clamped to it.
+
+/// A geometric path σ(s) in joint space.
+pub trait Path {
+    /// Number of joints (dimension of σ).
+    fn dim(&self) -> usize;
+
+    /// The parameter interval `(s_start, s_end)`, `s_start < s_end`.
+    fn interval(&self) -> (f64, f64);
+
+    /// Writes the `order`-th derivative dᵏσ/dsᵏ at `s` (clamped to the interval) into `out`.
+    /// Orders 0..=3 must be supported (σ‴ may be zero where the path is only C²); higher orders
+    /// may be zero.
+    fn eval(&self, s: f64, order: usize, out: &mut [f64]);
+
+    /// Parameters where σ or a low derivative is not smooth (segment joints of a spline,
+    /// corners of a piecewise-linear path), increasing, including both ends. Time
+    /// parameterization puts gridpoints there. The default is just the two ends; a path that
+    /// knows its joints should override this.
+    fn breakpoints(&self) -> Vec<f64> {
+        let (a, b) = self.interval();
+        vec![a, b]
+    }
+}
+
+impl<P: Path + ?Sized> Path for &P {
+    fn dim(&self) -> usize {
+        (**self).dim()
+    }
+    fn interval(&self) -> (f64, f64) {
+        (**self).interval()
+    }
+    fn eval(&self, s: f64, order: usize, out: &mut [f64]) {
+        (**self).eval(s, order, out)
+    }
+    fn breakpoints(&self) -> Vec<f64> {
+        (**self).breakpoints()
+    }
+}
+
+impl<P: Path + ?Sized> Path for Box<P> {
+    fn dim(&self) -> usize {
+        (**self).dim()
+    }
+    fn interval(&self) -> (f64, f64) {
+        (**self).interval()
+    }
+    fn eval(&self, s: f64, order: usize, out: &mut [f64]) {
+        (**self).eval(s, order, out)
+    }
+    fn breakpoints(&self) -> Vec<f64> {
+        (**self).breakpoints()
+    }
+}

@@ -1,0 +1,1 @@
+//! Movement primitives learned from demonstration: DMP, ProMP and KMP.

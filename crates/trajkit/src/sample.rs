@@ -1,0 +1,258 @@
+//! Sampling a trajectory at a fixed rate into a table, and the table type itself.
+//!
+//! A [`SampleTable`] holds rows `(t, q, q̇, q̈, q⃛)` for `dof` joints. It is what trajkit writes
+//! (CSV, JSON: see [`crate::io`]) and what [`crate::check`] reads, including tables produced by
+//! other tools, where the derivative columns may be missing.
+//!
+//! Sampling includes both ends: with duration T and rate f the times are `k/f` for
+//! `k = 0..floor(T·f)`, plus `T` itself when `T` is not on that grid (the last interval is then
+//! shorter). Every sample is an exact evaluation of the trajectory.
+
+use crate::error::{Error, Result};
+use crate::traj::{Order, Trajectory};
+
+/// A sampled trajectory: times and, per derivative order, a row-major `rows × dof` matrix.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SampleTable {
+    dof: usize,
+    /// Sample times, non-decreasing.
+    t: Vec<f64>,
+    /// `data[k]` is derivative order k (position..jerk), row-major, or `None` if absent.
+    data: [Option<Vec<f64>>; 4],
+    /// Joint names (may be empty strings).
+    names: Vec<String>,
+}
+
+impl SampleTable {
+    /// Builds a table from times and per-order row-major columns (`rows × dof` each). Positions
+    /// are required; missing derivatives are `None`. Checks sizes, finiteness and that time
+    /// increases strictly.
+    pub fn new(dof: usize, t: Vec<f64>, data: [Option<Vec<f64>>; 4]) -> Result<Self> {
+        if dof == 0 {
+            return Err(Error::DimensionMismatch {
+                what: "sample table joint count".into(),
+                expected: 1,
+                found: 0,
+            });
+        }
+        let rows = t.len();
+        if data[0].is_none() {
+            return Err(Error::InvalidValue {
+                field: "sample table positions".into(),
+                value: f64::NAN,
+                reason: "are missing",
+            });
+        }
+        for (k, col) in data.iter().enumerate() {
+            if let Some(c) = col {
+                if c.len() != rows * dof {
+                    return Err(Error::DimensionMismatch {
+                        what: format!("sample table {} entries", Order::ALL[k].name()),
+                        expected: rows * dof,
+                        found: c.len(),
+                    });
+                }
+                if let Some(i) = c.iter().position(|v| !v.is_finite()) {
+                    return Err(Error::InvalidValue {
+                        field: format!(
+                            "sample {} {} of joint {}",
+                            i / dof,
+                            Order::ALL[k].name(),
+                            i % dof + 1
+                        ),
+                        value: c[i],
+                        reason: "is not a finite number",
+                    });
+                }
+            }
+        }
+        for i in 0..rows {
+            if !t[i].is_finite() {
+                return Err(Error::InvalidValue {
+                    field: format!("sample {i} time"),
+                    value: t[i],
+                    reason: "is not a finite number",
+                });
+            }
+            if i > 0 && t[i] <= t[i - 1] {
+                return Err(Error::InvalidValue {
+                    field: format!("sample {i} time"),
+                    value: t[i],
+                    reason: "does not increase",
+                });
+            }
+        }
+        Ok(SampleTable {
+            dof,
+            t,
+            data,
+            names: vec![String::new(); dof],
+        })
+    }
+
+    /// Sets joint names (used as column headers); `names.len()` must equal `dof`.
+    pub fn with_names(mut self, names: Vec<String>) -> Result<Self> {
+        if names.len() != self.dof {
+            return Err(Error::DimensionMismatch {
+                what: "joint name count".into(),
+                expected: self.dof,
+                found: names.len(),
+            });
+        }
+        self.names = names;
+        Ok(self)
+    }
+
+    /// Number of joints.
+    pub fn dof(&self) -> usize {
+        self.dof
+    }
+
+    /// Number of samples.
+    pub fn len(&self) -> usize {
+        self.t.len()
+    }
+
+    /// True when there are no samples.
+    pub fn is_empty(&self) -> bool {
+        self.t.is_empty()
+    }
+
+    /// Sample times.
+    pub fn times(&self) -> &[f64] {
+        &self.t
+    }
+
+    /// Joint names (possibly empty strings).
+    pub fn names(&self) -> &[String] {
+        &self.names
+    }
+
+    /// True when derivative `order` is present.
+    pub fn has(&self, order: Order) -> bool {
+        self.data[order.index()].is_some()
+    }
+
+    /// Row `i` of derivative `order` (`dof` values), if that derivative is present.
+    pub fn row(&self, order: Order, i: usize) -> Option<&[f64]> {
+        self.data[order.index()]
+            .as_ref()
+            .map(|c| &c[i * self.dof..(i + 1) * self.dof])
+    }
+
+    /// Value of derivative `order` for joint `j` at sample `i`, if present.
+    pub fn value(&self, order: Order, i: usize, j: usize) -> Option<f64> {
+        self.data[order.index()]
+            .as_ref()
+            .map(|c| c[i * self.dof + j])
+    }
+
+    /// The whole row-major matrix of derivative `order`, if present.
+    pub fn matrix(&self, order: Order) -> Option<&[f64]> {
+        self.data[order.index()].as_deref()
+    }
+
+    /// Duration: last time minus first time (0 for fewer than two samples).
+    pub fn duration(&self) -> f64 {
+        match (self.t.first(), self.t.last()) {
+            (Some(a), Some(b)) => b - a,
+            _ => 0.0,
+        }
+    }
+}
+
+/// The sample times for a duration and a rate (see the module docs).
+pub fn sample_times(duration: f64, rate_hz: f64) -> Result<Vec<f64>> {
+    crate::error::positive(|| "sample rate (Hz)".into(), rate_hz)?;
+    if !(duration.is_finite() && duration >= 0.0) {
+        return Err(Error::InvalidValue {
+            field: "trajectory duration".into(),
+            value: duration,
+            reason: "is not a finite non-negative number",
+        });
+    }
+    let n = (duration * rate_hz).floor();
+    if n > 1e9 {
+        return Err(Error::InvalidValue {
+            field: "sample count (duration × rate)".into(),
+            value: n,
+            reason: "is above the limit of 1e9 samples",
+        });
+    }
+    let n = n as usize;
+    let mut t: Vec<f64> = (0..=n).map(|k| k as f64 / rate_hz).collect();
+    // Drop a grid time that rounding put (almost) on the end; then add the end itself.
+    while t.len() > 1 && *t.last().unwrap() >= duration - 1e-9 / rate_hz {
+        t.pop();
+    }
+    if duration > 0.0 || t.is_empty() {
+        t.push(duration);
+    }
+    t.dedup();
+    Ok(t)
+}
+
+/// Samples `traj` at `rate_hz` (both ends included), evaluating position through jerk exactly.
+///
+/// ```
+/// use trajkit::{poly::{Degree, PolyMove}, sample::sample};
+/// let mv = PolyMove::rest_to_rest(Degree::Cubic, &[0.0], &[1.0], 1.0)?;
+/// let table = sample(&mv, 100.0)?;
+/// assert_eq!(table.len(), 101);
+/// # Ok::<(), trajkit::Error>(())
+/// ```
+pub fn sample<T: Trajectory + ?Sized>(traj: &T, rate_hz: f64) -> Result<SampleTable> {
+    let times = sample_times(traj.duration(), rate_hz)?;
+    sample_at(traj, times)
+}
+
+/// Samples `traj` at the given increasing times.
+pub fn sample_at<T: Trajectory + ?Sized>(traj: &T, times: Vec<f64>) -> Result<SampleTable> {
+    let dof = traj.dof();
+    let rows = times.len();
+    let mut data: [Option<Vec<f64>>; 4] = [
+        Some(vec![0.0; rows * dof]),
+        Some(vec![0.0; rows * dof]),
+        Some(vec![0.0; rows * dof]),
+        Some(vec![0.0; rows * dof]),
+    ];
+    for (k, order) in Order::ALL.iter().enumerate() {
+        let col = data[k].as_mut().expect("allocated above");
+        for (i, &t) in times.iter().enumerate() {
+            traj.eval(t, *order, &mut col[i * dof..(i + 1) * dof]);
+        }
+    }
+    SampleTable::new(dof, times, data)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn times_include_both_ends() {
+        assert_eq!(sample_times(1.0, 4.0).unwrap(), vec![0.0, 0.25, 0.5, 0.75, 1.0]);
+        let t = sample_times(1.1, 4.0).unwrap();
+        assert_eq!(t.len(), 6);
+        assert_eq!(*t.last().unwrap(), 1.1);
+        assert_eq!(sample_times(0.0, 10.0).unwrap(), vec![0.0]);
+        // 2.3 * 1000 is not exact in binary: no near-duplicate last sample.
+        let t = sample_times(2.3, 1000.0).unwrap();
+        assert_eq!(t.len(), 2301);
+        assert!(t.windows(2).all(|w| w[1] - w[0] > 0.5e-3));
+        assert!(sample_times(1.0, 0.0).is_err());
+        assert!(sample_times(f64::INFINITY, 1.0).is_err());
+    }
+
+    #[test]
+    fn table_validation() {
+        let ok = SampleTable::new(1, vec![0.0, 1.0], [Some(vec![0.0, 1.0]), None, None, None]);
+        assert!(ok.is_ok());
+        let bad = SampleTable::new(1, vec![0.0, 0.0], [Some(vec![0.0, 1.0]), None, None, None]);
+        assert!(bad.unwrap_err().to_string().contains("does not increase"));
+        let bad = SampleTable::new(2, vec![0.0], [Some(vec![0.0]), None, None, None]);
+        assert!(bad.is_err());
+        let bad = SampleTable::new(1, vec![0.0], [Some(vec![f64::NAN]), None, None, None]);
+        assert!(bad.unwrap_err().to_string().contains("position of joint 1"));
+    }
+}

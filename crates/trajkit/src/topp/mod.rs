@@ -1,0 +1,1 @@
+//! Time-optimal path parameterization (TOPP-RA) and time rescaling.
