@@ -41,6 +41,7 @@ pub mod error;
 pub mod limits;
 pub mod path;
 pub mod primitives;
+pub mod rng;
 pub mod spline;
 pub mod topp;
 pub mod sample;
@@ -48,6 +49,6 @@ pub mod traj;
 
 pub use error::{Error, Result};
 pub use limits::{JointLimits, Limits};
-pub use path::Path;
+pub use path::{Path, PathAsTrajectory};
 pub use sample::SampleTable;
 pub use traj::{Order, State, Trajectory};

@@ -60,3 +60,25 @@ impl<P: Path + ?Sized> Path for Box<P> {
         (**self).breakpoints()
     }
 }
+
+/// A path used directly as a trajectory: time t runs over the parameter, `s = s_start + t`,
+/// so the duration is `s_end - s_start` and time derivatives equal parameter derivatives.
+///
+/// Useful when a spline was fitted through waypoints at given times.
+#[derive(Debug, Clone)]
+pub struct PathAsTrajectory<P: Path>(pub P);
+
+impl<P: Path> crate::Trajectory for PathAsTrajectory<P> {
+    fn dof(&self) -> usize {
+        self.0.dim()
+    }
+    fn duration(&self) -> f64 {
+        let (a, b) = self.0.interval();
+        b - a
+    }
+    fn eval(&self, t: f64, order: crate::Order, out: &mut [f64]) {
+        let (a, b) = self.0.interval();
+        let t = crate::traj::clamp_time(t, b - a);
+        self.0.eval(a + t, order.index(), out)
+    }
+}
