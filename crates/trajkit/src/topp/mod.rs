@@ -1,1 +1,47 @@
 //! Time-optimal path parameterization (TOPP-RA) and time rescaling.
+//!
+//! Keep a path's geometry σ(s), choose its timing s(t) so that every instant respects the
+//! robot's limits, as fast as possible. The pieces mirror the algorithm:
+//! - [`constraint`]: constraints in the general form a(s)·s̈ + b(s)·ṡ² + c(s) ∈ {F v ≤ g} plus
+//!   bounds on ṡ² (joint velocity, joint acceleration, torque through user inverse dynamics,
+//!   end-effector speed through a user Jacobian);
+//! - [`lp`]: the exact two-variable linear program solved at every stage;
+//! - [`grid`]: gridpoints (uniform, automatic, given), always including path breakpoints;
+//! - [`toppra`]: the backward (controllable sets) and forward (greedy) passes;
+//! - [`parametrized`]: the solved [`Profile`] and the exact output trajectory;
+//! - [`rescale`]: any path composed with any timing law, uniform time scaling;
+//! - [`paths`]: piecewise-linear paths;
+//! - [`messy`]: planner output as it comes: duplicates, reversals, rest-to-rest pieces.
+//!
+//! ```
+//! use trajkit::topp::{LinearPath, Toppra, Gridpoints};
+//! use trajkit::{Limits, Trajectory};
+//!
+//! let limits = Limits::preset("panda")?;
+//! let path = LinearPath::new(&[0.0; 14].iter().enumerate()
+//!     .map(|(k, _)| if k < 7 { 0.0 } else { 0.5 }).collect::<Vec<_>>(), 7)?;
+//! let traj = Toppra::with_limits(path, &limits)?
+//!     .gridpoints(Gridpoints::Uniform(200))
+//!     .solve()?;
+//! assert!(traj.duration() > 0.0);
+//! # Ok::<(), trajkit::Error>(())
+//! ```
+
+pub mod constraint;
+pub mod grid;
+pub mod lp;
+pub mod messy;
+pub mod parametrized;
+pub mod paths;
+pub mod rescale;
+pub mod toppra;
+
+pub use constraint::{
+    Constraint, ConstraintRows, EndEffectorSpeed, InverseDynamics, Jacobian, JointAcceleration,
+    JointTorque, JointVelocity, PathPoint,
+};
+pub use grid::Gridpoints;
+pub use parametrized::{Parametrized, Profile};
+pub use paths::LinearPath;
+pub use rescale::{min_time_scale, LinearLaw, QuinticLaw, Retimed, Scaled, TimeLaw};
+pub use toppra::{Discretization, Options, Toppra};

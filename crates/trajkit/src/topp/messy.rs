@@ -1,0 +1,1 @@
+//! Planner output as it comes (in progress).
