@@ -334,7 +334,7 @@ mod tests {
     fn all(x: &[f64], y: &[f64], dim: usize) -> Vec<(&'static str, CubicSpline)> {
         let n = x.len();
         let mut yp = y.to_vec();
-        yp[(n - 1) * dim..].copy_from_slice(&y[..dim].to_vec());
+        yp[(n - 1) * dim..].copy_from_slice(&y[..dim]);
         let ds: Vec<f64> = (0..dim).map(|d| d as f64 - 0.5).collect();
         let de: Vec<f64> = (0..dim).map(|d| 1.0 - d as f64).collect();
         vec![
@@ -518,7 +518,7 @@ mod tests {
         let t = std::time::Instant::now();
         let sp = CubicSpline::not_a_knot(&x, &y, 7).unwrap();
         let mut yp = y.clone();
-        yp[9_999 * 7..].copy_from_slice(&y[..7].to_vec());
+        yp[9_999 * 7..].copy_from_slice(&y[..7]);
         let _ = CubicSpline::periodic(&x, &yp, 7).unwrap();
         assert!(t.elapsed().as_secs_f64() < 2.0);
         let mut o = [0.0; 7];
