@@ -74,3 +74,37 @@ fn cubic_spline_matches_scipy_cubicspline() {
     }
     eprintln!("CubicSpline worst relative error {worst:e}");
 }
+
+#[test]
+fn hermite_splines_match_scipy() {
+    let f = load("hermite.json");
+    for c in f["cases"].as_array().unwrap() {
+        let (x, y, d) = (arr(&c["x"]), arr(&c["y"]), dim(c));
+        let dy = arr(&c["dydx"]);
+        match c["kind"].as_str().unwrap() {
+            "cubic" => {
+                let sp = CubicHermiteSpline::new(&x, &y, &dy, d).unwrap();
+                compare("cubic hermite", &sp, c, 1e-12);
+            }
+            _ => {
+                let sp = QuinticHermiteSpline::new(&x, &y, &dy, &arr(&c["d2ydx2"]), d).unwrap();
+                compare("quintic hermite", &sp, c, 1e-12);
+            }
+        }
+    }
+}
+
+#[test]
+fn pchip_and_akima_match_scipy() {
+    let f = load("shape_preserving.json");
+    for c in f["cases"].as_array().unwrap() {
+        let (x, y, d) = (arr(&c["x"]), arr(&c["y"]), dim(c));
+        let kind = c["kind"].as_str().unwrap();
+        let sp: Box<dyn Path> = match kind {
+            "pchip" => Box::new(PchipSpline::new(&x, &y, d).unwrap()),
+            "akima" => Box::new(AkimaSpline::original(&x, &y, d).unwrap()),
+            _ => Box::new(AkimaSpline::modified(&x, &y, d).unwrap()),
+        };
+        compare(&format!("{kind} n={}", x.len()), &sp, c, 1e-12);
+    }
+}

@@ -272,46 +272,14 @@ impl CubicSpline {
             pp: PiecewisePolynomial::cubic_hermite_unchecked(x, y, &b, dim),
         })
     }
-
-    /// The spline as a piecewise polynomial (breaks = `x`, degree 3).
-    pub fn as_ppoly(&self) -> &PiecewisePolynomial {
-        &self.pp
-    }
-
-    /// Consumes the spline, returning its piecewise polynomial.
-    pub fn into_ppoly(self) -> PiecewisePolynomial {
-        self.pp
-    }
-
-    /// The interpolation parameters `x` (the breaks).
-    pub fn breaks(&self) -> &[f64] {
-        self.pp.breaks()
-    }
 }
 
-fn check(x: &[f64], y: &[f64], dim: usize, min: usize) -> Result<()> {
-    validate::dim(dim)?;
-    validate::increasing("x", x, min)?;
-    validate::values("y", y, x.len(), dim)
-}
+crate::spline::ppoly_backed!(CubicSpline);
+
+use crate::spline::validate::interpolation_data as check;
 
 fn singular() -> Error {
     Error::Infeasible("cubic spline: the slope system is singular".into())
-}
-
-impl crate::Path for CubicSpline {
-    fn dim(&self) -> usize {
-        self.pp.dim()
-    }
-    fn interval(&self) -> (f64, f64) {
-        crate::Path::interval(&self.pp)
-    }
-    fn eval(&self, s: f64, order: usize, out: &mut [f64]) {
-        self.pp.eval(s, order, out)
-    }
-    fn breakpoints(&self) -> Vec<f64> {
-        self.pp.breaks().to_vec()
-    }
 }
 
 #[cfg(test)]

@@ -31,11 +31,61 @@
 //!   interpolating spline is built on.
 //! - [`CubicSpline`] (cubic.rs): natural, clamped, not-a-knot and periodic cubic splines, one
 //!   O(n) banded solve.
+//! - [`CubicHermiteSpline`], [`QuinticHermiteSpline`] (hermite.rs): given velocities (and
+//!   accelerations) at the breaks.
+//! - [`PchipSpline`] (pchip.rs) and [`AkimaSpline`] (akima.rs): shape-preserving C¹ cubics, no
+//!   overshoot between waypoints.
 
+/// Accessors and the [`crate::Path`] implementation of a curve that is a
+/// [`PiecewisePolynomial`] in a field `pp`.
+macro_rules! ppoly_backed {
+    ($t:ident) => {
+        impl $t {
+            /// The curve as a piecewise polynomial (its breaks are the interpolation
+            /// parameters).
+            pub fn as_ppoly(&self) -> &$crate::spline::PiecewisePolynomial {
+                &self.pp
+            }
+
+            /// Consumes the curve, returning its piecewise polynomial.
+            pub fn into_ppoly(self) -> $crate::spline::PiecewisePolynomial {
+                self.pp
+            }
+
+            /// The breaks (the interpolation parameters `x`).
+            pub fn breaks(&self) -> &[f64] {
+                self.pp.breaks()
+            }
+        }
+
+        impl $crate::Path for $t {
+            fn dim(&self) -> usize {
+                self.pp.dim()
+            }
+            fn interval(&self) -> (f64, f64) {
+                $crate::Path::interval(&self.pp)
+            }
+            fn eval(&self, s: f64, order: usize, out: &mut [f64]) {
+                self.pp.eval(s, order, out)
+            }
+            fn breakpoints(&self) -> Vec<f64> {
+                self.pp.breaks().to_vec()
+            }
+        }
+    };
+}
+pub(crate) use ppoly_backed;
+
+mod akima;
 mod banded;
 mod cubic;
+mod hermite;
+mod pchip;
 mod ppoly;
 mod validate;
 
+pub use akima::AkimaSpline;
 pub use cubic::CubicSpline;
+pub use hermite::{CubicHermiteSpline, QuinticHermiteSpline};
+pub use pchip::PchipSpline;
 pub use ppoly::PiecewisePolynomial;

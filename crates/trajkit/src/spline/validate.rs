@@ -106,3 +106,11 @@ pub(crate) fn len(what: &str, v: &[f64], len: usize) -> Result<()> {
     }
     Ok(())
 }
+
+/// Interpolation data: `dim >= 1`, at least `min` increasing finite `x`, `y` of `x.len() × dim`
+/// finite values.
+pub(crate) fn interpolation_data(x: &[f64], y: &[f64], dim: usize, min: usize) -> Result<()> {
+    self::dim(dim)?;
+    increasing("x", x, min)?;
+    values("y", y, x.len(), dim)
+}
