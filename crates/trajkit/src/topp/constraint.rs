@@ -164,6 +164,13 @@ pub trait Constraint {
     /// Writes the constraint at path point `p` into `out`.
     fn write(&self, p: &PathPoint<'_>, out: &mut ConstraintRows);
 
+    /// Whether [`Constraint::write`] reads `p.q` (the path position). The solver skips
+    /// evaluating σ(s) when no constraint does; `p.q` then holds unspecified values. Default
+    /// `true`.
+    fn uses_position(&self) -> bool {
+        true
+    }
+
     /// When the solver finds that the path cannot move at `p`, a sentence naming the cause
     /// (e.g. a joint that must move but has a zero limit), if this constraint knows one.
     fn diagnose(&self, p: &PathPoint<'_>) -> Option<String> {
@@ -181,6 +188,9 @@ impl<C: Constraint + ?Sized> Constraint for Box<C> {
     }
     fn write(&self, p: &PathPoint<'_>, out: &mut ConstraintRows) {
         (**self).write(p, out)
+    }
+    fn uses_position(&self) -> bool {
+        (**self).uses_position()
     }
     fn diagnose(&self, p: &PathPoint<'_>) -> Option<String> {
         (**self).diagnose(p)
@@ -300,6 +310,9 @@ impl Constraint for JointVelocity {
         }
         out.x_at_most(sd_max * sd_max);
     }
+    fn uses_position(&self) -> bool {
+        false
+    }
     fn diagnose(&self, p: &PathPoint<'_>) -> Option<String> {
         zero_limit_joints("velocity", &self.lo, &self.hi, p)
     }
@@ -346,6 +359,9 @@ impl Constraint for JointAcceleration {
         for j in 0..self.hi.len() {
             out.interval(p.dq[j], p.ddq[j], 0.0, self.lo[j], self.hi[j]);
         }
+    }
+    fn uses_position(&self) -> bool {
+        false
     }
     fn diagnose(&self, p: &PathPoint<'_>) -> Option<String> {
         zero_limit_joints("acceleration", &self.lo, &self.hi, p)

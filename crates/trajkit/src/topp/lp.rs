@@ -10,10 +10,11 @@
 //! optimum, processed first) make consecutive stages cheap.
 //!
 //! # Precision contract
-//! Half-planes are normalised to a unit normal before use, so the tolerance `tol` is a distance
-//! in the (v0, v1) plane: the returned point violates no half-plane and no box side by more
-//! than `tol` (plus floating-point rounding of the intersection of two lines), and its objective
-//! value is within `tol·|c|` of the true optimum of the problem. A problem is reported
+//! Half-planes need not be normalised: the tolerance `tol` is a distance in the (v0, v1) plane
+//! measured with the 1-norm of each row's normal (a row `a·v ≤ b` counts as satisfied when
+//! `a·v − b ≤ tol·(|a0| + |a1|)`). The returned point violates no half-plane and no box side by
+//! more than that (plus floating-point rounding of the intersection of two lines), and its
+//! objective value is within about `tol·|c|` of the true optimum. A problem is reported
 //! infeasible only when its feasible set is empty even after every half-plane is relaxed by
 //! `tol`. No allocation: the caller passes the half-planes as a slice.
 
@@ -31,9 +32,9 @@ pub struct LpSolution {
 }
 
 /// Maximises `c·v` subject to `rows[k][0]·v0 + rows[k][1]·v1 ≤ rows[k][2]` for every k and
-/// `lo ≤ v ≤ hi` (componentwise; bounds must be finite and `lo ≤ hi`). Rows must have a unit
-/// normal (see [`normalize`]). `hint` lists rows to process first (indices out of range are
-/// ignored). Returns `None` when infeasible.
+/// `lo ≤ v ≤ hi` (componentwise; bounds must be finite and `lo ≤ hi`). Rows must have a
+/// non-zero normal `(rows[k][0], rows[k][1])`. `hint` lists rows to process first (indices out
+/// of range are ignored). Returns `None` when infeasible.
 pub fn maximize(
     c: [f64; 2],
     rows: &[[f64; 3]],
@@ -52,73 +53,65 @@ pub fn maximize(
     }
     let mut active = [BOX, BOX];
     let m = rows.len();
-    let h0 = if hint[0] < m { hint[0] } else { BOX };
-    let h1 = if hint[1] < m && hint[1] != h0 {
-        hint[1]
-    } else {
-        BOX
-    };
-    // Processing order: the hints, then every other row in index order. `seen` returns
-    // whether row j was processed before position `pos` in that order.
-    let order = |pos: usize| -> usize {
-        let nh = (h0 != BOX) as usize + (h1 != BOX) as usize;
-        if pos < nh {
-            if pos == 0 && h0 != BOX {
-                h0
-            } else {
-                h1
-            }
-        } else {
-            // The (pos - nh)-th index that is not a hint.
-            let mut j = pos - nh;
-            let (a, b) = if h0 < h1 { (h0, h1) } else { (h1, h0) };
-            if j >= a {
-                j += 1;
-            }
-            if j >= b {
-                j += 1;
-            }
-            j
+    // Processing order: the (valid, distinct) hints first, then every other row in index order.
+    let mut hints = [BOX; 2];
+    let mut nh = 0;
+    for h in hint {
+        if h < m && (nh == 0 || hints[0] != h) {
+            hints[nh] = h;
+            nh += 1;
         }
-    };
-    for pos in 0..m {
-        let k = order(pos);
+    }
+    let is_hint = |j: usize| j == hints[0] || j == hints[1];
+    for pos in 0..nh + m {
+        let k = if pos < nh { hints[pos] } else { pos - nh };
+        if pos >= nh && is_hint(k) {
+            continue;
+        }
         let r = rows[k];
-        if r[0] * v[0] + r[1] * v[1] <= r[2] + tol {
+        let rn = r[0].abs() + r[1].abs();
+        if r[0] * v[0] + r[1] * v[1] <= r[2] + tol * rn {
             continue;
         }
         // New optimum on the line r0·v0 + r1·v1 = r2: v = p + t·d.
-        let p = [r[0] * r[2], r[1] * r[2]];
+        let f = r[2] / (r[0] * r[0] + r[1] * r[1]);
+        let p = [r[0] * f, r[1] * f];
         let d = [-r[1], r[0]];
+        // Parameter tolerance matching a distance tol along the line.
+        let ttol = tol / rn;
         let mut tlo = f64::NEG_INFINITY;
         let mut thi = f64::INFINITY;
         let mut alo = BOX;
         let mut ahi = BOX;
         // Box sides.
         for q in 0..2 {
-            if d[q].abs() > 1e-14 {
+            if d[q].abs() > 1e-14 * rn {
                 let t1 = (lo[q] - p[q]) / d[q];
                 let t2 = (hi[q] - p[q]) / d[q];
                 let (a, b) = if d[q] > 0.0 { (t1, t2) } else { (t2, t1) };
                 if a > tlo {
                     tlo = a;
-                    alo = BOX;
                 }
                 if b < thi {
                     thi = b;
-                    ahi = BOX;
                 }
             } else if p[q] < lo[q] - tol || p[q] > hi[q] + tol {
                 return None;
             }
         }
-        for prev in 0..pos {
-            let j = order(prev);
+        // Every row processed before this one.
+        let (before_hints, before_rows) = if pos < nh { (pos, 0) } else { (nh, k) };
+        let prev = hints[..before_hints]
+            .iter()
+            .copied()
+            .chain((0..before_rows).filter(|&j| !is_hint(j)));
+        for j in prev {
             let s = rows[j];
+            let sn = s[0].abs() + s[1].abs();
             let ad = s[0] * d[0] + s[1] * d[1];
             let rhs = s[2] - (s[0] * p[0] + s[1] * p[1]);
-            if ad.abs() <= 1e-14 {
-                if rhs < -tol {
+            if ad.abs() <= 1e-14 * sn * rn {
+                if rhs < -tol * sn {
                     return None;
                 }
             } else if ad > 0.0 {
@@ -135,15 +128,11 @@ pub fn maximize(
                 }
             }
         }
-        if tlo > thi + tol {
+        if tlo > thi + ttol {
             return None;
         }
         let cd = c[0] * d[0] + c[1] * d[1];
-        let (t, a) = if cd > 0.0 || (cd == 0.0 && thi < tlo) {
-            (thi, ahi)
-        } else {
-            (tlo, alo)
-        };
+        let (t, a) = if cd > 0.0 { (thi, ahi) } else { (tlo, alo) };
         // When tlo and thi cross by less than tol, take their midpoint.
         let t = if tlo > thi { 0.5 * (tlo + thi) } else { t };
         v = [p[0] + t * d[0], p[1] + t * d[1]];
@@ -152,24 +141,20 @@ pub fn maximize(
     Some(LpSolution { v, active })
 }
 
-/// Scales a half-plane `a0·v0 + a1·v1 ≤ b` to a unit normal. Returns `Err(b)` for a row with
-/// a zero normal (`0 ≤ b`: always true when `b ≥ 0`, never when `b < 0`).
-pub fn normalize(row: [f64; 3]) -> Result<[f64; 3], f64> {
-    let n = row[0].hypot(row[1]);
-    if n > 0.0 && n.is_finite() {
-        Ok([row[0] / n, row[1] / n, row[2] / n])
-    } else {
-        Err(row[2])
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::rng::SplitMix64;
 
+    /// Rows scaled by arbitrary factors: the solver must not depend on normalisation.
     fn norm(rows: &[[f64; 3]]) -> Vec<[f64; 3]> {
-        rows.iter().map(|&r| normalize(r).unwrap()).collect()
+        rows.iter()
+            .enumerate()
+            .map(|(k, &r)| {
+                let f = [1.0, 1e-3, 7.0, 1e4][k % 4];
+                [r[0] * f, r[1] * f, r[2] * f]
+            })
+            .collect()
     }
 
     #[test]
@@ -200,7 +185,6 @@ mod tests {
         assert!((s.v[1] - 1.0).abs() < 1e-12 && s.v[0].abs() < 1e-12, "{s:?}");
         let s = maximize([0.0, -1.0], &rows, [0.0, 0.0], [2.0, 2.0], [BOX, BOX], 1e-12).unwrap();
         assert!(s.v[1].abs() < 1e-12 && (s.v[0] - 1.0).abs() < 1e-12, "{s:?}");
-        assert_eq!(normalize([0.0, 0.0, -1.0]), Err(-1.0));
     }
 
     /// Brute force: the best feasible vertex among all pairwise intersections.
@@ -220,7 +204,10 @@ mod tests {
                 }
                 let v0 = (a[2] * b[1] - a[1] * b[2]) / det;
                 let v1 = (a[0] * b[2] - a[2] * b[0]) / det;
-                if all.iter().all(|r| r[0] * v0 + r[1] * v1 <= r[2] + 1e-9) {
+                if all
+                    .iter()
+                    .all(|r| r[0] * v0 + r[1] * v1 <= r[2] + 1e-9 * (r[0].abs() + r[1].abs()))
+                {
                     let f = c[0] * v0 + c[1] * v1;
                     best = Some(best.map_or(f, |b: f64| b.max(f)));
                 }
@@ -237,7 +224,8 @@ mod tests {
             let rows: Vec<[f64; 3]> = (0..m)
                 .map(|_| {
                     let a = rng.uniform(0.0, std::f64::consts::TAU);
-                    [a.cos(), a.sin(), rng.uniform(-1.0, 2.0)]
+                    let scale = 10f64.powf(rng.uniform(-3.0, 3.0));
+                    [scale * a.cos(), scale * a.sin(), scale * rng.uniform(-1.0, 2.0)]
                 })
                 .collect();
             let c = [rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)];
@@ -251,7 +239,8 @@ mod tests {
                     let f = c[0] * s.v[0] + c[1] * s.v[1];
                     assert!((f - w).abs() < 1e-9, "case {case}: {f} vs {w}");
                     for r in &rows {
-                        assert!(r[0] * s.v[0] + r[1] * s.v[1] <= r[2] + 1e-9, "case {case}");
+                        let n = r[0].abs() + r[1].abs();
+                        assert!(r[0] * s.v[0] + r[1] * s.v[1] <= r[2] + 1e-9 * n, "case {case}");
                     }
                 }
                 (None, None) => {}

@@ -130,6 +130,11 @@ impl TimeLaw for Profile {
     }
     fn eval(&self, t: f64) -> [f64; 4] {
         let t = clamp_time(t, Profile::duration(self));
+        let n = self.sdd.len();
+        if t >= self.t[n] {
+            // The end state exactly (rest stays rest).
+            return [self.s[n], self.sd[n], self.sdd[n - 1], 0.0];
+        }
         let i = find_piece(&self.t, t);
         let tau = t - self.t[i];
         let u = self.sdd[i];

@@ -28,7 +28,7 @@
 //! - Between gridpoints (where the problem is not discretized), with
 //!   [`Options::refine`] on (the default), every interval is checked at its eighths and at points
 //!   approaching its ends, and cut into equal parts (as many as the measured excess calls for,
-//!   the excess shrinking as Δ²) where a constraint is exceeded by more than 1e-7 relative, up to
+//!   the excess shrinking as Δ²) where a constraint is exceeded by more than 3e-7 relative, up to
 //!   [`MAX_REFINE_ROUNDS`] times; the tests check 1e-6 relative on 1 ms samples. With `refine`
 //!   off the excess between gridpoints is O(Δ²) (it shrinks fourfold when N doubles).
 //! - The duration is the sum of 2Δ_i/(ṡ_i + ṡ_{i+1}); it converges to the continuous optimum as
@@ -56,7 +56,7 @@ pub enum Discretization {
 pub const MAX_REFINE_ROUNDS: usize = 8;
 
 /// Relative excess between gridpoints that triggers refinement.
-const REFINE_TOL: f64 = 1e-7;
+const REFINE_TOL: f64 = 3e-7;
 
 /// Where each interval is checked (fractions of its length): the eighths, and points
 /// approaching both ends geometrically, where a constraint active at a gridpoint can be
@@ -279,8 +279,12 @@ impl Workspace {
         self.xlo.clear();
         self.xhi.clear();
         self.xhi_by.clear();
+        let need_q = cons.iter().any(|c| c.uses_position());
+        self.q.iter_mut().for_each(|v| *v = 0.0);
         for &s in grid {
-            path.eval(s, 0, &mut self.q);
+            if need_q {
+                path.eval(s, 0, &mut self.q);
+            }
             path.eval(s, 1, &mut self.dq);
             path.eval(s, 2, &mut self.ddq);
             check_path_values(s, &self.q, &self.dq, &self.ddq)?;
@@ -334,7 +338,7 @@ impl Workspace {
         &self.rows[self.off[base]..self.off[base + self.nc]]
     }
 
-    /// Fills `self.stage` with the normalised half-planes of stage i in (u, x), restricted to
+    /// Fills `self.stage` with the half-planes of stage i in (u, x), restricted to
     /// constraint `only` when given. Returns false when a row can never hold.
     fn build_stage(
         &mut self,
@@ -348,9 +352,12 @@ impl Workspace {
         let mut stage = std::mem::take(&mut self.stage);
         stage.clear();
         let mut ok = true;
-        let mut push = |r: [f64; 3]| match lp::normalize(r) {
-            Ok(r) => stage.push(r),
-            Err(g) => ok &= g >= 0.0,
+        let mut push = |r: [f64; 3]| {
+            if r[0] != 0.0 || r[1] != 0.0 {
+                stage.push(r)
+            } else {
+                ok &= r[2] >= 0.0
+            }
         };
         let (here, next) = match only {
             Some(k) => (self.rows_of(i, k), self.rows_of(i + 1, k)),
@@ -408,7 +415,19 @@ impl Workspace {
             } else {
                 None
             };
-            let worst = best.and_then(|_| lp::maximize([0.0, -1.0], &self.stage, lo, hi, hint_min, tol));
+            // The lowest controllable velocity is often zero (rest is admissible with u = 0):
+            // skip the second program then.
+            let rest_ok = xlo == 0.0
+                && klo <= 0.0
+                && self.stage.iter().all(|r| r[2] >= 0.0);
+            let worst = if rest_ok {
+                best.map(|_| lp::LpSolution {
+                    v: [0.0, 0.0],
+                    active: hint_min,
+                })
+            } else {
+                best.and_then(|_| lp::maximize([0.0, -1.0], &self.stage, lo, hi, hint_min, tol))
+            };
             let (best, worst) = match (best, worst) {
                 (Some(b), Some(w)) => (b, w),
                 _ => return Err(self.explain_stage(prob, grid, i)),
@@ -614,7 +633,7 @@ impl Workspace {
             if worst > REFINE_TOL {
                 // The excess of a smooth constraint shrinks with the square of the interval
                 // length: cut into enough parts to bring it a few times below the tolerance.
-                let parts = (worst / (0.25 * REFINE_TOL)).sqrt().ceil();
+                let parts = (worst / (0.5 * REFINE_TOL)).sqrt().ceil();
                 split[i] = if parts.is_finite() { (parts as usize).clamp(2, 64) } else { 64 };
             }
         }
