@@ -11,7 +11,10 @@ use trajkit::topp::{Gridpoints, Options, Toppra};
 use trajkit::{Limits, Order, Trajectory};
 
 fn standard_path() -> CubicSpline {
-    let p = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/topp/toppra_panda.json");
+    let p = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/topp/toppra_panda.json"
+    );
     let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
     let prob = v["problems"]
         .as_array()
@@ -37,11 +40,13 @@ fn bench(c: &mut Criterion) {
     for n in [100usize, 1000, 10000] {
         g.bench_with_input(BenchmarkId::from_parameter(n), &n, |b, &n| {
             b.iter(|| {
-                let prob = Toppra::with_limits(&path, &limits).unwrap().options(Options {
-                    gridpoints: Gridpoints::Uniform(n),
-                    refine: false,
-                    ..Options::default()
-                });
+                let prob = Toppra::with_limits(&path, &limits)
+                    .unwrap()
+                    .options(Options {
+                        gridpoints: Gridpoints::Uniform(n),
+                        refine: false,
+                        ..Options::default()
+                    });
                 black_box(prob.solve_profile().unwrap().duration())
             })
         });

@@ -27,11 +27,19 @@ fn opts(n: usize) -> Options {
 fn straight_line_trapezoid_and_triangle_are_exact() {
     // D = 1, v = 1, a = 2: accelerate over 0.25, cruise 0.5, brake 0.25: T = D/v + v/a = 1.5.
     let lim = Limits::uniform(1, 1.0, 2.0, f64::INFINITY).unwrap();
-    let traj = Toppra::with_limits(line(1.0), &lim).unwrap().options(opts(1000)).solve().unwrap();
+    let traj = Toppra::with_limits(line(1.0), &lim)
+        .unwrap()
+        .options(opts(1000))
+        .solve()
+        .unwrap();
     assert!((traj.duration() - 1.5).abs() < 1e-9, "{}", traj.duration());
     // D = 1, v = 10, a = 1: triangle, T = 2·√(D/a) = 2.
     let lim = Limits::uniform(1, 10.0, 1.0, f64::INFINITY).unwrap();
-    let traj = Toppra::with_limits(line(1.0), &lim).unwrap().options(opts(1000)).solve().unwrap();
+    let traj = Toppra::with_limits(line(1.0), &lim)
+        .unwrap()
+        .options(opts(1000))
+        .solve()
+        .unwrap();
     assert!((traj.duration() - 2.0).abs() < 1e-9, "{}", traj.duration());
     // Mid-time: half-way, at peak velocity √(a·D) = 1, accelerating then braking.
     let mut v = [0.0];
@@ -62,7 +70,11 @@ fn directional_limits_and_boundary_velocities() {
         .unwrap();
     // x_peak = 2·2·s1 = 2·0.5·(1 − s1) → s1 = 0.2, v_peak = √0.8; T = v/2 + v/0.5.
     let vp = 0.8f64.sqrt();
-    assert!((traj.duration() - (vp / 2.0 + vp / 0.5)).abs() < 1e-9, "{}", traj.duration());
+    assert!(
+        (traj.duration() - (vp / 2.0 + vp / 0.5)).abs() < 1e-9,
+        "{}",
+        traj.duration()
+    );
     // Start moving at ṡ = 0.5, end at ṡ = 0.3 (no cap on ṡ; the line has no velocity limit).
     let traj = Toppra::new(line(1.0))
         .constraint(JointAcceleration::new(&[-1.0], &[1.0]).unwrap())
@@ -74,7 +86,11 @@ fn directional_limits_and_boundary_velocities() {
     // Peak x from both sides: 0.25 + 2s = 0.09 + 2(1 − s) → s = 0.46, x = 1.17.
     let xp: f64 = 1.17;
     let t = (xp.sqrt() - 0.5) + (xp.sqrt() - 0.3);
-    assert!((traj.duration() - t).abs() < 1e-9, "{} vs {t}", traj.duration());
+    assert!(
+        (traj.duration() - t).abs() < 1e-9,
+        "{} vs {t}",
+        traj.duration()
+    );
     let mut v = [0.0];
     traj.eval(0.0, Order::Velocity, &mut v);
     assert!((v[0] - 0.5).abs() < 1e-12);
@@ -143,7 +159,10 @@ fn collocation_is_selectable() {
             .unwrap()
             .duration()
     };
-    let (ti, tc) = (t(Discretization::Interpolation), t(Discretization::Collocation));
+    let (ti, tc) = (
+        t(Discretization::Interpolation),
+        t(Discretization::Collocation),
+    );
     // Collocation checks each interval at its start only; the durations differ little.
     assert!((tc - ti).abs() < 0.01 * ti, "{tc} vs {ti}");
 }
@@ -159,7 +178,13 @@ struct TwoLink {
 
 impl TwoLink {
     fn arm() -> Self {
-        TwoLink { m1: 1.0, m2: 0.8, l1: 0.5, l2: 0.4, g: 9.81 }
+        TwoLink {
+            m1: 1.0,
+            m2: 0.8,
+            l1: 0.5,
+            l2: 0.4,
+            g: 9.81,
+        }
     }
 }
 
@@ -214,7 +239,15 @@ fn torque_rows_match_the_analytic_arm() {
         path.eval(s, 1, &mut dq);
         path.eval(s, 2, &mut ddq);
         let mut rows = ConstraintRows::new();
-        c.write(&PathPoint { s, q: &q, dq: &dq, ddq: &ddq }, &mut rows);
+        c.write(
+            &PathPoint {
+                s,
+                q: &q,
+                dq: &dq,
+                ddq: &ddq,
+            },
+            &mut rows,
+        );
         let hp = rows.half_planes();
         assert_eq!(hp.len(), 4);
         // For any (u, x), the upper rows say τ_j(u, x) ≤ limit with τ from the analytic model.
@@ -227,7 +260,10 @@ fn torque_rows_match_the_analytic_arm() {
                 let [a, b, g] = hp[2 * j];
                 let lim = [20.0, 8.0][j];
                 // a·u + b·x ≤ g ⇔ τ ≤ lim, so τ = a·u + b·x + (lim − g).
-                assert!((a * u + b * x + lim - g - tau[j]).abs() < 1e-12, "s {s} joint {j}");
+                assert!(
+                    (a * u + b * x + lim - g - tau[j]).abs() < 1e-12,
+                    "s {s} joint {j}"
+                );
             }
         }
     }
@@ -246,7 +282,8 @@ fn torque_and_end_effector_limits_hold_on_the_output() {
         .options(opts(300))
         .solve()
         .unwrap();
-    let (mut q, mut qd, mut qdd, mut tau, mut jm) = ([0.0; 2], [0.0; 2], [0.0; 2], [0.0; 2], [0.0; 4]);
+    let (mut q, mut qd, mut qdd, mut tau, mut jm) =
+        ([0.0; 2], [0.0; 2], [0.0; 2], [0.0; 2], [0.0; 4]);
     let (mut worst_tau, mut worst_v): (f64, f64) = (0.0, 0.0);
     let n = (traj.duration() / 1e-3) as usize;
     for k in 0..=n {
@@ -256,7 +293,8 @@ fn torque_and_end_effector_limits_hold_on_the_output() {
         traj.eval(t, Order::Acceleration, &mut qdd);
         arm.torque(&q, &qd, &qdd, &mut tau);
         arm.jacobian(&q, &mut jm);
-        let v = ((jm[0] * qd[0] + jm[1] * qd[1]).powi(2) + (jm[2] * qd[0] + jm[3] * qd[1]).powi(2)).sqrt();
+        let v = ((jm[0] * qd[0] + jm[1] * qd[1]).powi(2) + (jm[2] * qd[0] + jm[3] * qd[1]).powi(2))
+            .sqrt();
         worst_v = worst_v.max(v / vee);
         for j in 0..2 {
             worst_tau = worst_tau.max(tau[j].abs() / tmax[j]);
@@ -264,7 +302,10 @@ fn torque_and_end_effector_limits_hold_on_the_output() {
     }
     eprintln!("worst torque ratio {worst_tau}, end-effector speed ratio {worst_v}");
     assert!(worst_tau <= 1.0 + 1e-6 && worst_v <= 1.0 + 1e-6);
-    assert!(worst_tau.max(worst_v) > 0.999, "time-optimal: a limit is reached");
+    assert!(
+        worst_tau.max(worst_v) > 0.999,
+        "time-optimal: a limit is reached"
+    );
 }
 
 #[test]
@@ -278,7 +319,10 @@ fn coulomb_friction_costs_time() {
                     .unwrap(),
             )
             .unwrap()
-            .options(Options { refine: false, ..opts(200) })
+            .options(Options {
+                refine: false,
+                ..opts(200)
+            })
             .solve_profile()
             .unwrap()
             .duration()
@@ -290,8 +334,16 @@ fn coulomb_friction_costs_time() {
 /// Seeded random Panda problems: spline through 3..8 random waypoints; invariants on each.
 fn random_suite(cases: u64) {
     let lim = Limits::preset("panda").unwrap();
-    let (vlo, vhi): (Vec<f64>, Vec<f64>) = lim.joints().iter().map(|j| j.range(Order::Velocity)).unzip();
-    let (alo, ahi): (Vec<f64>, Vec<f64>) = lim.joints().iter().map(|j| j.range(Order::Acceleration)).unzip();
+    let (vlo, vhi): (Vec<f64>, Vec<f64>) = lim
+        .joints()
+        .iter()
+        .map(|j| j.range(Order::Velocity))
+        .unzip();
+    let (alo, ahi): (Vec<f64>, Vec<f64>) = lim
+        .joints()
+        .iter()
+        .map(|j| j.range(Order::Acceleration))
+        .unzip();
     for case in 0..cases {
         let mut rng = SplitMix64::new(1000 + case);
         let n = 3 + rng.below(6) as usize;
@@ -311,9 +363,20 @@ fn random_suite(cases: u64) {
             .unwrap_or_else(|e| panic!("case {case}: {e}"));
         let w = worst_ratios(&traj, &vlo, &vhi, &alo, &ahi, 1e-3);
         let lim1 = 1.0 + 1e-6;
-        assert!(w.velocity <= lim1 && w.acceleration <= lim1, "case {case}: {} {}", w.velocity, w.acceleration);
-        assert!(w.fd_velocity <= lim1 && w.fd_acceleration <= lim1, "case {case}");
-        assert!(w.velocity.max(w.acceleration) > 0.999, "case {case}: not time-optimal");
+        assert!(
+            w.velocity <= lim1 && w.acceleration <= lim1,
+            "case {case}: {} {}",
+            w.velocity,
+            w.acceleration
+        );
+        assert!(
+            w.fd_velocity <= lim1 && w.fd_acceleration <= lim1,
+            "case {case}"
+        );
+        assert!(
+            w.velocity.max(w.acceleration) > 0.999,
+            "case {case}: not time-optimal"
+        );
         // Starts and ends at rest on the waypoints.
         let mut q = [0.0; 7];
         traj.eval(traj.duration(), Order::Position, &mut q);
@@ -354,7 +417,10 @@ fn bad_input_is_a_typed_error() {
         .gridpoints(Gridpoints::Uniform(0))
         .solve_profile()
         .unwrap_err();
-    assert!(e.to_string().contains("gridpoint interval count = 0"), "{e}");
+    assert!(
+        e.to_string().contains("gridpoint interval count = 0"),
+        "{e}"
+    );
     // Only a velocity limit: nothing bounds the acceleration, the profile jumps to the limit.
     let t = Toppra::new(line(1.0))
         .constraint(JointVelocity::new(&[-1.0], &[1.0]).unwrap())
@@ -365,5 +431,9 @@ fn bad_input_is_a_typed_error() {
     assert!((t.duration() - 1.0).abs() < 1e-12);
     // No constraint at all: unbounded, an error (not a made-up duration).
     let e = Toppra::new(line(1.0)).solve_profile().unwrap_err();
-    assert!(e.to_string().contains("no constraint bounds the path velocity"), "{e}");
+    assert!(
+        e.to_string()
+            .contains("no constraint bounds the path velocity"),
+        "{e}"
+    );
 }

@@ -471,7 +471,13 @@ impl<D: InverseDynamics> Constraint for JointTorque<D> {
         self.dynamics.torque(p.q, p.dq, p.ddq, &mut b);
         for j in 0..n {
             let friction = self.coulomb[j] * p.dq[j].signum() * (p.dq[j] != 0.0) as u8 as f64;
-            out.interval(a[j] - c[j], b[j] - c[j], c[j] + friction, self.lo[j], self.hi[j]);
+            out.interval(
+                a[j] - c[j],
+                b[j] - c[j],
+                c[j] + friction,
+                self.lo[j],
+                self.hi[j],
+            );
         }
     }
 }
@@ -551,7 +557,9 @@ mod tests {
         );
         assert!(JointVelocity::new(&[0.5], &[1.0]).is_err());
         let e = JointAcceleration::new(&[-1.0], &[f64::NAN]).unwrap_err();
-        assert!(e.to_string().contains("joint 1 acceleration upper limit = NaN"));
+        assert!(e
+            .to_string()
+            .contains("joint 1 acceleration upper limit = NaN"));
     }
 
     #[test]

@@ -188,7 +188,9 @@ mod tests {
     #[test]
     fn auto_meets_tolerance() {
         // For s², the midpoint deviation on an interval of length h is h²/4.
-        let g = Gridpoints::Auto { tolerance: 1e-6 }.points(&Parabola).unwrap();
+        let g = Gridpoints::Auto { tolerance: 1e-6 }
+            .points(&Parabola)
+            .unwrap();
         for w in g.windows(2) {
             let h = w[1] - w[0];
             assert!(h * h / 4.0 <= 1e-6 * (1.0 + 1e-9), "{h}");
@@ -198,7 +200,9 @@ mod tests {
 
     #[test]
     fn given_points_are_validated() {
-        assert!(Gridpoints::Given(vec![0.0, 1.0, 2.0]).points(&Parabola).is_ok());
+        assert!(Gridpoints::Given(vec![0.0, 1.0, 2.0])
+            .points(&Parabola)
+            .is_ok());
         let e = Gridpoints::Given(vec![0.0, 1.0, 1.0, 2.0])
             .points(&Parabola)
             .unwrap_err();

@@ -165,8 +165,19 @@ mod tests {
         assert!((s.v[0] + s.v[1] - 1.5).abs() < 1e-12);
         // max v1 with v1 <= 0.25 + v0/2 and v1 <= 1 - v0: vertex at v0 = 0.5, v1 = 0.5.
         let rows = norm(&[[-0.5, 1.0, 0.25], [1.0, 1.0, 1.0]]);
-        let s = maximize([0.0, 1.0], &rows, [-9.0, -9.0], [9.0, 9.0], [BOX, BOX], 1e-12).unwrap();
-        assert!((s.v[0] - 0.5).abs() < 1e-12 && (s.v[1] - 0.5).abs() < 1e-12, "{s:?}");
+        let s = maximize(
+            [0.0, 1.0],
+            &rows,
+            [-9.0, -9.0],
+            [9.0, 9.0],
+            [BOX, BOX],
+            1e-12,
+        )
+        .unwrap();
+        assert!(
+            (s.v[0] - 0.5).abs() < 1e-12 && (s.v[1] - 0.5).abs() < 1e-12,
+            "{s:?}"
+        );
         let mut act = s.active;
         act.sort();
         assert_eq!(act, [0, 1]);
@@ -182,9 +193,23 @@ mod tests {
         // An equality as two opposite half-planes: v0 + v1 = 1.
         let rows = norm(&[[1.0, 1.0, 1.0], [-1.0, -1.0, -1.0]]);
         let s = maximize([0.0, 1.0], &rows, [0.0, 0.0], [2.0, 2.0], [BOX, BOX], 1e-12).unwrap();
-        assert!((s.v[1] - 1.0).abs() < 1e-12 && s.v[0].abs() < 1e-12, "{s:?}");
-        let s = maximize([0.0, -1.0], &rows, [0.0, 0.0], [2.0, 2.0], [BOX, BOX], 1e-12).unwrap();
-        assert!(s.v[1].abs() < 1e-12 && (s.v[0] - 1.0).abs() < 1e-12, "{s:?}");
+        assert!(
+            (s.v[1] - 1.0).abs() < 1e-12 && s.v[0].abs() < 1e-12,
+            "{s:?}"
+        );
+        let s = maximize(
+            [0.0, -1.0],
+            &rows,
+            [0.0, 0.0],
+            [2.0, 2.0],
+            [BOX, BOX],
+            1e-12,
+        )
+        .unwrap();
+        assert!(
+            s.v[1].abs() < 1e-12 && (s.v[0] - 1.0).abs() < 1e-12,
+            "{s:?}"
+        );
     }
 
     /// Brute force: the best feasible vertex among all pairwise intersections.
@@ -225,13 +250,20 @@ mod tests {
                 .map(|_| {
                     let a = rng.uniform(0.0, std::f64::consts::TAU);
                     let scale = 10f64.powf(rng.uniform(-3.0, 3.0));
-                    [scale * a.cos(), scale * a.sin(), scale * rng.uniform(-1.0, 2.0)]
+                    [
+                        scale * a.cos(),
+                        scale * a.sin(),
+                        scale * rng.uniform(-1.0, 2.0),
+                    ]
                 })
                 .collect();
             let c = [rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)];
             let lo = [-3.0, -2.0];
             let hi = [2.0, 3.0];
-            let hint = [rng.below(m as u64 + 2) as usize, rng.below(m as u64 + 2) as usize];
+            let hint = [
+                rng.below(m as u64 + 2) as usize,
+                rng.below(m as u64 + 2) as usize,
+            ];
             let got = maximize(c, &rows, lo, hi, hint, 1e-12);
             let want = brute(c, &rows, lo, hi);
             match (got, want) {
@@ -240,7 +272,10 @@ mod tests {
                     assert!((f - w).abs() < 1e-9, "case {case}: {f} vs {w}");
                     for r in &rows {
                         let n = r[0].abs() + r[1].abs();
-                        assert!(r[0] * s.v[0] + r[1] * s.v[1] <= r[2] + 1e-9 * n, "case {case}");
+                        assert!(
+                            r[0] * s.v[0] + r[1] * s.v[1] <= r[2] + 1e-9 * n,
+                            "case {case}"
+                        );
                     }
                 }
                 (None, None) => {}

@@ -337,6 +337,9 @@ mod tests {
         assert_eq!(stop_indices(&c, 2, 1e-9), vec![1]);
         assert!(stop_indices(&c, 2, std::f64::consts::PI - 1e-6).is_empty());
         assert!(dedup_waypoints(&w, 2, -1.0).is_err());
-        assert!(PathKind::parse("bogus").unwrap_err().to_string().contains("bogus"));
+        assert!(PathKind::parse("bogus")
+            .unwrap_err()
+            .to_string()
+            .contains("bogus"));
     }
 }

@@ -139,7 +139,8 @@ impl TimeLaw for Profile {
         let tau = t - self.t[i];
         let u = self.sdd[i];
         let sd = self.sd[i] + u * tau;
-        let s = (self.s[i] + self.sd[i] * tau + 0.5 * u * tau * tau).clamp(self.s[i], self.s[i + 1]);
+        let s =
+            (self.s[i] + self.sd[i] * tau + 0.5 * u * tau * tau).clamp(self.s[i], self.s[i + 1]);
         [s, sd.max(0.0), u, 0.0]
     }
 }

@@ -77,7 +77,10 @@ pub(crate) fn check_waypoints(waypoints: &[f64], dim: usize) -> Result<usize> {
     }
     let count = waypoints.len() / dim;
     if count < 2 {
-        return Err(Error::TooFewWaypoints { needed: 2, found: count });
+        return Err(Error::TooFewWaypoints {
+            needed: 2,
+            found: count,
+        });
     }
     if let Some(k) = waypoints.iter().position(|v| !v.is_finite()) {
         return Err(Error::InvalidValue {

@@ -260,7 +260,11 @@ impl<T: Trajectory> Trajectory for Scaled<T> {
 /// included): `k = max(r_v, √r_a, ∛r_j)` over samples and joints, `r` being the fraction of
 /// the limit used (directional limits respected). Below 1 the trajectory may be sped up.
 /// Returns 0 for a trajectory that never moves.
-pub fn min_time_scale<T: Trajectory + ?Sized>(traj: &T, limits: &Limits, rate_hz: f64) -> Result<f64> {
+pub fn min_time_scale<T: Trajectory + ?Sized>(
+    traj: &T,
+    limits: &Limits,
+    rate_hz: f64,
+) -> Result<f64> {
     limits.expect_dof(traj.dof(), "time scaling")?;
     crate::error::positive(|| "sample rate".into(), rate_hz)?;
     let n = traj.dof();

@@ -215,7 +215,13 @@ impl<'c, P: Path> Toppra<'c, P> {
             if !o.refine || round == MAX_REFINE_ROUNDS {
                 return profile_from(&grid, &x);
             }
-            let added = ws.refine(&self.path, &self.constraints, &mut grid, &x, o.discretization);
+            let added = ws.refine(
+                &self.path,
+                &self.constraints,
+                &mut grid,
+                &x,
+                o.discretization,
+            );
             if !added {
                 return profile_from(&grid, &x);
             }
@@ -417,9 +423,7 @@ impl Workspace {
             };
             // The lowest controllable velocity is often zero (rest is admissible with u = 0):
             // skip the second program then.
-            let rest_ok = xlo == 0.0
-                && klo <= 0.0
-                && self.stage.iter().all(|r| r[2] >= 0.0);
+            let rest_ok = xlo == 0.0 && klo <= 0.0 && self.stage.iter().all(|r| r[2] >= 0.0);
             let worst = if rest_ok {
                 best.map(|_| lp::LpSolution {
                     v: [0.0, 0.0],
@@ -546,7 +550,10 @@ impl Workspace {
         if who.is_empty() {
             for j in [i, i + 1] {
                 if self.xhi[j] <= 0.0 {
-                    who.push(format!("'{}' allows only ṡ = 0", self.name_of(prob, self.xhi_by[j])));
+                    who.push(format!(
+                        "'{}' allows only ṡ = 0",
+                        self.name_of(prob, self.xhi_by[j])
+                    ));
                 }
             }
             for k in 0..self.nc {
@@ -634,7 +641,11 @@ impl Workspace {
                 // The excess of a smooth constraint shrinks with the square of the interval
                 // length: cut into enough parts to bring it a few times below the tolerance.
                 let parts = (worst / (0.5 * REFINE_TOL)).sqrt().ceil();
-                split[i] = if parts.is_finite() { (parts as usize).clamp(2, 64) } else { 64 };
+                split[i] = if parts.is_finite() {
+                    (parts as usize).clamp(2, 64)
+                } else {
+                    64
+                };
             }
         }
         let _ = disc;
@@ -660,7 +671,11 @@ impl Workspace {
 }
 
 fn check_path_values(s: f64, q: &[f64], dq: &[f64], ddq: &[f64]) -> Result<()> {
-    for (name, v) in [("position", q), ("first derivative", dq), ("second derivative", ddq)] {
+    for (name, v) in [
+        ("position", q),
+        ("first derivative", dq),
+        ("second derivative", ddq),
+    ] {
         if let Some(j) = v.iter().position(|x| !x.is_finite()) {
             return Err(Error::InvalidValue {
                 field: format!("path {name} of joint {} at s = {s}", j + 1),

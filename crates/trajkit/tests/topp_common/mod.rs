@@ -7,13 +7,20 @@ use trajkit::{Order, Trajectory};
 
 /// The toppra fixture file.
 pub fn fixtures() -> Vec<Value> {
-    let p = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/topp/toppra_panda.json");
+    let p = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/topp/toppra_panda.json"
+    );
     let v: Value = serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
     v["problems"].as_array().unwrap().clone()
 }
 
 pub fn floats(v: &Value) -> Vec<f64> {
-    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect()
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
 }
 
 /// The fixture's cubic as a trajkit piecewise polynomial (same coefficients).
@@ -41,7 +48,11 @@ pub struct Worst {
 
 fn ratio(v: f64, lo: f64, hi: f64) -> f64 {
     if v >= 0.0 {
-        if hi.is_infinite() { 0.0 } else { v / hi }
+        if hi.is_infinite() {
+            0.0
+        } else {
+            v / hi
+        }
     } else if lo.is_infinite() {
         0.0
     } else {
@@ -63,7 +74,12 @@ pub fn worst_ratios<T: Trajectory>(
     let times: Vec<f64> = (0..=steps).map(|k| (k as f64 * dt).min(big_t)).collect();
     let mut q = vec![vec![0.0; n]; times.len()];
     let mut qd = vec![vec![0.0; n]; times.len()];
-    let mut w = Worst { velocity: 0.0, acceleration: 0.0, fd_velocity: 0.0, fd_acceleration: 0.0 };
+    let mut w = Worst {
+        velocity: 0.0,
+        acceleration: 0.0,
+        fd_velocity: 0.0,
+        fd_acceleration: 0.0,
+    };
     let mut a = vec![0.0; n];
     for (k, &t) in times.iter().enumerate() {
         traj.eval(t, Order::Position, &mut q[k]);
@@ -81,9 +97,12 @@ pub fn worst_ratios<T: Trajectory>(
             continue;
         }
         for j in 0..n {
-            w.fd_velocity = w.fd_velocity.max(ratio((q[k][j] - q[k - 1][j]) / h, vlo[j], vhi[j]));
+            w.fd_velocity = w
+                .fd_velocity
+                .max(ratio((q[k][j] - q[k - 1][j]) / h, vlo[j], vhi[j]));
             w.fd_acceleration =
-                w.fd_acceleration.max(ratio((qd[k][j] - qd[k - 1][j]) / h, alo[j], ahi[j]));
+                w.fd_acceleration
+                    .max(ratio((qd[k][j] - qd[k - 1][j]) / h, alo[j], ahi[j]));
         }
     }
     w
