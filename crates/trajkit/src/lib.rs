@@ -56,3 +56,8 @@ pub use limits::{JointLimits, Limits};
 pub use path::{Path, PathAsTrajectory};
 pub use sample::SampleTable;
 pub use traj::{Order, State, Trajectory};
+
+/// The README's code examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;
