@@ -10,4 +10,3 @@ pub mod check;
 pub mod common;
 pub mod plan;
 pub mod poly;
-
