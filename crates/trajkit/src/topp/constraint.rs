@@ -214,14 +214,14 @@ fn check_ranges(what: &str, lo: &[f64], hi: &[f64]) -> Result<()> {
         });
     }
     for j in 0..hi.len() {
-        if !(hi[j] >= 0.0) {
+        if hi[j].is_nan() || hi[j] < 0.0 {
             return Err(Error::InvalidValue {
                 field: format!("joint {} {what} upper limit", j + 1),
                 value: hi[j],
                 reason: "is not a number >= 0",
             });
         }
-        if !(lo[j] <= 0.0) {
+        if lo[j].is_nan() || lo[j] > 0.0 {
             return Err(Error::InvalidValue {
                 field: format!("joint {} {what} lower limit", j + 1),
                 value: lo[j],

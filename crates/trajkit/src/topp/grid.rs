@@ -83,7 +83,9 @@ fn check_given(pts: &[f64], a: f64, b: f64) -> Result<()> {
         });
     }
     for i in 1..pts.len() {
-        if !(pts[i] > pts[i - 1]) || !pts[i].is_finite() {
+        if pts[i].partial_cmp(&pts[i - 1]) != Some(std::cmp::Ordering::Greater)
+            || !pts[i].is_finite()
+        {
             return Err(Error::InvalidValue {
                 field: format!("gridpoint {i}"),
                 value: pts[i],

@@ -53,7 +53,7 @@ impl Profile {
         }
         for i in 0..s.len() {
             crate::error::finite(|| format!("profile gridpoint {i}"), s[i])?;
-            if i > 0 && !(s[i] > s[i - 1]) {
+            if i > 0 && s[i].partial_cmp(&s[i - 1]) != Some(std::cmp::Ordering::Greater) {
                 return Err(Error::InvalidValue {
                     field: format!("profile gridpoint {i}"),
                     value: s[i],

@@ -187,7 +187,7 @@ impl<'c, P: Path> Toppra<'c, P> {
         let (a, b) = self.path.interval();
         crate::error::finite(|| "path interval start".into(), a)?;
         crate::error::finite(|| "path interval end".into(), b)?;
-        if !(b > a) {
+        if b.partial_cmp(&a) != Some(std::cmp::Ordering::Greater) {
             return Err(Error::InvalidValue {
                 field: "path interval end".into(),
                 value: b,
