@@ -18,6 +18,47 @@
 //! infeasible only when its feasible set is empty even after every half-plane is relaxed by
 //! `tol`. No allocation: the caller passes the half-planes as a slice.
 
+/// A read-only list of half-planes `(a0, a1, b)`: a slice, or rows computed on the fly.
+pub trait HalfPlanes {
+    /// Number of half-planes.
+    fn count(&self) -> usize;
+    /// Half-plane `k` (`k < count()`).
+    fn get(&self, k: usize) -> [f64; 3];
+}
+
+impl HalfPlanes for [[f64; 3]] {
+    #[inline]
+    fn count(&self) -> usize {
+        self.len()
+    }
+    #[inline]
+    fn get(&self, k: usize) -> [f64; 3] {
+        self[k]
+    }
+}
+
+impl<const N: usize> HalfPlanes for [[f64; 3]; N] {
+    #[inline]
+    fn count(&self) -> usize {
+        N
+    }
+    #[inline]
+    fn get(&self, k: usize) -> [f64; 3] {
+        self[k]
+    }
+}
+
+impl HalfPlanes for Vec<[f64; 3]> {
+    #[inline]
+    fn count(&self) -> usize {
+        self.len()
+    }
+    #[inline]
+    fn get(&self, k: usize) -> [f64; 3] {
+        self[k]
+    }
+}
+
 /// Marks a box side (not a half-plane from the slice) in [`LpSolution::active`].
 pub const BOX: usize = usize::MAX;
 
@@ -35,9 +76,9 @@ pub struct LpSolution {
 /// `lo ≤ v ≤ hi` (componentwise; bounds must be finite and `lo ≤ hi`). Rows must have a
 /// non-zero normal `(rows[k][0], rows[k][1])`. `hint` lists rows to process first (indices out
 /// of range are ignored). Returns `None` when infeasible.
-pub fn maximize(
+pub fn maximize<R: HalfPlanes + ?Sized>(
     c: [f64; 2],
-    rows: &[[f64; 3]],
+    rows: &R,
     lo: [f64; 2],
     hi: [f64; 2],
     hint: [usize; 2],
@@ -52,7 +93,7 @@ pub fn maximize(
         v[k] = if c[k] > 0.0 { hi[k] } else { lo[k] };
     }
     let mut active = [BOX, BOX];
-    let m = rows.len();
+    let m = rows.count();
     // Processing order: the (valid, distinct) hints first, then every other row in index order.
     let mut hints = [BOX; 2];
     let mut nh = 0;
@@ -68,7 +109,7 @@ pub fn maximize(
         if pos >= nh && is_hint(k) {
             continue;
         }
-        let r = rows[k];
+        let r = rows.get(k);
         let rn = r[0].abs() + r[1].abs();
         if r[0] * v[0] + r[1] * v[1] <= r[2] + tol * rn {
             continue;
@@ -106,7 +147,7 @@ pub fn maximize(
             .copied()
             .chain((0..before_rows).filter(|&j| !is_hint(j)));
         for j in prev {
-            let s = rows[j];
+            let s = rows.get(j);
             let sn = s[0].abs() + s[1].abs();
             let ad = s[0] * d[0] + s[1] * d[1];
             let rhs = s[2] - (s[0] * p[0] + s[1] * p[1]);

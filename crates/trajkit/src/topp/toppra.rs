@@ -26,7 +26,7 @@
 //!   (1e-10 relative): at every gridpoint, every constraint holds for the interval's u on both
 //!   sides within 1e-9 relative.
 //! - Between gridpoints (where the problem is not discretized), with
-//!   [`Options::refine`] on (the default), every interval is checked at its eighths and at points
+//!   [`Options::refine`] on (the default), every interval is checked at its quarters and at points
 //!   approaching its ends, and cut into equal parts (as many as the measured excess calls for,
 //!   the excess shrinking as Δ²) where a constraint is exceeded by more than 3e-7 relative, up to
 //!   [`MAX_REFINE_ROUNDS`] times; the tests check 1e-6 relative on 1 ms samples. With `refine`
@@ -58,23 +58,17 @@ pub const MAX_REFINE_ROUNDS: usize = 8;
 /// Relative excess between gridpoints that triggers refinement.
 const REFINE_TOL: f64 = 3e-7;
 
-/// Where each interval is checked (fractions of its length): the eighths, and points
-/// approaching both ends geometrically, where a constraint active at a gridpoint can be
-/// exceeded just inside the interval.
-const REFINE_POINTS: [f64; 13] = [
-    1.0 / 256.0,
+/// Where each interval is checked (fractions of its length): the quarters, and points
+/// approaching both ends, where a constraint active at a gridpoint can be exceeded just inside
+/// the interval.
+const REFINE_POINTS: [f64; 7] = [
     1.0 / 64.0,
     1.0 / 16.0,
-    0.125,
     0.25,
-    0.375,
     0.5,
-    0.625,
     0.75,
-    0.875,
     1.0 - 1.0 / 16.0,
     1.0 - 1.0 / 64.0,
-    1.0 - 1.0 / 256.0,
 ];
 
 /// Solver options. `Options::default()`: 1000 uniform intervals, interpolation, rest to rest,
@@ -253,8 +247,6 @@ struct Workspace {
     xhi: Vec<f64>,
     xhi_by: Vec<usize>,
     nc: usize,
-    /// Stage scratch.
-    stage: Vec<[f64; 3]>,
     /// Controllable sets.
     klo: Vec<f64>,
     khi: Vec<f64>,
@@ -344,43 +336,31 @@ impl Workspace {
         &self.rows[self.off[base]..self.off[base + self.nc]]
     }
 
-    /// Fills `self.stage` with the half-planes of stage i in (u, x), restricted to
-    /// constraint `only` when given. Returns false when a row can never hold.
-    fn build_stage(
-        &mut self,
+    /// The half-planes of stage i in (u, x), restricted to constraint `only` when given.
+    fn stage(
+        &self,
         i: usize,
         delta: f64,
         disc: Discretization,
         only: Option<usize>,
         khi: f64,
         klo: f64,
-    ) -> bool {
-        let mut stage = std::mem::take(&mut self.stage);
-        stage.clear();
-        let mut ok = true;
-        let mut push = |r: [f64; 3]| {
-            if r[0] != 0.0 || r[1] != 0.0 {
-                stage.push(r)
-            } else {
-                ok &= r[2] >= 0.0
-            }
-        };
+    ) -> Stage<'_> {
         let (here, next) = match only {
             Some(k) => (self.rows_of(i, k), self.rows_of(i + 1, k)),
             None => (self.rows_at(i), self.rows_at(i + 1)),
         };
-        for &r in here {
-            push(r);
+        Stage {
+            here,
+            next: if disc == Discretization::Interpolation {
+                next
+            } else {
+                &[]
+            },
+            two_delta: 2.0 * delta,
+            khi,
+            klo,
         }
-        if disc == Discretization::Interpolation {
-            for &[a, b, g] in next {
-                push([a + 2.0 * delta * b, b, g]);
-            }
-        }
-        push([2.0 * delta, 1.0, khi]);
-        push([-2.0 * delta, -1.0, -klo]);
-        self.stage = stage;
-        ok
     }
 
     /// Backward and forward passes on `grid`; returns x_i = ṡ_i².
@@ -410,27 +390,25 @@ impl Workspace {
         for i in (0..n).rev() {
             let delta = grid[i + 1] - grid[i];
             let (klo, khi) = (self.klo[i + 1], self.khi[i + 1]);
-            let ok = self.build_stage(i, delta, disc, None, khi, klo);
+            let stage = self.stage(i, delta, disc, None, khi, klo);
             let xhi = self.xhi[i].min(X_BIG);
             let xlo = self.xlo[i];
             let lo = [(klo - xhi) / (2.0 * delta), xlo];
             let hi = [(khi - xlo) / (2.0 * delta), xhi];
             let tol = 1e-10 * (1.0 + khi);
-            let best = if ok {
-                lp::maximize([0.0, 1.0], &self.stage, lo, hi, hint_max, tol)
-            } else {
-                None
-            };
+            let best = lp::maximize([0.0, 1.0], &stage, lo, hi, hint_max, tol);
             // The lowest controllable velocity is often zero (rest is admissible with u = 0):
             // skip the second program then.
-            let rest_ok = xlo == 0.0 && klo <= 0.0 && self.stage.iter().all(|r| r[2] >= 0.0);
+            let rest_ok = xlo == 0.0
+                && klo <= 0.0
+                && stage.here.iter().chain(stage.next).all(|r| r[2] >= 0.0);
             let worst = if rest_ok {
                 best.map(|_| lp::LpSolution {
                     v: [0.0, 0.0],
                     active: hint_min,
                 })
             } else {
-                best.and_then(|_| lp::maximize([0.0, -1.0], &self.stage, lo, hi, hint_min, tol))
+                best.and_then(|_| lp::maximize([0.0, -1.0], &stage, lo, hi, hint_min, tol))
             };
             let (best, worst) = match (best, worst) {
                 (Some(b), Some(w)) => (b, w),
@@ -505,8 +483,8 @@ impl Workspace {
         let tol = 1e-10 * (1.0 + khi);
         let mut culprits = Vec::new();
         for k in 0..self.nc {
-            let ok = self.build_stage(i, delta, prob.options.discretization, Some(k), khi, klo);
-            if !ok || lp::maximize([0.0, 1.0], &self.stage, lo, hi, [BOX, BOX], tol).is_none() {
+            let stage = self.stage(i, delta, prob.options.discretization, Some(k), khi, klo);
+            if lp::maximize([0.0, 1.0], &stage, lo, hi, [BOX, BOX], tol).is_none() {
                 culprits.push(prob.constraints[k].name());
             }
         }
@@ -579,7 +557,7 @@ impl Workspace {
         ))
     }
 
-    /// Checks each interval at its eighths; cuts intervals where a constraint is
+    /// Checks each interval at its quarters and near its ends; cuts intervals where a constraint is
     /// exceeded. Returns whether the grid changed.
     fn refine<P: Path>(
         &mut self,
@@ -591,6 +569,7 @@ impl Workspace {
     ) -> bool {
         let _ = disc;
         let n = grid.len() - 1;
+        let need_q = cons.iter().any(|c| c.uses_position());
         // For each interval, the number of equal parts to cut it into (1: leave it).
         let mut split: Vec<usize> = vec![1; n];
         let mut any = false;
@@ -604,7 +583,9 @@ impl Workspace {
                     continue;
                 }
                 let xs = (x[i] + 2.0 * u * (s - grid[i])).max(0.0);
-                path.eval(s, 0, &mut self.q);
+                if need_q {
+                    path.eval(s, 0, &mut self.q);
+                }
                 path.eval(s, 1, &mut self.dq);
                 path.eval(s, 2, &mut self.ddq);
                 let p = PathPoint {
@@ -667,6 +648,37 @@ impl Workspace {
         let changed = next.len() != grid.len();
         *grid = next;
         changed
+    }
+}
+
+/// The half-planes of one stage, computed on the fly from the gridpoint rows: the rows at s_i,
+/// the rows at s_{i+1} with x_{i+1} = x + 2Δu substituted, and x_{i+1} ∈ [klo, khi].
+struct Stage<'a> {
+    here: &'a [[f64; 3]],
+    next: &'a [[f64; 3]],
+    two_delta: f64,
+    khi: f64,
+    klo: f64,
+}
+
+impl lp::HalfPlanes for Stage<'_> {
+    #[inline]
+    fn count(&self) -> usize {
+        self.here.len() + self.next.len() + 2
+    }
+    #[inline]
+    fn get(&self, k: usize) -> [f64; 3] {
+        let h = self.here.len();
+        if k < h {
+            self.here[k]
+        } else if k < h + self.next.len() {
+            let [a, b, g] = self.next[k - h];
+            [a + self.two_delta * b, b, g]
+        } else if k == h + self.next.len() {
+            [self.two_delta, 1.0, self.khi]
+        } else {
+            [-self.two_delta, -1.0, -self.klo]
+        }
     }
 }
 
