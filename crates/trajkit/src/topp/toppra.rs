@@ -25,12 +25,14 @@
 //! - The profile is the exact greedy solution of the discretized problem up to the LP tolerance
 //!   (1e-10 relative): at every gridpoint, every constraint holds for the interval's u on both
 //!   sides within 1e-9 relative.
-//! - Between gridpoints (where the problem is not discretized), with
-//!   [`Options::refine`] on (the default), every interval is checked at its quarters and at points
-//!   approaching its ends, and cut into equal parts (as many as the measured excess calls for,
-//!   the excess shrinking as Δ²) where a constraint is exceeded by more than 3e-7 relative, up to
-//!   [`MAX_REFINE_ROUNDS`] times; the tests check 1e-6 relative on 1 ms samples. With `refine`
-//!   off the excess between gridpoints is O(Δ²) (it shrinks fourfold when N doubles).
+//! - Between gridpoints (where the problem is not discretized), with [`Options::refine`] on
+//!   (the default), every interval is checked at its midpoint, its quarters and at points
+//!   approaching both ends geometrically (down to 4⁻⁷ of its length), and cut into equal parts
+//!   (as many as the measured excess calls for, the excess shrinking as Δ²) where a constraint
+//!   is exceeded by more than 3e-7 relative, up to [`MAX_REFINE_ROUNDS`] times; the tests check
+//!   1e-6 relative on 1 ms samples. With `refine` off the excess between gridpoints is O(Δ²)
+//!   (it shrinks fourfold when N doubles), except across a kink of the velocity limit curve
+//!   (where the binding joint changes), where it is O(Δ).
 //! - The duration is the sum of 2Δ_i/(ṡ_i + ṡ_{i+1}); it converges to the continuous optimum as
 //!   the grid is refined (see notes/topp.md for measured N = 100, 1000, 10000).
 
@@ -58,10 +60,15 @@ pub const MAX_REFINE_ROUNDS: usize = 8;
 /// Relative excess between gridpoints that triggers refinement.
 const REFINE_TOL: f64 = 3e-7;
 
-/// Where each interval is checked (fractions of its length): the quarters, and points
-/// approaching both ends, where a constraint active at a gridpoint can be exceeded just inside
-/// the interval.
-const REFINE_POINTS: [f64; 7] = [
+/// Where each interval is checked (fractions of its length): the midpoint and points
+/// approaching both ends geometrically (4⁻¹ … 4⁻⁷ from each end). A constraint active at a
+/// gridpoint can be exceeded just inside the interval, in a bump whose peak lies at some
+/// distance d from the end; the nearest point between d/4 and d sees at least 7/16 of its height.
+const REFINE_POINTS: [f64; 15] = [
+    1.0 / 16384.0,
+    1.0 / 4096.0,
+    1.0 / 1024.0,
+    1.0 / 256.0,
     1.0 / 64.0,
     1.0 / 16.0,
     0.25,
@@ -69,6 +76,10 @@ const REFINE_POINTS: [f64; 7] = [
     0.75,
     1.0 - 1.0 / 16.0,
     1.0 - 1.0 / 64.0,
+    1.0 - 1.0 / 256.0,
+    1.0 - 1.0 / 1024.0,
+    1.0 - 1.0 / 4096.0,
+    1.0 - 1.0 / 16384.0,
 ];
 
 /// Solver options. `Options::default()`: 1000 uniform intervals, interpolation, rest to rest,
@@ -557,7 +568,7 @@ impl Workspace {
         ))
     }
 
-    /// Checks each interval at its quarters and near its ends; cuts intervals where a constraint is
+    /// Checks each interval at its midpoint and at points approaching its ends; cuts intervals where a constraint is
     /// exceeded. Returns whether the grid changed.
     fn refine<P: Path>(
         &mut self,
