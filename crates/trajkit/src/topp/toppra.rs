@@ -322,6 +322,14 @@ impl Workspace {
                 }
             }
             self.off.push(self.rows.len());
+            if self.off.len() == nc + 1 {
+                // Every gridpoint usually has as many rows as the first: reserve once.
+                self.rows.reserve(self.rows.len() * grid.len());
+                self.off.reserve((nc + 1) * grid.len());
+                self.xlo.reserve(grid.len());
+                self.xhi.reserve(grid.len());
+                self.xhi_by.reserve(grid.len());
+            }
             if lo > hi * (1.0 + 1e-12) {
                 return Err(Error::Infeasible(format!(
                     "at s = {s}: the velocity bounds contradict each other (ṡ² ≥ {lo} but ṡ² ≤ {hi} by '{}')",
