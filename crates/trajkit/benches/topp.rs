@@ -4,7 +4,7 @@
 //!
 //! Run: `cargo bench -p trajkit --bench topp`.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::{criterion_group, BenchmarkId, Criterion};
 use std::hint::black_box;
 use trajkit::spline::CubicSpline;
 use trajkit::topp::{Gridpoints, Options, Toppra};
@@ -86,5 +86,43 @@ fn bench(c: &mut Criterion) {
     });
 }
 
+/// Back-to-back solves timed with `Instant`, reporting the minimum (the machine's unloaded
+/// speed) and the median, next to criterion's statistics, because the shared benchmark machine
+/// is often loaded by other jobs.
+fn plain_timing() {
+    let path = standard_path();
+    let limits = Limits::preset("panda").unwrap();
+    for n in [100usize, 1000, 10000] {
+        let reps = if n == 10000 { 50 } else { 200 };
+        let mut times: Vec<f64> = (0..reps)
+            .map(|_| {
+                let t0 = std::time::Instant::now();
+                let prob = Toppra::with_limits(&path, &limits)
+                    .unwrap()
+                    .options(Options {
+                        gridpoints: Gridpoints::Uniform(n),
+                        refine: false,
+                        ..Options::default()
+                    });
+                black_box(prob.solve_profile().unwrap().duration());
+                t0.elapsed().as_secs_f64()
+            })
+            .collect();
+        times.sort_by(f64::total_cmp);
+        println!(
+            "plain timing toppra_solve/{n}: min {:.1} us, median {:.1} us over {reps} solves",
+            times[0] * 1e6,
+            times[reps / 2] * 1e6
+        );
+    }
+}
+
 criterion_group!(benches, bench);
-criterion_main!(benches);
+
+fn main() {
+    benches();
+    criterion::Criterion::default()
+        .configure_from_args()
+        .final_summary();
+    plain_timing();
+}
