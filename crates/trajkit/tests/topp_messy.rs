@@ -224,3 +224,73 @@ fn infeasible_problems_say_where_and_which_constraint() {
         }
     );
 }
+
+/// Seeded messy waypoint lists (duplicates, exact reversals, tiny segments, a static joint):
+/// plan_waypoints either succeeds with limits held and rest at every piece boundary, or
+/// returns a typed error; it never panics.
+fn messy_suite(cases: u64) {
+    use trajkit::rng::SplitMix64;
+    let lim = Limits::preset("panda").unwrap();
+    for case in 0..cases {
+        let mut rng = SplitMix64::new(500 + case);
+        let n = 3 + rng.below(8) as usize;
+        let mut w: Vec<Vec<f64>> = Vec::new();
+        for _ in 0..n {
+            let p: Vec<f64> = lim
+                .joints()
+                .iter()
+                .map(|j| rng.uniform(j.position_min * 0.8, j.position_max * 0.8))
+                .collect();
+            match rng.below(5) {
+                0 if !w.is_empty() => w.push(w[w.len() - 1].clone()), // duplicate
+                1 if w.len() >= 2 => w.push(w[w.len() - 2].clone()),  // exact reversal
+                2 if !w.is_empty() => {
+                    let mut q = w[w.len() - 1].clone();
+                    q[0] += 1e-7; // tiny segment
+                    w.push(q);
+                }
+                _ => w.push(p),
+            }
+        }
+        for p in w.iter_mut() {
+            p[2] = 0.5; // a static joint
+        }
+        let flat: Vec<f64> = w.concat();
+        let opts = PlanOptions {
+            toppra: Options {
+                gridpoints: Gridpoints::Uniform(60),
+                ..Options::default()
+            },
+            ..PlanOptions::default()
+        };
+        match plan_waypoints(&flat, 7, &lim, &opts) {
+            Ok(traj) => {
+                check_limits(&traj, &lim);
+                let mut v = [0.0; 7];
+                for (k, &tb) in traj.boundaries().iter().enumerate() {
+                    if k > 0 {
+                        let piece = &traj.pieces()[k - 1];
+                        piece.eval(piece.duration(), Order::Velocity, &mut v);
+                        assert!(
+                            v.iter().all(|x| x.abs() < 1e-12),
+                            "case {case}: not at rest at {tb}"
+                        );
+                    }
+                }
+            }
+            Err(Error::TooFewWaypoints { .. }) => {}
+            Err(e) => panic!("case {case}: unexpected error {e}"),
+        }
+    }
+}
+
+#[test]
+fn seeded_messy_waypoints() {
+    messy_suite(3);
+}
+
+#[test]
+#[ignore = "long: 60 messy waypoint lists with 1 ms sampling"]
+fn seeded_messy_waypoints_long() {
+    messy_suite(60);
+}
