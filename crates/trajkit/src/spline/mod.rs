@@ -33,6 +33,9 @@
 //!   O(n) banded solve.
 //! - [`CubicHermiteSpline`], [`QuinticHermiteSpline`] (hermite.rs): given velocities (and
 //!   accelerations) at the breaks.
+//! - [`BSpline`] (bspline.rs, basis functions in basis.rs): any degree up to [`MAX_DEGREE`],
+//!   knot insertion, degree elevation, interpolation with end-derivative conditions
+//!   ([`BSpline::minimum_jerk`], [`BSpline::minimum_snap`]), least squares, [`DesignMatrix`].
 //! - [`PchipSpline`] (pchip.rs) and [`AkimaSpline`] (akima.rs): shape-preserving C¹ cubics, no
 //!   overshoot between waypoints.
 
@@ -78,6 +81,8 @@ pub(crate) use ppoly_backed;
 
 mod akima;
 mod banded;
+mod basis;
+mod bspline;
 mod cubic;
 mod hermite;
 mod pchip;
@@ -85,6 +90,7 @@ mod ppoly;
 mod validate;
 
 pub use akima::AkimaSpline;
+pub use bspline::{BSpline, DesignMatrix, EndDerivative, MAX_DEGREE};
 pub use cubic::CubicSpline;
 pub use hermite::{CubicHermiteSpline, QuinticHermiteSpline};
 pub use pchip::PchipSpline;
