@@ -270,9 +270,89 @@ impl BSpline {
     /// works; increasing `s` is fastest (each span is found from the previous one).
     pub fn eval_many(&self, s: &[f64], order: usize, out: &mut [f64]) {
         let dim = self.dim;
+        if order == 0 {
+            match self.k {
+                1 => return self.eval_many_fixed::<2>(s, out),
+                2 => return self.eval_many_fixed::<3>(s, out),
+                3 => return self.eval_many_fixed::<4>(s, out),
+                4 => return self.eval_many_fixed::<5>(s, out),
+                5 => return self.eval_many_fixed::<6>(s, out),
+                _ => {}
+            }
+        }
         let mut span = self.k;
         for (si, o) in s.iter().zip(out.chunks_exact_mut(dim)) {
             self.eval_with_hint(*si, order, o, &mut span);
+        }
+    }
+
+    /// Values (order 0) for a degree fixed at compile time (`KP1 = k + 1`). The reciprocal
+    /// knot differences of the Cox–de Boor recursion depend only on the span, so they are
+    /// computed when the span changes and the per-point work has no division.
+    fn eval_many_fixed<const KP1: usize>(&self, s: &[f64], out: &mut [f64]) {
+        let k = KP1 - 1;
+        let dim = self.dim;
+        let (a, b) = self.domain();
+        let t = &self.t[..];
+        let mut span = usize::MAX;
+        // inv[j][r] = 1 / (t[l + r + 1] − t[l + 1 − j + r]) for 1 <= j <= k, r < j.
+        let mut inv = [[0.0; KP1]; KP1];
+        // tl[m] = t[l + 1 − k + m], m = 0..2k.
+        let mut tl = [[0.0; KP1]; 2];
+        for (&si, o) in s.iter().zip(out.chunks_exact_mut(dim)) {
+            if si.is_nan() {
+                o.fill(f64::NAN);
+                continue;
+            }
+            let si = if si < a {
+                a
+            } else if si > b {
+                b
+            } else {
+                si
+            };
+            let l = if span != usize::MAX && si >= t[span] && si < t[span + 1] {
+                span
+            } else {
+                find_span_from(t, k, si, if span == usize::MAX { k } else { span })
+            };
+            if l != span {
+                span = l;
+                for j in 1..=k {
+                    for r in 0..j {
+                        inv[j][r] = 1.0 / (t[l + r + 1] - t[l + 1 - j + r]);
+                    }
+                }
+                for j in 0..KP1 {
+                    tl[0][j] = t[l + 1 - k + j.min(k)]; // t[l+1-j'] for left: index k - j'
+                    tl[1][j] = t[(l + j).min(t.len() - 1)]; // t[l + j]
+                }
+            }
+            // Cox–de Boor with precomputed reciprocals.
+            let mut nb = [0.0; KP1];
+            let mut left = [0.0; KP1];
+            let mut right = [0.0; KP1];
+            nb[0] = 1.0;
+            for j in 1..KP1 {
+                left[j] = si - tl[0][k - j];
+                right[j] = tl[1][j] - si;
+                let mut saved = 0.0;
+                for r in 0..j {
+                    let temp = nb[r] * inv[j][r];
+                    nb[r] = saved + right[r + 1] * temp;
+                    saved = left[j - r] * temp;
+                }
+                nb[j] = saved;
+            }
+            let c = &self.c[(l - k) * dim..(l + 1) * dim];
+            let o = &mut o[..dim];
+            for (d, ov) in o.iter_mut().enumerate() {
+                let mut acc = 0.0;
+                for j in 0..KP1 {
+                    acc += nb[j] * c[j * dim + d];
+                }
+                *ov = acc;
+            }
         }
     }
 
