@@ -432,7 +432,7 @@ impl BSpline {
         let n = self.num_control_points();
         let l = find_span(t, k, x);
         let mult = t.iter().filter(|&&v| v == x).count();
-        if mult >= k + 1 && x > t[k] && x < t[n] {
+        if mult > k && x > t[k] && x < t[n] {
             return Err(Error::InvalidValue {
                 field: "inserted knot".into(),
                 value: x,
@@ -495,7 +495,8 @@ impl BSpline {
 
     /// The same curve as a B-spline of degree `k + times`: every distinct knot gains `times`
     /// in multiplicity, and the new control points are found by collocation at the Greville
-    /// abscissae (exact up to round-off). Unclamped splines are clamped first.
+    /// abscissae (exact up to round-off). Unclamped splines are clamped first. A curve that is
+    /// discontinuous (an interior knot of multiplicity `k + 1`) is refused with a typed error.
     pub fn elevate_degree(&self, times: usize) -> Result<BSpline> {
         if times == 0 {
             return Ok(self.clone());
@@ -505,6 +506,22 @@ impl BSpline {
             return Err(too_high(nk));
         }
         let base = self.to_clamped();
+        let nb = base.num_control_points();
+        let mut run = 1;
+        for i in 1..base.t.len() {
+            run = if base.t[i] == base.t[i - 1] {
+                run + 1
+            } else {
+                1
+            };
+            if run > self.k && i > self.k && i < nb {
+                return Err(Error::InvalidValue {
+                    field: format!("knots[{i}]"),
+                    value: base.t[i],
+                    reason: "has multiplicity degree + 1 (the curve is discontinuous there): split it before elevating its degree",
+                });
+            }
+        }
         let mut t = Vec::with_capacity(base.t.len() * 2);
         let mut i = 0;
         while i < base.t.len() {
@@ -600,7 +617,7 @@ impl BSpline {
     ) -> Result<BSpline> {
         validate::interpolation_data(x, y, dim, 2)?;
         let k = degree;
-        if k > MAX_DEGREE || k < 2 {
+        if !(2..=MAX_DEGREE).contains(&k) {
             return Err(Error::InvalidValue {
                 field: "degree of interpolation with end derivatives".into(),
                 value: k as f64,
