@@ -36,6 +36,8 @@
 //! - [`BSpline`] (bspline.rs, basis functions in basis.rs): any degree up to [`MAX_DEGREE`],
 //!   knot insertion, degree elevation, interpolation with end-derivative conditions
 //!   ([`BSpline::minimum_jerk`], [`BSpline::minimum_snap`]), least squares, [`DesignMatrix`].
+//! - [`CatmullRom`] (catmull_rom.rs): uniform, centripetal, chordal ([`CatmullRomKind`]).
+//! - [`Bezier`] (bezier.rs): de Casteljau, hodograph, subdivision, degree elevation.
 //! - [`PchipSpline`] (pchip.rs) and [`AkimaSpline`] (akima.rs): shape-preserving C¹ cubics, no
 //!   overshoot between waypoints.
 
@@ -82,7 +84,9 @@ pub(crate) use ppoly_backed;
 mod akima;
 mod banded;
 mod basis;
+mod bezier;
 mod bspline;
+mod catmull_rom;
 mod cubic;
 mod hermite;
 mod pchip;
@@ -90,7 +94,9 @@ mod ppoly;
 mod validate;
 
 pub use akima::AkimaSpline;
+pub use bezier::Bezier;
 pub use bspline::{BSpline, DesignMatrix, EndDerivative, MAX_DEGREE};
+pub use catmull_rom::{CatmullRom, CatmullRomKind};
 pub use cubic::CubicSpline;
 pub use hermite::{CubicHermiteSpline, QuinticHermiteSpline};
 pub use pchip::PchipSpline;
