@@ -190,3 +190,87 @@ fn bezier_split_and_elevation_keep_the_curve() {
     bz.eval(7.0, 0, &mut o);
     assert_eq!(o[0], 1.0);
 }
+
+#[test]
+fn nurbs_arcs_are_exact_and_derivatives_agree_with_finite_differences() {
+    for (a0, a1) in [
+        (0.0, 1.0),
+        (0.3, 2.5),
+        (-1.0, 3.0),
+        (2.0, -1.5),
+        (0.0, std::f64::consts::TAU),
+    ] {
+        let arc = Nurbs::arc([1.0, -2.0], 2.5, a0, a1).unwrap();
+        let mut p = [0.0; 2];
+        for i in 0..=1000 {
+            arc.eval(i as f64 / 1000.0, 0, &mut p);
+            let r = (p[0] - 1.0).hypot(p[1] + 2.0);
+            assert!((r - 2.5).abs() < 1e-14, "radius {r}");
+        }
+        arc.eval(0.0, 0, &mut p);
+        assert!(
+            (p[0] - (1.0 + 2.5 * a0.cos())).abs() < 1e-14
+                && (p[1] - (-2.0 + 2.5 * a0.sin())).abs() < 1e-14
+        );
+        arc.eval(1.0, 0, &mut p);
+        assert!(
+            (p[0] - (1.0 + 2.5 * a1.cos())).abs() < 1e-13
+                && (p[1] - (-2.0 + 2.5 * a1.sin())).abs() < 1e-13
+        );
+        // Rational derivatives (also above the degree) against finite differences.
+        let h = 1e-6;
+        for s in [0.1, 0.37, 0.61, 0.9] {
+            if arc.knots().iter().any(|&k| (k - s).abs() < 1e-3) {
+                continue;
+            }
+            for m in 1..=5 {
+                let (mut lo, mut hi, mut mid) = ([0.0; 2], [0.0; 2], [0.0; 2]);
+                arc.eval(s - h, m - 1, &mut lo);
+                arc.eval(s + h, m - 1, &mut hi);
+                arc.eval(s, m, &mut mid);
+                let fd = [(hi[0] - lo[0]) / (2.0 * h), (hi[1] - lo[1]) / (2.0 * h)];
+                assert!(close(&fd, &mid, 1e-5), "order {m}: {fd:?} vs {mid:?}");
+            }
+        }
+    }
+    let mut o = [0.0; 2];
+    let c = Nurbs::circle([0.0, 0.0], 1.0).unwrap();
+    c.eval(0.5, NURBS_MAX_ORDER + 1, &mut o);
+    assert!(o[0].is_nan());
+}
+
+#[test]
+fn nurbs_with_unit_weights_is_its_bspline_and_bad_weights_are_refused() {
+    let mut r = SplitMix64::new(24);
+    let t = [0.0, 0.0, 0.0, 0.0, 0.3, 0.7, 1.0, 1.0, 1.0, 1.0];
+    let c: Vec<f64> = (0..18).map(|_| r.uniform(-1.0, 1.0)).collect();
+    let b = BSpline::new(&t, &c, 3, 3).unwrap();
+    let n = Nurbs::from_bspline(&b);
+    let n2 = Nurbs::new(&t, &c, &[2.0; 6], 3, 3).unwrap(); // equal weights cancel
+    let (mut p, mut q, mut z) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+    for i in 0..=20 {
+        for m in 0..4 {
+            let s = i as f64 / 20.0;
+            b.eval(s, m, &mut p);
+            n.eval(s, m, &mut q);
+            n2.eval(s, m, &mut z);
+            assert!(close(&p, &q, 1e-13) && close(&p, &z, 1e-12));
+        }
+    }
+    assert_eq!(n2.control_points().len(), 18);
+    for bad in [0.0, -1.0, f64::NAN] {
+        let mut w = [1.0; 6];
+        w[2] = bad;
+        assert!(matches!(
+            Nurbs::new(&t, &c, &w, 3, 3),
+            Err(Error::InvalidValue { .. })
+        ));
+    }
+    assert!(matches!(
+        Nurbs::new(&t, &c, &[1.0; 5], 3, 3),
+        Err(Error::DimensionMismatch { .. })
+    ));
+    assert!(Nurbs::arc([0.0, 0.0], -1.0, 0.0, 1.0).is_err());
+    assert!(Nurbs::arc([0.0, 0.0], 1.0, 0.0, 0.0).is_err());
+    assert!(Nurbs::arc([0.0, 0.0], 1.0, 0.0, 7.0).is_err());
+}

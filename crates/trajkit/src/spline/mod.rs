@@ -38,6 +38,7 @@
 //!   ([`BSpline::minimum_jerk`], [`BSpline::minimum_snap`]), least squares, [`DesignMatrix`].
 //! - [`CatmullRom`] (catmull_rom.rs): uniform, centripetal, chordal ([`CatmullRomKind`]).
 //! - [`Bezier`] (bezier.rs): de Casteljau, hodograph, subdivision, degree elevation.
+//! - [`Nurbs`] (nurbs.rs): weights, rational derivatives, exact circles and arcs.
 //! - [`PchipSpline`] (pchip.rs) and [`AkimaSpline`] (akima.rs): shape-preserving C¹ cubics, no
 //!   overshoot between waypoints.
 
@@ -89,6 +90,7 @@ mod bspline;
 mod catmull_rom;
 mod cubic;
 mod hermite;
+mod nurbs;
 mod pchip;
 mod ppoly;
 mod validate;
@@ -99,5 +101,6 @@ pub use bspline::{BSpline, DesignMatrix, EndDerivative, MAX_DEGREE};
 pub use catmull_rom::{CatmullRom, CatmullRomKind};
 pub use cubic::CubicSpline;
 pub use hermite::{CubicHermiteSpline, QuinticHermiteSpline};
+pub use nurbs::{Nurbs, NURBS_MAX_ORDER};
 pub use pchip::PchipSpline;
 pub use ppoly::PiecewisePolynomial;
