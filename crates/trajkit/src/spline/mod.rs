@@ -39,6 +39,8 @@
 //! - [`CatmullRom`] (catmull_rom.rs): uniform, centripetal, chordal ([`CatmullRomKind`]).
 //! - [`Bezier`] (bezier.rs): de Casteljau, hodograph, subdivision, degree elevation.
 //! - [`Nurbs`] (nurbs.rs): weights, rational derivatives, exact circles and arcs.
+//! - [`ArcLength`] (arclen.rs): length, inverse and arc-length reparameterization of any
+//!   [`crate::Path`] to a requested tolerance.
 //! - [`PchipSpline`] (pchip.rs) and [`AkimaSpline`] (akima.rs): shape-preserving C¹ cubics, no
 //!   overshoot between waypoints.
 
@@ -83,6 +85,7 @@ macro_rules! ppoly_backed {
 pub(crate) use ppoly_backed;
 
 mod akima;
+mod arclen;
 mod banded;
 mod basis;
 mod bezier;
@@ -96,6 +99,7 @@ mod ppoly;
 mod validate;
 
 pub use akima::AkimaSpline;
+pub use arclen::ArcLength;
 pub use bezier::Bezier;
 pub use bspline::{BSpline, DesignMatrix, EndDerivative, MAX_DEGREE};
 pub use catmull_rom::{CatmullRom, CatmullRomKind};
