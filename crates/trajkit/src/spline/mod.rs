@@ -41,6 +41,8 @@
 //! - [`Nurbs`] (nurbs.rs): weights, rational derivatives, exact circles and arcs.
 //! - [`ArcLength`] (arclen.rs): length, inverse and arc-length reparameterization of any
 //!   [`crate::Path`] to a requested tolerance.
+//! - [`Quat`] and [`SO3Spline`] (quat.rs): slerp and a C² interpolating orientation spline
+//!   with angular velocity and acceleration.
 //! - [`PchipSpline`] (pchip.rs) and [`AkimaSpline`] (akima.rs): shape-preserving C¹ cubics, no
 //!   overshoot between waypoints.
 
@@ -96,6 +98,7 @@ mod hermite;
 mod nurbs;
 mod pchip;
 mod ppoly;
+mod quat;
 mod validate;
 
 pub use akima::AkimaSpline;
@@ -108,3 +111,4 @@ pub use hermite::{CubicHermiteSpline, QuinticHermiteSpline};
 pub use nurbs::{Nurbs, NURBS_MAX_ORDER};
 pub use pchip::PchipSpline;
 pub use ppoly::PiecewisePolynomial;
+pub use quat::{Quat, SO3Spline};
