@@ -46,11 +46,15 @@ fn cubic_build(cr: &mut Criterion) {
     g.sample_size(20);
     for &n in &[1_000usize, 10_000] {
         let dim = 7;
-        let x: Vec<f64> = (0..n).map(|i| i as f64 + 0.3 * ((i * 7919) % 13) as f64 / 13.0).collect();
+        let x: Vec<f64> = (0..n)
+            .map(|i| i as f64 + 0.3 * ((i * 7919) % 13) as f64 / 13.0)
+            .collect();
         let y: Vec<f64> = (0..n * dim).map(|k| (0.01 * k as f64).sin()).collect();
         g.throughput(Throughput::Elements(n as u64));
         g.bench_with_input(BenchmarkId::new("not_a_knot", n), &n, |bch, _| {
-            bch.iter(|| black_box(CubicSpline::not_a_knot(black_box(&x), black_box(&y), dim).unwrap()))
+            bch.iter(|| {
+                black_box(CubicSpline::not_a_knot(black_box(&x), black_box(&y), dim).unwrap())
+            })
         });
     }
     g.finish();
