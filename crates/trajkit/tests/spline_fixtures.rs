@@ -52,6 +52,7 @@ fn compare(label: &str, path: &dyn Path, c: &Value, tol: f64) -> f64 {
             }
         }
     }
+    eprintln!("{label}: worst relative error {worst:.2e}");
     worst
 }
 
