@@ -267,10 +267,33 @@ impl BSpline {
     }
 
     /// Evaluates at many parameters: `out` is `s.len() × dim`, row-major. Any order of `s`
-    /// works; increasing `s` is fastest (each span is found from the previous one).
+    /// works; increasing `s` is fastest (each span is found from the previous one, and for
+    /// values of degree ≤ 5 the span's work is done once per span: with ≤ 16 components its
+    /// polynomial is expanded once and each point is a Horner pass, above that the Cox–de Boor
+    /// reciprocals are cached). Results agree with [`crate::Path::eval`] to rounding.
     pub fn eval_many(&self, s: &[f64], order: usize, out: &mut [f64]) {
         let dim = self.dim;
         if order == 0 {
+            {
+                macro_rules! taylor {
+                    ($kp1:literal) => {
+                        match dim {
+                            0..=4 => return self.eval_many_taylor::<$kp1, 4>(s, out),
+                            5..=8 => return self.eval_many_taylor::<$kp1, 8>(s, out),
+                            9..=16 => return self.eval_many_taylor::<$kp1, 16>(s, out),
+                            _ => return self.eval_many_fixed::<$kp1>(s, out),
+                        }
+                    };
+                }
+                match self.k {
+                    1 => taylor!(2),
+                    2 => taylor!(3),
+                    3 => taylor!(4),
+                    4 => taylor!(5),
+                    5 => taylor!(6),
+                    _ => {}
+                }
+            }
             match self.k {
                 1 => return self.eval_many_fixed::<2>(s, out),
                 2 => return self.eval_many_fixed::<3>(s, out),
@@ -283,6 +306,66 @@ impl BSpline {
         let mut span = self.k;
         for (si, o) in s.iter().zip(out.chunks_exact_mut(dim)) {
             self.eval_with_hint(*si, order, o, &mut span);
+        }
+    }
+
+    /// Values (order 0) for a degree fixed at compile time (`KP1 = k + 1`) and at most `MD`
+    /// components, through the span's polynomial: when the span changes, its Taylor
+    /// coefficients about the left knot are computed once from the de Boor basis derivatives
+    /// there (`a_m = Σ_j N_j⁽ᵐ⁾(t_l) c_j / m!`); each point is then one Horner pass over all
+    /// components at once (coefficients power-major, component-minor).
+    fn eval_many_taylor<const KP1: usize, const MD: usize>(&self, s: &[f64], out: &mut [f64]) {
+        let k = KP1 - 1;
+        let dim = self.dim;
+        let (a, b) = self.domain();
+        let t = &self.t[..];
+        let last = self.num_control_points() - 1;
+        let mut span = usize::MAX;
+        let mut coef = [[0.0; MD]; KP1];
+        let (mut t0, mut t1) = (0.0, 0.0);
+        for (&si, o) in s.iter().zip(out.chunks_exact_mut(dim)) {
+            if si.is_nan() {
+                o.fill(f64::NAN);
+                continue;
+            }
+            let si = if si < a {
+                a
+            } else if si > b {
+                b
+            } else {
+                si
+            };
+            let inside = span != usize::MAX && si >= t0 && (si < t1 || (span == last && si <= t1));
+            if !inside {
+                let l = find_span_from(t, k, si, if span == usize::MAX { k } else { span });
+                span = l;
+                t0 = t[l];
+                t1 = t[l + 1];
+                let c = &self.c[(l - k) * dim..(l + 1) * dim];
+                let mut nb = [0.0; K1];
+                let mut fact = 1.0;
+                for (m, row) in coef.iter_mut().enumerate() {
+                    if m > 0 {
+                        fact *= m as f64;
+                    }
+                    basis_ders(t, k, l, t0, m, &mut nb);
+                    for (d, v) in row.iter_mut().enumerate().take(dim) {
+                        let mut acc = 0.0;
+                        for j in 0..KP1 {
+                            acc += nb[j] * c[j * dim + d];
+                        }
+                        *v = acc / fact;
+                    }
+                }
+            }
+            let u = si - t0;
+            let mut acc = coef[k];
+            for m in (0..k).rev() {
+                for d in 0..MD {
+                    acc[d] = acc[d] * u + coef[m][d];
+                }
+            }
+            o.copy_from_slice(&acc[..dim]);
         }
     }
 
