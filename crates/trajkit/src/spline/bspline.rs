@@ -270,7 +270,8 @@ impl BSpline {
     /// works; increasing `s` is fastest (each span is found from the previous one, and for
     /// values of degree ≤ 5 the span's work is done once per span: with ≤ 16 components its
     /// polynomial is expanded once and each point is a Horner pass, above that the Cox–de Boor
-    /// reciprocals are cached). Results agree with [`crate::Path::eval`] to rounding.
+    /// reciprocals are cached). Results agree with [`crate::Path::eval`] to rounding (within
+    /// 1e-13 of the largest control-point magnitude on strongly non-uniform knots).
     pub fn eval_many(&self, s: &[f64], order: usize, out: &mut [f64]) {
         let dim = self.dim;
         if order == 0 {
