@@ -47,38 +47,50 @@ def scipy_rate(reps=15):
     s = np.arange(1_000_000) / 999_999.0
     out = b(s)
     times = []
+    cpu = []
     for _ in range(reps):
         t0 = time.perf_counter()
+        c0 = time.thread_time()
         out = b(s)
+        cpu.append(time.thread_time() - c0)
         times.append(time.perf_counter() - t0)
     med = statistics.median(times)
-    return med, s.size / med / 1e6, float(out[12345, 0])
+    return med, s.size / med / 1e6, statistics.median(cpu)
 
 
 def cargo_rate():
+    """Criterion medians (seconds) of the wall-time and the CPU-time benchmarks."""
     env = dict(os.environ)
     env.setdefault("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
     r = subprocess.run(["cargo", "bench", "-p", "trajkit", "--bench", "spline", "--", "bspline_eval"],
                        cwd=ROOT, env=env, capture_output=True, text=True)
     text = r.stdout + r.stderr
-    m = re.search(r"bspline_eval/cubic_100cp_7d_1e6_sorted\s+time:\s+\[\S+ \S+ (\S+) (\S+)", text)
-    if not m:
-        print(text[-3000:])
-        sys.exit("could not read criterion's output")
-    val, unit = float(m.group(1)), m.group(2)
-    sec = val * {"s": 1.0, "ms": 1e-3, "µs": 1e-6, "us": 1e-6, "ns": 1e-9}[unit]
-    return sec, 1.0 / sec
+    res = []
+    for name in ["cubic_100cp_7d_1e6_sorted", "cubic_100cp_7d_1e6_sorted_cputime"]:
+        m = re.search(r"bspline_eval/" + name + r"\s+time:\s+\[\S+ \S+ (\S+) (\S+)", text)
+        if not m:
+            print(text[-3000:])
+            sys.exit("could not read criterion's output")
+        val, unit = float(m.group(1)), m.group(2)
+        res.append(val * {"s": 1.0, "ms": 1e-3, "µs": 1e-6, "us": 1e-6, "ns": 1e-9}[unit])
+    return res
 
 
 if __name__ == "__main__":
     print(f"scipy {scipy.__version__}, numpy {np.__version__}")
+    with open("/proc/loadavg") as fh:
+        print("load average:", " ".join(fh.read().split()[:3]))
     before = scipy_rate()
-    print(f"scipy BSpline vectorized (before): median {before[0]*1e3:.1f} ms = {before[1]:.1f} M points/s")
+    print(f"scipy BSpline vectorized (before): wall median {before[0]*1e3:.1f} ms = {before[1]:.1f} M points/s;"
+          f" CPU median {before[2]*1e3:.1f} ms = {1/before[2]:.1f} M points/s")
     if "--skip-cargo" not in sys.argv:
-        sec, _ = cargo_rate()
-        print(f"trajkit BSpline::eval_many (criterion median): {sec*1e3:.1f} ms = {1.0/sec:.1f} M points/s")
+        wall, cpu = cargo_rate()
+        print(f"trajkit BSpline::eval_many (criterion medians): wall {wall*1e3:.1f} ms = {1.0/wall:.1f} M points/s;"
+              f" CPU {cpu*1e3:.1f} ms = {1.0/cpu:.1f} M points/s")
     after = scipy_rate()
-    print(f"scipy BSpline vectorized (after):  median {after[0]*1e3:.1f} ms = {after[1]:.1f} M points/s")
+    print(f"scipy BSpline vectorized (after):  wall median {after[0]*1e3:.1f} ms = {after[1]:.1f} M points/s;"
+          f" CPU median {after[2]*1e3:.1f} ms = {1/after[2]:.1f} M points/s")
     if "--skip-cargo" not in sys.argv:
-        peer = statistics.mean([before[1], after[1]])
-        print(f"ratio trajkit / scipy: {1.0/sec/peer:.2f}")
+        peer_wall = statistics.mean([before[1], after[1]])
+        peer_cpu = statistics.mean([1 / before[2], 1 / after[2]])
+        print(f"ratio trajkit / scipy: wall {1.0/wall/peer_wall:.2f}, CPU {1.0/cpu/peer_cpu:.2f}")
