@@ -90,6 +90,13 @@ fn or_zero(v: &[f64], dim: usize, flag: &str) -> CliResult<Vec<f64>> {
     }
 }
 
+/// The curve's name as given on the command line.
+fn curve_name(c: Curve) -> String {
+    c.to_possible_value()
+        .map(|v| v.get_name().to_string())
+        .unwrap_or_default()
+}
+
 /// Runs `trajkit spline`.
 pub fn run(a: &SplineArgs) -> CliResult<u8> {
     let w = Waypoints::from_file(&a.points)?;
@@ -184,15 +191,15 @@ pub fn run(a: &SplineArgs) -> CliResult<u8> {
     outputs.add(&a.out, a.output.render(&table, &a.out));
     if let Some(p) = &a.output.plot {
         let opts = trajkit::plot::PlotOptions {
-            title: format!("trajkit spline ({:?}) — {src}", a.curve).to_lowercase(),
+            title: format!("trajkit spline ({}) — {src}", curve_name(a.curve)),
             ..Default::default()
         };
         outputs.add(p, trajkit::plot::svg(&table, None, &opts)?);
     }
     outputs.commit()?;
     eprintln!(
-        "{:?} through {n} points ({dim} coordinates), parameter {s0} .. {s1}, {} samples",
-        a.curve,
+        "{} through {n} points ({dim} coordinates), parameter {s0} .. {s1}, {} samples",
+        curve_name(a.curve),
         table.len()
     );
     Ok(0)
