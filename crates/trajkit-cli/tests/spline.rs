@@ -27,6 +27,7 @@ fn every_curve_fits_and_samples() {
     let d = scratch("all");
     std::fs::write(d.join("p.csv"), "x,y\n0,0\n1,2\n0.5,1\n2,0\n3,1\n0,0\n").unwrap();
     for curve in [
+        "linear",
         "natural",
         "clamped",
         "not-a-knot",

@@ -274,3 +274,58 @@ fn nurbs_with_unit_weights_is_its_bspline_and_bad_weights_are_refused() {
     assert!(Nurbs::arc([0.0, 0.0], 1.0, 0.0, 0.0).is_err());
     assert!(Nurbs::arc([0.0, 0.0], 1.0, 0.0, 7.0).is_err());
 }
+
+#[test]
+fn catmull_rom_and_broken_line_derivatives_agree_with_finite_differences() {
+    let mut r = SplitMix64::new(25);
+    let pts: Vec<f64> = (0..7 * 3).map(|_| r.uniform(-2.0, 2.0)).collect();
+    let x: Vec<f64> = (0..7)
+        .map(|i| i as f64 * 0.7 + (i * i) as f64 * 0.05)
+        .collect();
+    let curves: Vec<Box<dyn Path>> = vec![
+        Box::new(CatmullRom::uniform(&pts, 3).unwrap()),
+        Box::new(CatmullRom::centripetal(&pts, 3).unwrap()),
+        Box::new(CatmullRom::chordal(&pts, 3).unwrap()),
+        Box::new(PiecewisePolynomial::linear(&x, &pts, 3).unwrap()),
+    ];
+    for (ci, c) in curves.iter().enumerate() {
+        let br = c.breakpoints();
+        for w in br.windows(2) {
+            let h = 1e-6 * (w[1] - w[0]);
+            for f in [0.3, 0.7] {
+                let s = w[0] + f * (w[1] - w[0]);
+                for m in 1..=4 {
+                    let (mut lo, mut hi, mut mid) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+                    c.eval(s - h, m - 1, &mut lo);
+                    c.eval(s + h, m - 1, &mut hi);
+                    c.eval(s, m, &mut mid);
+                    let fd: Vec<f64> = (0..3).map(|d| (hi[d] - lo[d]) / (2.0 * h)).collect();
+                    assert!(
+                        close(&fd, &mid, 1e-6),
+                        "curve {ci} order {m}: {fd:?} vs {mid:?}"
+                    );
+                }
+            }
+        }
+        // C¹ (Catmull-Rom) / C⁰ (broken line) at the interior breaks.
+        for &b in &br[1..br.len() - 1] {
+            let smooth = if ci < 3 { 1 } else { 0 };
+            for m in 0..=smooth {
+                let (mut a, mut e, mut slope) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+                let h = 1e-9;
+                c.eval(b - h, m, &mut a);
+                c.eval(b - h, m + 1, &mut slope);
+                c.eval(b, m, &mut e);
+                let left: Vec<f64> = (0..3).map(|d| a[d] + h * slope[d]).collect();
+                assert!(close(&left, &e, 1e-7), "curve {ci} C{m} at {b}");
+            }
+        }
+    }
+    let lin = PiecewisePolynomial::linear(&x, &pts, 3).unwrap();
+    let mut p = [0.0; 3];
+    lin.eval(0.5 * (x[2] + x[3]), 0, &mut p);
+    for d in 0..3 {
+        assert!((p[d] - 0.5 * (pts[6 + d] + pts[9 + d])).abs() < 1e-15);
+    }
+    assert!(PiecewisePolynomial::linear(&[0.0, 0.0], &[1.0, 2.0], 1).is_err());
+}

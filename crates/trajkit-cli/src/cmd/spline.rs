@@ -10,6 +10,8 @@ use trajkit::Path;
 /// Which curve to fit.
 #[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Curve {
+    /// Straight segments between the points (velocity jumps at the points).
+    Linear,
     /// Cubic spline, zero second derivative at the ends.
     Natural,
     /// Cubic spline with given end velocities (--start-velocity, --end-velocity; default 0).
@@ -146,6 +148,7 @@ pub fn run(a: &SplineArgs) -> CliResult<u8> {
     let z = vec![0.0; dim];
     let e = |r: trajkit::Error| CliError(format!("{src}: {r}"));
     let curve: Box<dyn Path> = match a.curve {
+        Curve::Linear => Box::new(PiecewisePolynomial::linear(&x, y, dim).map_err(e)?),
         Curve::Natural => Box::new(CubicSpline::natural(&x, y, dim).map_err(e)?),
         Curve::Clamped => Box::new(CubicSpline::clamped(&x, y, dim, &v0, &v1).map_err(e)?),
         Curve::NotAKnot => Box::new(CubicSpline::not_a_knot(&x, y, dim).map_err(e)?),

@@ -108,6 +108,23 @@ impl PiecewisePolynomial {
         }
     }
 
+    /// The broken line through `y` (row-major `n × dim`) at the breaks `x` (Drake's
+    /// `FirstOrderHold`): degree 1, continuous, its derivative jumps at the breaks.
+    pub fn linear(x: &[f64], y: &[f64], dim: usize) -> Result<Self> {
+        validate::interpolation_data(x, y, dim, 2)?;
+        let n = x.len() - 1;
+        let mut c = vec![0.0; n * dim * 2];
+        for i in 0..n {
+            let h = x[i + 1] - x[i];
+            for d in 0..dim {
+                let o = (i * dim + d) * 2;
+                c[o] = y[i * dim + d];
+                c[o + 1] = (y[(i + 1) * dim + d] - y[i * dim + d]) / h;
+            }
+        }
+        Ok(Self::from_parts(x.to_vec(), dim, 1, c))
+    }
+
     /// The piecewise cubic that takes values `y` (row-major `n × dim`) and first derivatives
     /// `dydx` (same shape) at the breaks `x` (Drake's `CubicHermite`): C¹.
     pub fn cubic_hermite(x: &[f64], y: &[f64], dydx: &[f64], dim: usize) -> Result<Self> {
