@@ -4,7 +4,9 @@ use super::common::{finite_list, CliError, CliResult, OutputArgs, Outputs};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
 use trajkit::io::Waypoints;
-use trajkit::spline::{AkimaSpline, BSpline, CatmullRom, CatmullRomKind, CubicSpline, PchipSpline};
+use trajkit::spline::{
+    AkimaSpline, BSpline, CatmullRom, CatmullRomKind, CubicSpline, PchipSpline, PiecewisePolynomial,
+};
 use trajkit::Path;
 
 /// Which curve to fit.
