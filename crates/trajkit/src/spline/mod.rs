@@ -20,11 +20,18 @@
 //! only programming error is an output buffer shorter than `dim`.
 //!
 //! # Precision contract
-//! - Interpolating splines reproduce their data points to within a few ulps of the data, and
-//!   agree with scipy.interpolate's reference values within 1e-12 relative (fixtures under
-//!   `tests/fixtures/spline/`).
-//! - Derivatives of every order are evaluated analytically (no differencing) and agree with
-//!   finite differences of the values to the accuracy finite differences allow.
+//! Checked by the tests under `tests/spline_*.rs`:
+//! - Interpolating splines reproduce their data to rounding (1e-12 relative in the tests).
+//! - Against scipy.interpolate (CubicSpline with every end condition, CubicHermiteSpline,
+//!   BPoly.from_derivatives, PchipInterpolator, Akima1DInterpolator, make_interp_spline,
+//!   make_lsq_spline, BSpline derivatives, insert_knot, design_matrix) and geomdl (NURBS and
+//!   its derivatives, Bézier degree elevation): within 1e-12 relative to the largest value of
+//!   each derivative order (fixtures in `tests/fixtures/spline/`; observed ≤ 2e-14).
+//! - Derivatives of every order are analytic and agree with finite differences.
+//! - The 9-point NURBS unit circle has radius 1 within 1e-14 (observed 2.2e-16).
+//! - [`ArcLength`]: length, inverse and reparameterized positions within the requested
+//!   absolute tolerance; the reparameterized speed is 1 to rounding.
+//! - [`SO3Spline`] passes through its keyframes within 1e-12 rad.
 //!
 //! # Map
 //! - [`PiecewisePolynomial`] (ppoly.rs): breaks + coefficients, the representation every
