@@ -48,7 +48,7 @@ fn main() -> Result<(), trajkit::Error> {
         Quat::from_axis_angle([0.0, 0.0, 1.0], 0.8)?,
         Quat::from_axis_angle([1.0, 0.0, 0.0], 0.5)?,
     ];
-    let so3 = SO3Spline::interpolate(0.0, 1.0, &keys)?;
+    let so3 = SO3Spline::interpolate_uniform(0.0, 1.0, &keys)?;
     let (qm, w, a) = so3.eval_all(0.5);
     println!(
         "SO(3) spline at t = 0.5 s: q = {:?}, ω = {:.3?} rad/s, α = {:.3?} rad/s²",

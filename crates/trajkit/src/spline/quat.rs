@@ -7,6 +7,9 @@
 //! `[0, π]`. Angular velocities and accelerations are in the world frame, in rad/s and rad/s².
 
 use crate::error::{Error, Result};
+use crate::spline::banded::Banded;
+use crate::spline::basis::{basis_ders, find_span, K1};
+use crate::spline::validate;
 use std::ops::Mul;
 
 /// A unit quaternion (rotation).
@@ -177,15 +180,17 @@ impl Quat {
     }
 }
 
-/// A C² orientation trajectory: a cumulative cubic B-spline on SO(3) with uniform knots,
-/// `R(t) = C_{i−1} ∏_{j=1..3} exp(B̃_j(u) Ω_j)`, `Ω_j = log(C_{i+j−2}⁻¹ C_{i+j−1})`,
-/// `u = (t − t_i)/Δt`, with cumulative cubic basis `B̃_j`.
+/// A C² orientation trajectory: a cumulative cubic B-spline on SO(3),
+/// `R(t) = C_{l−3} ∏_{j=1..3} exp(B̃_j(t) Ω_j)`, `Ω_j = log(C_{l−4+j}⁻¹ C_{l−3+j})`, with the
+/// cumulative cubic basis `B̃_j = Σ_{r≥j} N_{l−3+r}` on the knots (the keyframe times, extended
+/// by three mirrored steps at each end).
 ///
-/// [`SO3Spline::interpolate`] finds the control rotations so that the spline passes through
-/// keyframes at `t_0 + iΔt` (zero angular acceleration at both ends, the SO(3) analogue of the
-/// natural cubic spline: about a fixed axis the angle *is* the natural cubic spline of the
-/// keyframe angles). Angular velocity and acceleration are analytic (body-frame recursions,
-/// returned in the world frame); they are continuous everywhere. Times outside the interval are
+/// [`SO3Spline::interpolate`] finds control rotations `C_{−1} … C_n` so that the spline passes
+/// through keyframes at increasing times; the rotation beyond each end is the reflection of its
+/// neighbour (`C_{−1} = C_0 (C_0⁻¹ C_1)⁻¹`), which for evenly spaced times gives zero angular
+/// acceleration at both ends: about a fixed axis the angle is then the natural cubic spline of
+/// the keyframe angles. Angular velocity and acceleration are analytic (body-frame recursions,
+/// returned in the world frame) and continuous everywhere. Times outside the interval are
 /// clamped.
 ///
 /// ```
@@ -195,96 +200,180 @@ impl Quat {
 ///     Quat::from_axis_angle([0.0, 0.0, 1.0], 1.0)?,
 ///     Quat::from_axis_angle([1.0, 1.0, 0.0], 0.5)?,
 /// ];
-/// let sp = SO3Spline::interpolate(0.0, 0.5, &k)?;
-/// assert!(sp.eval(0.5).angle_to(k[1]) < 1e-12);
+/// let sp = SO3Spline::interpolate(&[0.0, 0.4, 1.5], &k)?;
+/// assert!(sp.eval(0.4).angle_to(k[1]) < 1e-12);
 /// let w = sp.angular_velocity(0.7);
 /// assert!(w.iter().all(|v| v.is_finite()));
 /// # Ok::<(), trajkit::Error>(())
 /// ```
 #[derive(Debug, Clone, PartialEq)]
 pub struct SO3Spline {
-    t0: f64,
-    dt: f64,
-    /// Control rotations C_{−1} … C_n (n + 2 of them for n keyframes).
+    /// Knots: n + 6 for n + 2 control rotations; the interval is [t[3], t[n + 2]].
+    t: Vec<f64>,
+    /// Control rotations C_{−1} … C_n.
     c: Vec<Quat>,
 }
 
+/// Knots for keyframe times: the times, with three steps mirrored beyond each end.
+fn extended_knots(times: &[f64]) -> Vec<f64> {
+    let n = times.len();
+    let (h0, h1) = (times[1] - times[0], times[n - 1] - times[n - 2]);
+    let mut t = vec![times[0] - 3.0 * h0, times[0] - 2.0 * h0, times[0] - h0];
+    t.extend_from_slice(times);
+    t.extend_from_slice(&[
+        times[n - 1] + h1,
+        times[n - 1] + 2.0 * h1,
+        times[n - 1] + 3.0 * h1,
+    ]);
+    t
+}
+
+fn normalized(q: &[Quat]) -> Result<Vec<Quat>> {
+    q.iter().map(|q| Quat::new(q.w, q.x, q.y, q.z)).collect()
+}
+
 impl SO3Spline {
-    /// The interpolating spline through `keys` (at least 2) at times `t0 + i·dt`, `dt > 0`.
-    /// Consecutive keyframes should be less than π apart; the control rotations are found by a
-    /// fixed-point iteration that stops at 1e-14 rad, and an error is returned if it does not
-    /// converge.
-    pub fn interpolate(t0: f64, dt: f64, keys: &[Quat]) -> Result<SO3Spline> {
-        crate::error::finite(|| "SO(3) spline start time".into(), t0)?;
-        crate::error::positive(|| "SO(3) spline knot spacing".into(), dt)?;
-        let n = keys.len();
-        if n < 2 {
-            return Err(Error::TooFewWaypoints {
-                needed: 2,
-                found: n,
+    /// The interpolating spline through `keys` at increasing finite `times` (at least 2 of
+    /// each, as many times as keys). The control rotations are found by a damped quasi-Newton
+    /// iteration (the B-spline collocation system, solved once by banded LU) that stops at
+    /// 1e-14 rad. Like a Euclidean interpolating spline, the control polygon swings wider than
+    /// the keyframes where they turn sharply; a cumulative spline needs consecutive control
+    /// rotations less than π apart, so keyframes that are far apart *and* turn sharply (e.g.
+    /// 1.4 rad steps that reverse direction) are refused with [`Error::Infeasible`]. Steps of up
+    /// to about 1 rad are safe.
+    pub fn interpolate(times: &[f64], keys: &[Quat]) -> Result<SO3Spline> {
+        validate::increasing("keyframe times", times, 2)?;
+        if keys.len() != times.len() {
+            return Err(Error::DimensionMismatch {
+                what: "keyframe count (one per time)".into(),
+                expected: times.len(),
+                found: keys.len(),
             });
         }
-        let keys: Vec<Quat> = keys
-            .iter()
-            .map(|q| Quat::new(q.w, q.x, q.y, q.z))
-            .collect::<Result<_>>()?;
+        let n = keys.len();
+        let keys = normalized(keys)?;
+        let t = extended_knots(times);
         let mut c = Vec::with_capacity(n + 2);
         c.push(keys[0]);
         c.extend_from_slice(&keys);
         c.push(keys[n - 1]);
-        let mut sp = SO3Spline { t0, dt, c };
-        for _ in 0..500 {
-            sp.reflect_ends();
+        let mut sp = SO3Spline { t, c };
+        // Quasi-Newton: the correction of the control rotations solves the (linear, Euclidean)
+        // collocation system of the cubic B-spline at the keyframe times, with the reflected
+        // end rotations folded in; exact in one step about a fixed axis.
+        let mut a = Banded::zeros(n, 2, 2);
+        for (i, &ti) in times.iter().enumerate() {
+            let l = find_span(&sp.t, 3, ti);
+            let mut nb = [0.0; K1];
+            basis_ders(&sp.t, 3, l, ti, 0, &mut nb);
+            let mut row = vec![0.0; n];
+            for r in 0..4 {
+                let j = l - 3 + r; // index into c = [C_{−1}, C_0, …, C_n]
+                let w = nb[r];
+                if j == 0 {
+                    row[0] += 2.0 * w;
+                    row[1] -= w;
+                } else if j == n + 1 {
+                    row[n - 1] += 2.0 * w;
+                    row[n - 2] -= w;
+                } else {
+                    row[j - 1] += w;
+                }
+            }
+            for (col, &v) in row.iter().enumerate() {
+                if v != 0.0 {
+                    a.set(i, col, v);
+                }
+            }
+        }
+        a.factor()
+            .map_err(|_| Error::Infeasible("SO(3) spline: singular collocation system".into()))?;
+        // World-frame residuals: left perturbations of all control rotations move the curve
+        // (to first order) by the same combination of them.
+        let residual = |sp: &SO3Spline, delta: &mut [f64]| -> f64 {
             let mut worst = 0.0f64;
             for i in 0..n {
-                let r = sp.at_knot(i);
-                let d = r.conj().mul(keys[i]).log();
-                let m = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-                worst = worst.max(m);
-                // Jacobi step; the diagonal weight of the collocation is 4/6.
-                sp.c[i + 1] = sp.c[i + 1].mul(Quat::exp(scale(d, 1.5)));
+                let d = keys[i].mul(sp.eval(times[i]).conj()).log();
+                worst = worst.max((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt());
+                delta[i * 3..i * 3 + 3].copy_from_slice(&d);
             }
+            worst
+        };
+        let mut delta = vec![0.0; n * 3];
+        let mut trial = vec![0.0; n * 3];
+        sp.reflect_ends();
+        let mut worst = residual(&sp, &mut delta);
+        for _ in 0..100 {
             if worst <= 1e-14 {
-                sp.reflect_ends();
                 return Ok(sp);
             }
             if !worst.is_finite() {
                 break;
             }
+            a.solve(&mut delta, 3);
+            // Backtracking: halve the step until the largest keyframe error decreases.
+            let base = sp.c.clone();
+            let mut step = 1.0;
+            loop {
+                for i in 0..n {
+                    let d = scale([delta[i * 3], delta[i * 3 + 1], delta[i * 3 + 2]], step);
+                    sp.c[i + 1] = Quat::exp(d).mul(base[i + 1]);
+                }
+                sp.reflect_ends();
+                let w = residual(&sp, &mut trial);
+                if w < worst || step < 1e-4 {
+                    worst = w;
+                    std::mem::swap(&mut delta, &mut trial);
+                    break;
+                }
+                step *= 0.5;
+            }
         }
         sp.reflect_ends();
         let worst = (0..n)
-            .map(|i| sp.at_knot(i).angle_to(keys[i]))
+            .map(|i| sp.eval(times[i]).angle_to(keys[i]))
             .fold(0.0, f64::max);
         if worst <= 1e-12 {
             return Ok(sp);
         }
+        let widest =
+            sp.c.windows(2)
+                .map(|w| w[0].angle_to(w[1]))
+                .fold(0.0, f64::max);
         Err(Error::Infeasible(format!(
-            "SO(3) spline: control rotations did not converge (keyframe error {worst:e} rad); keyframes more than π apart?"
+            "SO(3) spline: no control rotations found (keyframe error {worst:e} rad; widest control step {widest:.3} rad): the keyframes turn too sharply for a cumulative spline, whose control rotations must stay less than π apart"
         )))
     }
 
-    /// A spline from its control rotations `C_{−1} … C_n` (at least 4) directly: it
-    /// approximates them (B-spline), spanning `[t0, t0 + (len − 3)·dt]`.
+    /// [`SO3Spline::interpolate`] with keyframes `dt > 0` apart from `t0`.
+    pub fn interpolate_uniform(t0: f64, dt: f64, keys: &[Quat]) -> Result<SO3Spline> {
+        crate::error::finite(|| "SO(3) spline start time".into(), t0)?;
+        crate::error::positive(|| "SO(3) spline time step".into(), dt)?;
+        let times: Vec<f64> = (0..keys.len()).map(|i| t0 + dt * i as f64).collect();
+        Self::interpolate(&times, keys)
+    }
+
+    /// A spline from its control rotations `C_{−1} … C_n` (at least 4) on uniform knots `dt`
+    /// apart: it approximates them (B-spline) and spans `[t0, t0 + (len − 3)·dt]`.
     pub fn from_control_rotations(t0: f64, dt: f64, controls: &[Quat]) -> Result<SO3Spline> {
         crate::error::finite(|| "SO(3) spline start time".into(), t0)?;
-        crate::error::positive(|| "SO(3) spline knot spacing".into(), dt)?;
+        crate::error::positive(|| "SO(3) spline time step".into(), dt)?;
         if controls.len() < 4 {
             return Err(Error::TooFewWaypoints {
                 needed: 4,
                 found: controls.len(),
             });
         }
-        let c = controls
-            .iter()
-            .map(|q| Quat::new(q.w, q.x, q.y, q.z))
-            .collect::<Result<_>>()?;
-        Ok(SO3Spline { t0, dt, c })
+        let c = normalized(controls)?;
+        let t = (0..c.len() + 4)
+            .map(|i| t0 + dt * (i as f64 - 3.0))
+            .collect();
+        Ok(SO3Spline { t, c })
     }
 
-    /// The time interval `[t0, t_end]`.
+    /// The time interval.
     pub fn interval(&self) -> (f64, f64) {
-        (self.t0, self.t0 + (self.c.len() - 3) as f64 * self.dt)
+        (self.t[3], self.t[self.c.len()])
     }
 
     /// The control rotations `C_{−1} … C_n`.
@@ -292,66 +381,13 @@ impl SO3Spline {
         &self.c
     }
 
-    /// Natural ends: C_{−1} = C_0 (C_0⁻¹ C_1)⁻¹, likewise at the other end.
+    /// C_{−1} = C_0 (C_0⁻¹ C_1)⁻¹, likewise at the other end.
     fn reflect_ends(&mut self) {
         let m = self.c.len();
         let a = self.c[1].conj().mul(self.c[2]).log();
         self.c[0] = self.c[1].mul(Quat::exp(scale(a, -1.0)));
         let b = self.c[m - 2].conj().mul(self.c[m - 3]).log();
         self.c[m - 1] = self.c[m - 2].mul(Quat::exp(scale(b, -1.0)));
-    }
-
-    fn at_knot(&self, i: usize) -> Quat {
-        let segs = self.c.len() - 3;
-        if i < segs {
-            self.segment(i, 0.0).0
-        } else {
-            self.segment(segs - 1, 1.0).0
-        }
-    }
-
-    /// Rotation, body angular velocity and body angular acceleration per unit u on segment
-    /// `i` at `u ∈ [0, 1]`.
-    fn segment(&self, i: usize, u: f64) -> (Quat, [f64; 3], [f64; 3]) {
-        let b = [
-            (5.0 + 3.0 * u - 3.0 * u * u + u * u * u) / 6.0,
-            (1.0 + 3.0 * u + 3.0 * u * u - 2.0 * u * u * u) / 6.0,
-            u * u * u / 6.0,
-        ];
-        let db = [
-            (3.0 - 6.0 * u + 3.0 * u * u) / 6.0,
-            (3.0 + 6.0 * u - 6.0 * u * u) / 6.0,
-            0.5 * u * u,
-        ];
-        let ddb = [u - 1.0, 1.0 - 2.0 * u, u];
-        let mut r = self.c[i];
-        let mut w = [0.0; 3];
-        let mut al = [0.0; 3];
-        for j in 0..3 {
-            let om = self.c[i + j].conj().mul(self.c[i + j + 1]).log();
-            let a = Quat::exp(scale(om, b[j]));
-            r = r.mul(a);
-            let inv = a.conj();
-            let dw = scale(om, db[j]);
-            w = add(inv.rotate(w), dw);
-            al = add(add(inv.rotate(al), scale(om, ddb[j])), cross(w, dw));
-        }
-        (r, w, al)
-    }
-
-    fn locate(&self, t: f64) -> (usize, f64) {
-        let segs = self.c.len() - 3;
-        let (a, e) = self.interval();
-        let t = if t < a {
-            a
-        } else if t > e {
-            e
-        } else {
-            t
-        };
-        let x = (t - self.t0) / self.dt;
-        let i = (x.floor().max(0.0) as usize).min(segs - 1);
-        (i, x - i as f64)
     }
 
     /// The orientation at time `t` (clamped). A NaN time gives a NaN quaternion.
@@ -364,21 +400,42 @@ impl SO3Spline {
     pub fn eval_all(&self, t: f64) -> (Quat, [f64; 3], [f64; 3]) {
         if t.is_nan() {
             let nan = f64::NAN;
-            return (
-                Quat {
-                    w: nan,
-                    x: nan,
-                    y: nan,
-                    z: nan,
-                },
-                [nan; 3],
-                [nan; 3],
-            );
+            let q = Quat {
+                w: nan,
+                x: nan,
+                y: nan,
+                z: nan,
+            };
+            return (q, [nan; 3], [nan; 3]);
         }
-        let (i, u) = self.locate(t);
-        let (r, w, a) = self.segment(i, u);
-        let k = 1.0 / self.dt;
-        (r, r.rotate(scale(w, k)), r.rotate(scale(a, k * k)))
+        let (a, e) = self.interval();
+        let t = if t < a {
+            a
+        } else if t > e {
+            e
+        } else {
+            t
+        };
+        let l = find_span(&self.t, 3, t);
+        let mut nd = [[0.0; K1]; 3];
+        for (m, row) in nd.iter_mut().enumerate() {
+            basis_ders(&self.t, 3, l, t, m, &mut row[..]);
+        }
+        // Cumulative basis B̃_j = Σ_{r ≥ j} N_r and its derivatives, j = 1..3.
+        let cum = |m: usize, j: usize| (j..4).map(|r| nd[m][r]).sum::<f64>();
+        let mut r = self.c[l - 3];
+        let mut w = [0.0; 3];
+        let mut al = [0.0; 3];
+        for j in 1..4 {
+            let om = self.c[l + j - 4].conj().mul(self.c[l + j - 3]).log();
+            let aj = Quat::exp(scale(om, cum(0, j)));
+            r = r.mul(aj);
+            let inv = aj.conj();
+            let dw = scale(om, cum(1, j));
+            w = add(inv.rotate(w), dw);
+            al = add(add(inv.rotate(al), scale(om, cum(2, j))), cross(w, dw));
+        }
+        (r, r.rotate(w), r.rotate(al))
     }
 
     /// World angular velocity at `t` (rad/s).
