@@ -10,3 +10,4 @@ pub mod check;
 pub mod common;
 pub mod plan;
 pub mod poly;
+pub mod spline;

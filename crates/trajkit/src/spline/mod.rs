@@ -20,11 +20,18 @@
 //! only programming error is an output buffer shorter than `dim`.
 //!
 //! # Precision contract
-//! - Interpolating splines reproduce their data points to within a few ulps of the data, and
-//!   agree with scipy.interpolate's reference values within 1e-12 relative (fixtures under
-//!   `tests/fixtures/spline/`).
-//! - Derivatives of every order are evaluated analytically (no differencing) and agree with
-//!   finite differences of the values to the accuracy finite differences allow.
+//! Checked by the tests under `tests/spline_*.rs`:
+//! - Interpolating splines reproduce their data to rounding (1e-12 relative in the tests).
+//! - Against scipy.interpolate (CubicSpline with every end condition, CubicHermiteSpline,
+//!   BPoly.from_derivatives, PchipInterpolator, Akima1DInterpolator, make_interp_spline,
+//!   make_lsq_spline, BSpline derivatives, insert_knot, design_matrix) and geomdl (NURBS and
+//!   its derivatives, Bézier degree elevation): within 1e-12 relative to the largest value of
+//!   each derivative order (fixtures in `tests/fixtures/spline/`; observed ≤ 2e-14).
+//! - Derivatives of every order are analytic and agree with finite differences.
+//! - The 9-point NURBS unit circle has radius 1 within 1e-14 (observed 2.2e-16).
+//! - [`ArcLength`]: length, inverse and reparameterized positions within the requested
+//!   absolute tolerance; the reparameterized speed is 1 to rounding.
+//! - [`SO3Spline`] passes through its keyframes within 1e-12 rad.
 //!
 //! # Map
 //! - [`PiecewisePolynomial`] (ppoly.rs): breaks + coefficients, the representation every
@@ -33,6 +40,16 @@
 //!   O(n) banded solve.
 //! - [`CubicHermiteSpline`], [`QuinticHermiteSpline`] (hermite.rs): given velocities (and
 //!   accelerations) at the breaks.
+//! - [`BSpline`] (bspline.rs, basis functions in basis.rs): any degree up to [`MAX_DEGREE`],
+//!   knot insertion, degree elevation, interpolation with end-derivative conditions
+//!   ([`BSpline::minimum_jerk`], [`BSpline::minimum_snap`]), least squares, [`DesignMatrix`].
+//! - [`CatmullRom`] (catmull_rom.rs): uniform, centripetal, chordal ([`CatmullRomKind`]).
+//! - [`Bezier`] (bezier.rs): de Casteljau, hodograph, subdivision, degree elevation.
+//! - [`Nurbs`] (nurbs.rs): weights, rational derivatives, exact circles and arcs.
+//! - [`ArcLength`] (arclen.rs): length, inverse and arc-length reparameterization of any
+//!   [`crate::Path`] to a requested tolerance.
+//! - [`Quat`] and [`SO3Spline`] (quat.rs): slerp and a C² interpolating orientation spline
+//!   with angular velocity and acceleration.
 //! - [`PchipSpline`] (pchip.rs) and [`AkimaSpline`] (akima.rs): shape-preserving C¹ cubics, no
 //!   overshoot between waypoints.
 
@@ -77,15 +94,28 @@ macro_rules! ppoly_backed {
 pub(crate) use ppoly_backed;
 
 mod akima;
+mod arclen;
 mod banded;
+mod basis;
+mod bezier;
+mod bspline;
+mod catmull_rom;
 mod cubic;
 mod hermite;
+mod nurbs;
 mod pchip;
 mod ppoly;
+mod quat;
 mod validate;
 
 pub use akima::AkimaSpline;
+pub use arclen::ArcLength;
+pub use bezier::Bezier;
+pub use bspline::{BSpline, DesignMatrix, EndDerivative, MAX_DEGREE};
+pub use catmull_rom::{CatmullRom, CatmullRomKind};
 pub use cubic::CubicSpline;
 pub use hermite::{CubicHermiteSpline, QuinticHermiteSpline};
+pub use nurbs::{Nurbs, NURBS_MAX_ORDER};
 pub use pchip::PchipSpline;
 pub use ppoly::PiecewisePolynomial;
+pub use quat::{Quat, SO3Spline};

@@ -33,6 +33,28 @@ pub struct PiecewisePolynomial {
     coeffs: Vec<f64>,
 }
 
+/// Coefficients (ascending powers of the local variable) of the quintic on `[0, h]` with
+/// values `p0, p1`, slopes `v0, v1` and second derivatives `a0, a1` at its ends.
+pub(crate) fn quintic_coeffs(
+    h: f64,
+    p0: f64,
+    p1: f64,
+    v0: f64,
+    v1: f64,
+    a0: f64,
+    a1: f64,
+) -> [f64; 6] {
+    // Remaining conditions on c3 h³, c4 h⁴, c5 h⁵ after c0..c2 fix p0, v0, a0.
+    let e0 = p1 - p0 - v0 * h - 0.5 * a0 * h * h;
+    let e1 = (v1 - v0 - a0 * h) * h;
+    let e2 = (a1 - a0) * h * h;
+    let c3 = 10.0 * e0 - 4.0 * e1 + 0.5 * e2;
+    let c4 = -15.0 * e0 + 7.0 * e1 - e2;
+    let c5 = 6.0 * e0 - 3.0 * e1 + 0.5 * e2;
+    let h3 = h * h * h;
+    [p0, v0, 0.5 * a0, c3 / h3, c4 / (h3 * h), c5 / (h3 * h * h)]
+}
+
 /// j! / (j − m)!, as f64.
 #[inline]
 fn falling(j: usize, m: usize) -> f64 {
@@ -84,6 +106,23 @@ impl PiecewisePolynomial {
             degree,
             coeffs,
         }
+    }
+
+    /// The broken line through `y` (row-major `n × dim`) at the breaks `x` (Drake's
+    /// `FirstOrderHold`): degree 1, continuous, its derivative jumps at the breaks.
+    pub fn linear(x: &[f64], y: &[f64], dim: usize) -> Result<Self> {
+        validate::interpolation_data(x, y, dim, 2)?;
+        let n = x.len() - 1;
+        let mut c = vec![0.0; n * dim * 2];
+        for i in 0..n {
+            let h = x[i + 1] - x[i];
+            for d in 0..dim {
+                let o = (i * dim + d) * 2;
+                c[o] = y[i * dim + d];
+                c[o + 1] = (y[(i + 1) * dim + d] - y[i * dim + d]) / h;
+            }
+        }
+        Ok(Self::from_parts(x.to_vec(), dim, 1, c))
     }
 
     /// The piecewise cubic that takes values `y` (row-major `n × dim`) and first derivatives
@@ -140,20 +179,8 @@ impl PiecewisePolynomial {
                 let (p0, p1) = (y[i * dim + d], y[(i + 1) * dim + d]);
                 let (v0, v1) = (dydx[i * dim + d], dydx[(i + 1) * dim + d]);
                 let (a0, a1) = (d2ydx2[i * dim + d], d2ydx2[(i + 1) * dim + d]);
-                // Remaining conditions on c3 h³, c4 h⁴, c5 h⁵ after c0..c2 fix p0, v0, a0.
-                let e0 = p1 - p0 - v0 * h - 0.5 * a0 * h * h;
-                let e1 = (v1 - v0 - a0 * h) * h;
-                let e2 = (a1 - a0) * h * h;
-                let c3 = 10.0 * e0 - 4.0 * e1 + 0.5 * e2;
-                let c4 = -15.0 * e0 + 7.0 * e1 - e2;
-                let c5 = 6.0 * e0 - 3.0 * e1 + 0.5 * e2;
                 let o = (i * dim + d) * 6;
-                c[o] = p0;
-                c[o + 1] = v0;
-                c[o + 2] = 0.5 * a0;
-                c[o + 3] = c3 / (h * h * h);
-                c[o + 4] = c4 / (h * h * h * h);
-                c[o + 5] = c5 / (h * h * h * h * h);
+                c[o..o + 6].copy_from_slice(&quintic_coeffs(h, p0, p1, v0, v1, a0, a1));
             }
         }
         Ok(Self::from_parts(x.to_vec(), dim, 5, c))

@@ -1,4 +1,3 @@
-#![allow(dead_code)] // some checks are used only by later curve types
 //! Input checks shared by the curve constructors; every failure is a typed [`Error`] naming
 //! the field and the value.
 
