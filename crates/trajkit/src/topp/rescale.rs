@@ -207,6 +207,21 @@ impl TimeLaw for QuinticLaw {
 }
 
 /// A trajectory played `factor` times slower: ξ_k(t) = ξ(t/k), duration k·T.
+///
+/// ```
+/// use trajkit::topp::{LinearPath, QuinticLaw, Retimed, Scaled};
+/// use trajkit::{Limits, Order, Trajectory};
+///
+/// let path = LinearPath::new(&[0.0, 1.0], 1)?;
+/// let fast = Retimed::new(&path, QuinticLaw::new(0.0, 1.0, 0.5)?)?; // too fast for the limits
+/// let limits = Limits::uniform(1, 1.0, 4.0, 50.0)?;
+/// let slow = Scaled::to_limits(&fast, &limits, 1000.0)?;          // smallest factor that fits
+/// assert!(slow.factor() > 1.0);
+/// let mut v = [0.0];
+/// slow.eval(slow.duration() / 2.0, Order::Velocity, &mut v);      // peak velocity
+/// assert!(v[0] <= 1.0 + 1e-12);
+/// # Ok::<(), trajkit::Error>(())
+/// ```
 #[derive(Debug, Clone)]
 pub struct Scaled<T: Trajectory> {
     inner: T,
