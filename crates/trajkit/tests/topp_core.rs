@@ -437,3 +437,35 @@ fn bad_input_is_a_typed_error() {
         "{e}"
     );
 }
+
+#[test]
+fn without_refinement_the_excess_between_gridpoints_shrinks_with_n() {
+    let lim = Limits::preset("panda").unwrap();
+    let (vlo, vhi): (Vec<f64>, Vec<f64>) = lim
+        .joints()
+        .iter()
+        .map(|j| j.range(Order::Velocity))
+        .unzip();
+    let (alo, ahi): (Vec<f64>, Vec<f64>) = lim
+        .joints()
+        .iter()
+        .map(|j| j.range(Order::Acceleration))
+        .unzip();
+    let path = standard_problem();
+    let excess = |n: usize| {
+        let traj = Toppra::with_limits(&path, &lim)
+            .unwrap()
+            .options(Options {
+                refine: false,
+                ..opts(n)
+            })
+            .solve()
+            .unwrap();
+        let w = worst_ratios(&traj, &vlo, &vhi, &alo, &ahi, 1e-3);
+        w.velocity.max(w.acceleration) - 1.0
+    };
+    let (e1, e2, e3) = (excess(100), excess(400), excess(1600));
+    eprintln!("excess over the limits between gridpoints: N=100 {e1:.2e}, N=400 {e2:.2e}, N=1600 {e3:.2e}");
+    assert!(e1 > 0.0, "coarse grids do exceed between gridpoints: {e1}");
+    assert!(e2 < e1 / 2.0 && e3 < e2 / 2.0, "{e1} {e2} {e3}");
+}
