@@ -21,7 +21,7 @@ pub const MAX_AUTO_INTERVALS: usize = 1 << 20;
 /// How to choose gridpoints.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Gridpoints {
-    /// `n ≥ 1` equal intervals over the path interval, plus the path's breakpoints.
+    /// `n` equal intervals (1 ≤ n ≤ 2²⁶) over the path interval, plus the path's breakpoints.
     Uniform(usize),
     /// At least 100 equal intervals plus the breakpoints, then each interval halved until the
     /// path's midpoint deviation from the chord is at most `tolerance` (joint units).
@@ -44,6 +44,13 @@ impl Gridpoints {
                         field: "gridpoint interval count".into(),
                         value: 0.0,
                         reason: "is not at least 1",
+                    });
+                }
+                if *n > MAX_AUTO_INTERVALS * 64 {
+                    return Err(Error::InvalidValue {
+                        field: "gridpoint interval count".into(),
+                        value: *n as f64,
+                        reason: "is too large (at most 67108864)",
                     });
                 }
                 Ok(uniform_with_breaks(a, b, *n, &path.breakpoints()))
@@ -185,6 +192,10 @@ mod tests {
         let g = Gridpoints::Uniform(1).points(&Parabola).unwrap();
         assert_eq!(g, vec![0.0, 0.3, 1.0 + 1e-12, 2.0]);
         assert!(Gridpoints::Uniform(0).points(&Parabola).is_err());
+        let e = Gridpoints::Uniform(usize::MAX)
+            .points(&Parabola)
+            .unwrap_err();
+        assert!(e.to_string().contains("too large"), "{e}");
     }
 
     #[test]

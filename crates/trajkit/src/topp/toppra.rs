@@ -29,7 +29,8 @@
 //!   (the default), every interval is checked at its midpoint, its quarters and at points
 //!   approaching both ends geometrically (down to 4⁻⁷ of its length), and cut into equal parts
 //!   (as many as the measured excess calls for, the excess shrinking as Δ²) where a constraint
-//!   is exceeded by more than 3e-7 relative, up to [`MAX_REFINE_ROUNDS`] times; the tests check
+//!   is exceeded by more than 3e-7 relative, up to [`MAX_REFINE_ROUNDS`] times (and while the
+//!   grid stays below [`MAX_REFINED_INTERVALS`] intervals); the tests check
 //!   1e-6 relative on 1 ms samples. With `refine` off the excess between gridpoints is O(Δ²)
 //!   (it shrinks fourfold when N doubles), except across a kink of the velocity limit curve
 //!   (where the binding joint changes), where it is O(Δ). An interval found within the limits
@@ -58,6 +59,9 @@ pub enum Discretization {
 
 /// Largest number of refinement rounds of [`Options::refine`].
 pub const MAX_REFINE_ROUNDS: usize = 8;
+
+/// Refinement stops before the grid would exceed this many intervals.
+pub const MAX_REFINED_INTERVALS: usize = 1 << 22;
 
 /// Relative excess between gridpoints that triggers refinement.
 const REFINE_TOL: f64 = 3e-7;
@@ -674,7 +678,8 @@ impl Workspace {
             }
         }
         let _ = disc;
-        if !any {
+        let total: usize = split.iter().sum();
+        if !any || total > MAX_REFINED_INTERVALS {
             return false;
         }
         let mut next = Vec::with_capacity(grid.len() * 2);
