@@ -14,16 +14,23 @@
 //! - [`messy`]: planner output as it comes: duplicates, reversals, rest-to-rest pieces.
 //!
 //! ```
-//! use trajkit::topp::{LinearPath, Toppra, Gridpoints};
-//! use trajkit::{Limits, Trajectory};
+//! use trajkit::topp::{Gridpoints, LinearPath, Toppra};
+//! use trajkit::{Limits, Order, Trajectory};
 //!
+//! // A straight move of all 7 Panda joints by 0.5 rad, as fast as the Panda's limits allow.
 //! let limits = Limits::preset("panda")?;
-//! let path = LinearPath::new(&[0.0; 14].iter().enumerate()
-//!     .map(|(k, _)| if k < 7 { 0.0 } else { 0.5 }).collect::<Vec<_>>(), 7)?;
+//! let mut waypoints = vec![0.0; 7];
+//! waypoints.extend([0.5; 7]);
+//! let path = LinearPath::new(&waypoints, 7)?;
 //! let traj = Toppra::with_limits(path, &limits)?
 //!     .gridpoints(Gridpoints::Uniform(200))
 //!     .solve()?;
-//! assert!(traj.duration() > 0.0);
+//! let mut q = [0.0; 7];
+//! traj.eval(traj.duration(), Order::Position, &mut q);
+//! assert!(q.iter().all(|&v| (v - 0.5).abs() < 1e-12));
+//! // Joint 2 has the smallest acceleration limit (7.5 rad/s²): it sets the pace.
+//! // 0.5 rad with v = 2.175, a = 7.5: triangle (0.5 < v²/a), T = 2·√(0.5/7.5).
+//! assert!((traj.duration() - 2.0 * (0.5f64 / 7.5).sqrt()).abs() < 1e-9);
 //! # Ok::<(), trajkit::Error>(())
 //! ```
 
