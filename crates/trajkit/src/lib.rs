@@ -39,6 +39,7 @@
 
 pub mod error;
 pub mod limits;
+pub mod linalg;
 pub mod path;
 pub mod primitives;
 pub mod rng;
