@@ -1,0 +1,318 @@
+//! DMP: reproduction accuracy, goal/start/τ changes, both scalings, g = y₀, integration
+//! convergence, derivative consistency, bad input.
+
+use trajkit::primitives::{Dmp, DmpConfig, ForcingScaling, GoalChange, RolloutOptions};
+use trajkit::rng::SplitMix64;
+use trajkit::{Error, Order, Trajectory};
+
+/// A smooth 7-joint demonstration, `n` samples over `dur` seconds.
+fn demo7(n: usize, dur: f64) -> (Vec<f64>, Vec<f64>) {
+    let t: Vec<f64> = (0..n).map(|k| dur * k as f64 / (n - 1) as f64).collect();
+    let mut q = Vec::with_capacity(n * 7);
+    for &tk in &t {
+        let s = tk / dur;
+        let mj = 10.0 * s.powi(3) - 15.0 * s.powi(4) + 6.0 * s.powi(5);
+        for j in 0..7 {
+            let jf = j as f64;
+            let amp = [0.8, -0.5, 1.2, 0.3, -1.0, 0.6, 0.05][j];
+            let bump = 0.2 * (std::f64::consts::PI * s).sin().powi(2) * (3.0 * s + jf).sin();
+            q.push(0.1 * jf - 0.3 + amp * mj + bump);
+        }
+    }
+    (t, q)
+}
+
+fn rms_rel(traj: &impl Trajectory, t: &[f64], q: &[f64], dof: usize) -> Vec<f64> {
+    let mut y = vec![0.0; dof];
+    let mut se = vec![0.0; dof];
+    let mut lo = vec![f64::INFINITY; dof];
+    let mut hi = vec![f64::NEG_INFINITY; dof];
+    for (k, &tk) in t.iter().enumerate() {
+        traj.eval(tk - t[0], Order::Position, &mut y);
+        for j in 0..dof {
+            let d = y[j] - q[k * dof + j];
+            se[j] += d * d;
+            lo[j] = lo[j].min(q[k * dof + j]);
+            hi[j] = hi[j].max(q[k * dof + j]);
+        }
+    }
+    (0..dof)
+        .map(|j| (se[j] / t.len() as f64).sqrt() / (hi[j] - lo[j]))
+        .collect()
+}
+
+#[test]
+fn reproduces_smooth_7dof_demo_within_1e4_of_range() {
+    let (t, q) = demo7(1001, 1.0);
+    for scaling in [ForcingScaling::Hoffmann2009, ForcingScaling::Ijspeert2013] {
+        let cfg = DmpConfig {
+            scaling,
+            ..Default::default()
+        };
+        let dmp = Dmp::fit(&t, &q, 7, &cfg).unwrap();
+        let roll = dmp.rollout(&RolloutOptions::default()).unwrap();
+        let e = rms_rel(&roll, &t, &q, 7);
+        let worst = e.iter().cloned().fold(0.0, f64::max);
+        eprintln!("{scaling:?}: worst relative RMS {worst:.3e}");
+        assert!(worst <= 1e-4, "{scaling:?}: {e:?}");
+    }
+}
+
+#[test]
+fn seed_constants_are_the_defaults() {
+    let c = DmpConfig::default();
+    assert_eq!((c.alpha_z, c.beta_z), (25.0, 6.25));
+    assert_eq!(c.scaling, ForcingScaling::Hoffmann2009);
+    assert_eq!(
+        ForcingScaling::from_name("ijspeert").unwrap(),
+        ForcingScaling::Ijspeert2013
+    );
+    assert_eq!(
+        ForcingScaling::from_name("Hoffmann").unwrap(),
+        ForcingScaling::Hoffmann2009
+    );
+    assert!(ForcingScaling::from_name("pydmps").is_err());
+}
+
+#[test]
+fn integration_converges() {
+    let (t, q) = demo7(501, 2.0);
+    let dmp = Dmp::fit(&t, &q, 7, &DmpConfig::default()).unwrap();
+    let a = dmp.rollout(&RolloutOptions::default()).unwrap();
+    let b = dmp
+        .rollout(&RolloutOptions {
+            steps_per_tau: Some(8000),
+            ..Default::default()
+        })
+        .unwrap();
+    let (mut ya, mut yb) = ([0.0; 7], [0.0; 7]);
+    for k in 0..=200 {
+        let tk = 2.0 * k as f64 / 200.0;
+        a.eval(tk, Order::Position, &mut ya);
+        b.eval(tk, Order::Position, &mut yb);
+        for j in 0..7 {
+            assert!((ya[j] - yb[j]).abs() < 1e-9, "t={tk} j={j}");
+        }
+    }
+}
+
+#[test]
+fn goal_start_and_tau_changes() {
+    let (t, q) = demo7(1001, 1.0);
+    let dmp = Dmp::fit(&t, &q, 7, &DmpConfig::default()).unwrap();
+    let goal: Vec<f64> = dmp.goal().iter().map(|g| g + 0.3).collect();
+    let start: Vec<f64> = dmp.start().iter().map(|g| g - 0.2).collect();
+    let roll = dmp
+        .rollout(&RolloutOptions {
+            goal: Some(goal.clone()),
+            start: Some(start.clone()),
+            tau: Some(2.0),
+            duration: Some(6.0),
+            ..Default::default()
+        })
+        .unwrap();
+    assert!((roll.duration() - 6.0).abs() < 1e-12);
+    let mut y = [0.0; 7];
+    roll.eval(0.0, Order::Position, &mut y);
+    for j in 0..7 {
+        assert_eq!(y[j], start[j]);
+    }
+    // Converges to the new goal.
+    roll.eval(6.0, Order::Position, &mut y);
+    for j in 0..7 {
+        assert!((y[j] - goal[j]).abs() < 1e-3, "j={j}: {} vs {}", y[j], goal[j]);
+    }
+    // τ = 2: the same shape at half speed (same goal/start): y(2t) of the slow rollout equals
+    // y(t) of the original, and velocities are per second (half as large).
+    let fast = dmp.rollout(&RolloutOptions::default()).unwrap();
+    let slow = dmp
+        .rollout(&RolloutOptions {
+            tau: Some(2.0),
+            start_velocity: Some(dmp.start_velocity().iter().map(|v| v / 2.0).collect()),
+            ..Default::default()
+        })
+        .unwrap();
+    let (mut a, mut b) = ([0.0; 7], [0.0; 7]);
+    for k in 0..=10 {
+        let tk = k as f64 / 10.0;
+        fast.eval(tk, Order::Position, &mut a);
+        slow.eval(2.0 * tk, Order::Position, &mut b);
+        for j in 0..7 {
+            assert!((a[j] - b[j]).abs() < 1e-9);
+        }
+        fast.eval(tk, Order::Velocity, &mut a);
+        slow.eval(2.0 * tk, Order::Velocity, &mut b);
+        for j in 0..7 {
+            assert!((a[j] - 2.0 * b[j]).abs() < 1e-8);
+        }
+    }
+}
+
+#[test]
+fn goal_change_during_execution_with_and_without_filter() {
+    let (t, q) = demo7(1001, 1.0);
+    let dmp = Dmp::fit(&t, &q, 7, &DmpConfig::default()).unwrap();
+    let new_goal: Vec<f64> = dmp.goal().iter().map(|g| g - 0.5).collect();
+    for filter in [None, Some(12.5)] {
+        let roll = dmp
+            .rollout(&RolloutOptions {
+                goal_changes: vec![GoalChange {
+                    t: 0.4,
+                    goal: new_goal.clone(),
+                }],
+                goal_filter: filter,
+                duration: Some(3.0),
+                ..Default::default()
+            })
+            .unwrap();
+        let base = dmp.rollout(&RolloutOptions::default()).unwrap();
+        let (mut a, mut b) = ([0.0; 7], [0.0; 7]);
+        // Identical before the change.
+        roll.eval(0.39, Order::Position, &mut a);
+        base.eval(0.39, Order::Position, &mut b);
+        assert_eq!(a, b);
+        roll.eval(3.0, Order::Position, &mut a);
+        for j in 0..7 {
+            assert!((a[j] - new_goal[j]).abs() < 2e-3, "{filter:?} j={j}");
+        }
+        // Acceleration stays finite and the filtered version has no jump at the change.
+        let (mut a0, mut a1) = ([0.0; 7], [0.0; 7]);
+        roll.eval(0.4 - 1e-6, Order::Acceleration, &mut a0);
+        roll.eval(0.4 + 1e-3, Order::Acceleration, &mut a1);
+        let jump = (0..7).map(|j| (a1[j] - a0[j]).abs()).fold(0.0, f64::max);
+        if filter.is_some() {
+            assert!(jump < 1.0, "filtered jump {jump}");
+        }
+    }
+}
+
+#[test]
+fn goal_equal_to_start_stays_bounded() {
+    // A loop demonstration: returns to where it started.
+    let n = 1001;
+    let t: Vec<f64> = (0..n).map(|k| k as f64 / (n - 1) as f64).collect();
+    let q: Vec<f64> = t
+        .iter()
+        .map(|&s| 0.5 * (std::f64::consts::PI * s).sin().powi(2))
+        .collect();
+    for scaling in [ForcingScaling::Hoffmann2009, ForcingScaling::Ijspeert2013] {
+        let cfg = DmpConfig {
+            scaling,
+            ..Default::default()
+        };
+        let dmp = Dmp::fit(&t, &q, 1, &cfg).unwrap();
+        let wmax = dmp.weights().iter().fold(0.0f64, |m, w| m.max(w.abs()));
+        assert!(wmax < 1e4, "{scaling:?}: weights {wmax}");
+        let roll = dmp.rollout(&RolloutOptions::default()).unwrap();
+        let e = rms_rel(&roll, &t, &q, 1);
+        assert!(e[0] < 1e-4, "{scaling:?} {e:?}");
+        // And with start = goal moved elsewhere, still bounded.
+        let roll = dmp
+            .rollout(&RolloutOptions {
+                start: Some(vec![2.0]),
+                goal: Some(vec![2.0]),
+                ..Default::default()
+            })
+            .unwrap();
+        let mut y = [0.0];
+        for k in 0..=100 {
+            roll.eval(k as f64 / 100.0, Order::Position, &mut y);
+            assert!((y[0] - 2.0).abs() < 1.0, "{scaling:?}");
+        }
+    }
+}
+
+#[test]
+fn derivatives_are_consistent() {
+    let (t, q) = demo7(301, 1.5);
+    let dmp = Dmp::fit(&t, &q, 7, &DmpConfig::default()).unwrap();
+    let roll = dmp.rollout(&RolloutOptions::default()).unwrap();
+    let mut rng = SplitMix64::new(3);
+    let e = 1e-6;
+    let (mut lo, mut hi, mut d) = ([0.0; 7], [0.0; 7], [0.0; 7]);
+    for _ in 0..200 {
+        let tk = rng.uniform(0.01, 1.49);
+        for k in 0..3 {
+            let o = Order::from_index(k).unwrap();
+            roll.eval(tk - e, o, &mut lo);
+            roll.eval(tk + e, o, &mut hi);
+            roll.eval(tk, Order::from_index(k + 1).unwrap(), &mut d);
+            for j in 0..7 {
+                let fd = (hi[j] - lo[j]) / (2.0 * e);
+                let tol = 1e-5 * (1.0 + d[j].abs()) * 10f64.powi(2 * k as i32);
+                assert!((fd - d[j]).abs() < tol, "t={tk} order={k} j={j}: {fd} vs {}", d[j]);
+            }
+        }
+    }
+    // Clamped time policy.
+    roll.eval(-1.0, Order::Position, &mut lo);
+    roll.eval(0.0, Order::Position, &mut hi);
+    assert_eq!(lo, hi);
+    roll.eval(f64::NAN, Order::Position, &mut lo);
+    assert!(lo.iter().all(|v| v.is_nan()));
+}
+
+#[test]
+fn user_coupling_hook_is_applied() {
+    let (t, q) = demo7(201, 1.0);
+    let dmp = Dmp::fit(&t, &q, 7, &DmpConfig::default()).unwrap();
+    // A constant push on joint 1 shifts its equilibrium by C / (α_z β_z) at the end.
+    let push = |_t: f64, _y: &[f64], _v: &[f64], out: &mut [f64]| out[0] += 15.625;
+    let roll = dmp
+        .rollout(&RolloutOptions {
+            coupling: Some(&push),
+            duration: Some(4.0),
+            ..Default::default()
+        })
+        .unwrap();
+    let mut y = [0.0; 7];
+    roll.eval(4.0, Order::Position, &mut y);
+    assert!((y[0] - (dmp.goal()[0] + 0.1)).abs() < 1e-3, "{}", y[0]);
+    assert!((y[1] - dmp.goal()[1]).abs() < 1e-3);
+}
+
+#[test]
+fn caller_data_is_not_mutated_and_bad_input_is_typed() {
+    let (t, q) = demo7(101, 1.0);
+    let (t2, q2) = (t.clone(), q.clone());
+    let _ = Dmp::fit(&t, &q, 7, &DmpConfig::default()).unwrap();
+    assert_eq!((t.clone(), q.clone()), (t2, q2));
+    let mut bad = q.clone();
+    bad[17] = f64::NAN;
+    let e = Dmp::fit(&t, &bad, 7, &DmpConfig::default()).unwrap_err();
+    assert!(e.to_string().contains("joint 4"), "{e}");
+    assert!(matches!(
+        Dmp::fit(&t, &q[..50], 7, &DmpConfig::default()),
+        Err(Error::DimensionMismatch { .. })
+    ));
+    let mut tb = t.clone();
+    tb[5] = tb[4];
+    assert!(Dmp::fit(&tb, &q, 7, &DmpConfig::default()).is_err());
+    assert!(Dmp::fit(&t[..2], &q[..14], 7, &DmpConfig::default()).is_err());
+    let cfg = DmpConfig {
+        alpha_z: -1.0,
+        ..Default::default()
+    };
+    assert!(Dmp::fit(&t, &q, 7, &cfg).is_err());
+    let dmp = Dmp::fit(&t, &q, 7, &DmpConfig::default()).unwrap();
+    for opts in [
+        RolloutOptions {
+            tau: Some(0.0),
+            ..Default::default()
+        },
+        RolloutOptions {
+            goal: Some(vec![0.0; 3]),
+            ..Default::default()
+        },
+        RolloutOptions {
+            duration: Some(f64::INFINITY),
+            ..Default::default()
+        },
+        RolloutOptions {
+            goal_filter: Some(f64::NAN),
+            ..Default::default()
+        },
+    ] {
+        assert!(dmp.rollout(&opts).is_err(), "{opts:?}");
+    }
+}
