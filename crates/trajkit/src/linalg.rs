@@ -279,7 +279,9 @@ impl Cholesky {
 
     /// `log det A` (of the regularized matrix when [`Cholesky::jitter`] is non-zero).
     pub fn log_det(&self) -> f64 {
-        2.0 * (0..self.n).map(|i| self.l[i * self.n + i].ln()).sum::<f64>()
+        2.0 * (0..self.n)
+            .map(|i| self.l[i * self.n + i].ln())
+            .sum::<f64>()
     }
 
     /// Solves `L y = b` in place (`b` has `n` entries).
@@ -468,7 +470,10 @@ impl Lu {
 
     /// Determinant of `A`.
     pub fn det(&self) -> f64 {
-        (0..self.n).map(|i| self.lu[i * self.n + i]).product::<f64>() * self.sign
+        (0..self.n)
+            .map(|i| self.lu[i * self.n + i])
+            .product::<f64>()
+            * self.sign
     }
 }
 
@@ -556,10 +561,7 @@ mod tests {
         // Rank-1 PSD matrix: plain factor fails, regularized succeeds and reports δ.
         let v = [1.0, 2.0, 3.0];
         let a: Vec<f64> = (0..9).map(|k| v[k / 3] * v[k % 3]).collect();
-        assert!(matches!(
-            Cholesky::factor(&a, 3),
-            Err(Error::Infeasible(_))
-        ));
+        assert!(matches!(Cholesky::factor(&a, 3), Err(Error::Infeasible(_))));
         let c = Cholesky::factor_regularized(&a, 3).unwrap();
         assert!(c.jitter() > 0.0 && c.jitter() < 1e-6);
         assert!(Cholesky::factor(&[1.0, f64::NAN, 0.0, 1.0], 2).is_err());

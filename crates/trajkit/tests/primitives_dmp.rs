@@ -120,7 +120,12 @@ fn goal_start_and_tau_changes() {
     // Converges to the new goal.
     roll.eval(6.0, Order::Position, &mut y);
     for j in 0..7 {
-        assert!((y[j] - goal[j]).abs() < 1e-3, "j={j}: {} vs {}", y[j], goal[j]);
+        assert!(
+            (y[j] - goal[j]).abs() < 1e-3,
+            "j={j}: {} vs {}",
+            y[j],
+            goal[j]
+        );
     }
     // τ = 2: the same shape at half speed (same goal/start): y(2t) of the slow rollout equals
     // y(t) of the original, and velocities are per second (half as large).
@@ -240,7 +245,11 @@ fn derivatives_are_consistent() {
             for j in 0..7 {
                 let fd = (hi[j] - lo[j]) / (2.0 * e);
                 let tol = 1e-5 * (1.0 + d[j].abs()) * 10f64.powi(2 * k as i32);
-                assert!((fd - d[j]).abs() < tol, "t={tk} order={k} j={j}: {fd} vs {}", d[j]);
+                assert!(
+                    (fd - d[j]).abs() < tol,
+                    "t={tk} order={k} j={j}: {fd} vs {}",
+                    d[j]
+                );
             }
         }
     }

@@ -256,7 +256,10 @@ mod tests {
             for k in 1..=3 {
                 b.activations(z, k, &mut phi);
                 let s: f64 = phi.iter().sum();
-                assert!(s.abs() < 1e-6 * b.widths()[0].powi(k as i32 / 2 + 1), "z={z}");
+                assert!(
+                    s.abs() < 1e-6 * b.widths()[0].powi(k as i32 / 2 + 1),
+                    "z={z}"
+                );
             }
         }
     }
@@ -275,7 +278,11 @@ mod tests {
                 for r in 0..2 {
                     let fd = (y1[r] - y0[r]) / (2.0 * e);
                     let scale = 1.0 + y2[r].abs();
-                    assert!((fd - y2[r]).abs() < 1e-5 * scale * 10f64.powi(k as i32), "z={z} k={k}: {fd} vs {}", y2[r]);
+                    assert!(
+                        (fd - y2[r]).abs() < 1e-5 * scale * 10f64.powi(k as i32),
+                        "z={z} k={k}: {fd} vs {}",
+                        y2[r]
+                    );
                 }
             }
             // combine agrees with activations.

@@ -367,13 +367,17 @@ impl Dmp {
                         tau * tau * a - spring + az * bz * (goal[j] - start[j]) * x
                     }
                     ForcingScaling::Ijspeert2013 => {
-                        let amp = if amplitude[j] == 0.0 { 1.0 } else { amplitude[j] };
+                        let amp = if amplitude[j] == 0.0 {
+                            1.0
+                        } else {
+                            amplitude[j]
+                        };
                         (tau * tau * a - spring) / amp
                     }
                 };
             }
         }
-        let weights = ridge_fit(&phi, rows, nb, &targets, dof, cfg.ridge)?;
+        let weights = ridge_fit(&phi, rows, nb, &targets, dof, cfg.ridge, true)?;
         Ok(Dmp {
             cfg: cfg.clone(),
             basis,
@@ -411,11 +415,7 @@ impl Dmp {
         check_vec("goal", goal, dof)?;
         let basis = GaussianBasis::dmp(cfg.n_basis, cfg.alpha_x, cfg.overlap)?;
         check_vec("weights", weights, dof * basis.len())?;
-        let amplitude = (0..dof)
-            .map(|j| {
-                goal[j] - start[j]
-            })
-            .collect();
+        let amplitude = (0..dof).map(|j| goal[j] - start[j]).collect();
         Ok(Dmp {
             cfg: cfg.clone(),
             basis,
@@ -565,7 +565,17 @@ impl Dmp {
                 }
                 next_change += 1;
             }
-            ctx.deriv(t, &y, &v, &g, &target, &f_cur, &mut dummy, &mut a_now, &mut dummy_g);
+            ctx.deriv(
+                t,
+                &y,
+                &v,
+                &g,
+                &target,
+                &f_cur,
+                &mut dummy,
+                &mut a_now,
+                &mut dummy_g,
+            );
             ts.push(t);
             ys.extend_from_slice(&y);
             vs.extend_from_slice(&v);
@@ -573,11 +583,7 @@ impl Dmp {
             if step == nsteps {
                 break;
             }
-            let hs = if step + 1 == nsteps {
-                duration - t
-            } else {
-                h
-            };
+            let hs = if step + 1 == nsteps { duration - t } else { h };
             let t_end = if step + 1 == nsteps {
                 duration
             } else {
@@ -586,7 +592,17 @@ impl Dmp {
             self.forcing(ctx.phase(t + 0.5 * hs), &scale, &mut f_mid);
             self.forcing(ctx.phase(t_end), &scale, &mut f_end);
             // RK4 on (y, v, g).
-            ctx.deriv(t, &y, &v, &g, &target, &f_cur, &mut k[0].0, &mut k[0].1, &mut k[0].2);
+            ctx.deriv(
+                t,
+                &y,
+                &v,
+                &g,
+                &target,
+                &f_cur,
+                &mut k[0].0,
+                &mut k[0].1,
+                &mut k[0].2,
+            );
             for stage in 1..4 {
                 let c = if stage == 3 { hs } else { 0.5 * hs };
                 let (prev, rest) = k.split_at_mut(stage);
@@ -690,8 +706,9 @@ impl Ctx<'_, '_> {
     }
 }
 
-/// Solves the ridge regression `(ΦᵀΦ + λ s I) W = Φᵀ F` for `W` (`nb × cols`), returned
-/// row-major `cols × nb` (one row per joint). `s` is the mean diagonal of `ΦᵀΦ`.
+/// Solves the ridge regression `(ΦᵀΦ + λ' I) W = Φᵀ F` for `W` (`nb × cols`), returned
+/// row-major `cols × nb` (one row per joint). `λ' = λ s` with `s` the mean diagonal of `ΦᵀΦ`
+/// when `relative`, else `λ' = λ`.
 pub(crate) fn ridge_fit(
     phi: &[f64],
     rows: usize,
@@ -699,6 +716,7 @@ pub(crate) fn ridge_fit(
     targets: &[f64],
     cols: usize,
     ridge: f64,
+    relative: bool,
 ) -> Result<Vec<f64>> {
     let mut gram = vec![0.0; nb * nb];
     let mut rhs = vec![0.0; nb * cols];
@@ -717,7 +735,11 @@ pub(crate) fn ridge_fit(
         }
     }
     let s = (0..nb).map(|i| gram[i * nb + i]).sum::<f64>() / nb as f64;
-    let lam = ridge * if s > 0.0 { s } else { 1.0 };
+    let lam = if relative && s > 0.0 {
+        ridge * s
+    } else {
+        ridge
+    };
     for i in 0..nb {
         gram[i * nb + i] += lam;
     }
