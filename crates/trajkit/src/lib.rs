@@ -37,15 +37,19 @@
 
 #![forbid(unsafe_code)]
 
+pub mod check;
 pub mod error;
+pub mod io;
 pub mod limits;
 pub mod linalg;
 pub mod path;
+pub mod plot;
+pub mod poly;
 pub mod primitives;
 pub mod rng;
+pub mod sample;
 pub mod spline;
 pub mod topp;
-pub mod sample;
 pub mod traj;
 
 pub use error::{Error, Result};
@@ -53,3 +57,8 @@ pub use limits::{JointLimits, Limits};
 pub use path::{Path, PathAsTrajectory};
 pub use sample::SampleTable;
 pub use traj::{Order, State, Trajectory};
+
+/// The README's code examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+pub struct ReadmeDoctests;

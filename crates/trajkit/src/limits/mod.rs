@@ -150,7 +150,7 @@ impl JointLimits {
             ("minimum acceleration", self.min_acceleration),
         ] {
             if let Some(v) = v {
-                if !(v < 0.0) {
+                if v.is_nan() || v >= 0.0 {
                     return Err(Error::InvalidValue {
                         field: label(what),
                         value: v,
@@ -305,7 +305,12 @@ impl Limits {
     /// Every joint's limits multiplied: velocity by `velocity_scale`, acceleration (and its
     /// minimum) by `acceleration_scale`, jerk by `jerk_scale`. Scales must be positive and finite
     /// (below 1 slows the robot down).
-    pub fn scaled(&self, velocity_scale: f64, acceleration_scale: f64, jerk_scale: f64) -> Result<Self> {
+    pub fn scaled(
+        &self,
+        velocity_scale: f64,
+        acceleration_scale: f64,
+        jerk_scale: f64,
+    ) -> Result<Self> {
         crate::error::positive(|| "velocity scale".into(), velocity_scale)?;
         crate::error::positive(|| "acceleration scale".into(), acceleration_scale)?;
         crate::error::positive(|| "jerk scale".into(), jerk_scale)?;
@@ -345,7 +350,10 @@ mod tests {
         let mut j = JointLimits::symmetric(1.0, 2.0, 0.0);
         j.name = "elbow".into();
         let e = Limits::new(vec![j]).unwrap_err().to_string();
-        assert!(e.contains("elbow") && e.contains("jerk") && e.contains("= 0"), "{e}");
+        assert!(
+            e.contains("elbow") && e.contains("jerk") && e.contains("= 0"),
+            "{e}"
+        );
         let mut j = JointLimits::symmetric(1.0, 2.0, 3.0);
         j.position_min = 1.0;
         j.position_max = 1.0;
@@ -375,7 +383,10 @@ mod tests {
         let l = Limits::uniform(2, 1.0, 2.0, 3.0).unwrap();
         let l2 = l.clone().with_override(Order::Jerk, &[10.0, 20.0]).unwrap();
         assert_eq!(l2.joint(1).jerk, 20.0);
-        assert!(l.clone().with_override(Order::Jerk, &[1.0, 2.0, 3.0]).is_err());
+        assert!(l
+            .clone()
+            .with_override(Order::Jerk, &[1.0, 2.0, 3.0])
+            .is_err());
         assert!(l.clone().with_override(Order::Velocity, &[-1.0]).is_err());
         let s = l.scaled(0.5, 0.25, 1.0).unwrap();
         assert_eq!(s.joint(0).velocity, 0.5);

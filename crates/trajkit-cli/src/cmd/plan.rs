@@ -1,0 +1,205 @@
+//! `trajkit plan`: waypoints + limits → sampled trajectory, summary, optional plot.
+
+use super::common::{CliError, CliResult, LimitsArgs, OutputArgs, Outputs};
+use clap::{Args, ValueEnum};
+use std::path::PathBuf;
+use trajkit::check::{check_samples, Tolerance};
+use trajkit::io::Waypoints;
+use trajkit::poly::{Degree, ViaTiming, ViaTrajectory, ViaVelocities};
+use trajkit::{Limits, Trajectory};
+
+/// The embedded default path (7-joint Panda, 8 waypoints).
+pub const DEFAULT_WAYPOINTS: &str = include_str!("../default_waypoints.csv");
+
+/// Time-parameterization method.
+#[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Synchronized polynomial segments between waypoints, each as short as the limits allow.
+    Poly,
+}
+
+/// Polynomial degree for `--method poly`.
+#[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DegreeArg {
+    /// Degree 3 (acceleration jumps at waypoints; jerk not limited).
+    Cubic,
+    /// Degree 5, minimum jerk.
+    Quintic,
+    /// Degree 7, continuous jerk.
+    Septic,
+}
+
+impl From<DegreeArg> for Degree {
+    fn from(d: DegreeArg) -> Degree {
+        match d {
+            DegreeArg::Cubic => Degree::Cubic,
+            DegreeArg::Quintic => Degree::Quintic,
+            DegreeArg::Septic => Degree::Septic,
+        }
+    }
+}
+
+/// Velocities at interior waypoints for `--method poly`.
+#[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ViaArg {
+    /// Continuous-velocity heuristic (stop only where a joint turns around).
+    Heuristic,
+    /// Stop at every waypoint.
+    Zero,
+}
+
+/// Arguments of `trajkit plan`.
+#[derive(Args, Debug)]
+#[command(
+    after_help = "Examples:\n  trajkit plan                                  # embedded Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits robot.urdf --fill-from panda --out traj.json\n  trajkit plan --degree septic --via-velocity zero --rate 500 --plot traj.svg"
+)]
+pub struct PlanArgs {
+    /// Waypoints: CSV (a row per waypoint, a column per joint, optional header) or JSON.
+    /// Without it, an embedded 7-joint Panda path is used.
+    #[arg(long, value_name = "FILE")]
+    pub waypoints: Option<PathBuf>,
+    #[command(flatten)]
+    pub limits: LimitsArgs,
+    /// Time-parameterization method.
+    #[arg(long, value_enum, default_value = "poly")]
+    pub method: Method,
+    /// Polynomial degree of each segment (--method poly).
+    #[arg(long, value_enum, default_value = "quintic")]
+    pub degree: DegreeArg,
+    /// Velocities at interior waypoints (--method poly).
+    #[arg(long, value_enum, default_value = "heuristic")]
+    pub via_velocity: ViaArg,
+    /// Output table (CSV or JSON by extension; '-' for standard output).
+    #[arg(long, short, value_name = "FILE", default_value = "trajectory.csv")]
+    pub out: PathBuf,
+    #[command(flatten)]
+    pub output: OutputArgs,
+}
+
+/// Loads waypoints (file or embedded default) and removes consecutive duplicates.
+pub fn load_waypoints(path: &Option<PathBuf>) -> CliResult<(Waypoints, String, usize)> {
+    let (mut w, src) = match path {
+        Some(p) => (Waypoints::from_file(p)?, p.display().to_string()),
+        None => (
+            Waypoints::from_csv(DEFAULT_WAYPOINTS, "<embedded default>")?,
+            "<embedded default: 7-joint Panda, 8 waypoints>".to_string(),
+        ),
+    };
+    let removed = w.dedup(0.0);
+    if w.len() < 2 {
+        return Err(CliError(format!(
+            "{src}: {}",
+            trajkit::Error::TooFewWaypoints {
+                needed: 2,
+                found: w.len()
+            }
+        )));
+    }
+    Ok((w, src, removed))
+}
+
+/// Refuses waypoints outside the joints' position ranges.
+pub fn check_waypoints_in_range(w: &Waypoints, limits: &Limits, src: &str) -> CliResult<()> {
+    for i in 0..w.len() {
+        for (j, &q) in w.point(i).iter().enumerate() {
+            let jl = limits.joint(j);
+            if q < jl.position_min || q > jl.position_max {
+                return Err(CliError(format!(
+                    "{src}: waypoint {i} joint {} ({}) = {q} is outside the position range [{}, {}]",
+                    j + 1,
+                    w.names()[j],
+                    jl.position_min,
+                    jl.position_max
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Runs `trajkit plan`.
+pub fn run(a: &PlanArgs) -> CliResult<u8> {
+    let (w, src, removed) = load_waypoints(&a.waypoints)?;
+    let limits = a.limits.load()?;
+    limits
+        .expect_dof(w.dof(), "the waypoints")
+        .map_err(|e| CliError(format!("{src}: {e}")))?;
+    check_waypoints_in_range(&w, &limits, &src)?;
+    let traj: Box<dyn Trajectory> = match a.method {
+        Method::Poly => {
+            let vel = match a.via_velocity {
+                ViaArg::Heuristic => ViaVelocities::Heuristic,
+                ViaArg::Zero => ViaVelocities::Zero,
+            };
+            Box::new(ViaTrajectory::new(
+                w.points(),
+                w.dof(),
+                a.degree.into(),
+                vel,
+                ViaTiming::Limits(&limits),
+            )?)
+        }
+    };
+    let names: Vec<String> = w.names().to_vec();
+    let table = trajkit::sample::sample(&*traj, a.output.rate)?.with_names(names.clone())?;
+    let report = check_samples(&table, &limits)?;
+    let mut outputs = Outputs::default();
+    outputs.add(&a.out, a.output.render(&table, &a.out));
+    if let Some(p) = &a.output.plot {
+        let opts = trajkit::plot::PlotOptions {
+            title: format!("trajkit plan ({:?}) — {src}", a.method).to_lowercase(),
+            ..Default::default()
+        };
+        outputs.add(p, trajkit::plot::svg(&table, Some(&limits), &opts)?);
+    }
+    outputs.commit()?;
+    // Summary (to stderr when the table went to stdout).
+    let mut s = String::new();
+    use std::fmt::Write;
+    let _ = writeln!(s, "waypoints: {} ({} joints) from {src}", w.len(), w.dof());
+    if removed > 0 {
+        let _ = writeln!(s, "removed {removed} duplicate waypoint(s)");
+    }
+    let _ = writeln!(
+        s,
+        "method: {:?}, duration: {:.6} s, {} samples at {} Hz",
+        a.method,
+        traj.duration(),
+        table.len(),
+        a.output.rate
+    );
+    let _ = writeln!(s, "worst limit ratio per joint (velocity / acceleration / jerk, pointwise and finite-difference):");
+    for (j, jr) in report.joints.iter().enumerate() {
+        let r = |k: usize| jr.derivatives[k].worst();
+        let _ = writeln!(
+            s,
+            "  {:>2} {:<14} {:.4} / {:.4} / {:.4}   position {:+.4} .. {:+.4} (range {:+.4} .. {:+.4})",
+            j + 1,
+            names[j],
+            r(0),
+            r(1),
+            r(2),
+            jr.position.min,
+            jr.position.max,
+            limits.joint(j).position_min,
+            limits.joint(j).position_max
+        );
+    }
+    let tol = Tolerance::default();
+    let verdict = if report.passes(&tol) {
+        "within limits".to_string()
+    } else {
+        format!("LIMITS EXCEEDED: {}", report.violations(&tol).join("; "))
+    };
+    let _ = writeln!(s, "worst: {:.6} — {verdict}", report.worst());
+    let _ = write!(s, "wrote {}", a.out.display());
+    if let Some(p) = &a.output.plot {
+        let _ = write!(s, " and {}", p.display());
+    }
+    if a.out.as_os_str() == "-" {
+        eprintln!("{s}");
+    } else {
+        println!("{s}");
+    }
+    Ok(0)
+}

@@ -1,0 +1,706 @@
+//! Limit checking of any trajectory, sampled or continuous.
+//!
+//! [`check_samples`] reads a [`SampleTable`] (made by [`crate::sample`] or read from another
+//! tool's output, where derivative columns may be missing) and reports, per joint:
+//!
+//! - the observed position range and the largest excursion outside the joint's position limits;
+//! - for velocity, acceleration and jerk, the peak use of the limit, measured two ways:
+//!   - **pointwise**: from the table's own column of that derivative, when present;
+//!   - **finite difference**: the divided difference of the next-lower derivative between
+//!     consecutive samples, `(x[i+1] - x[i]) / (t[i+1] - t[i])`, attributed to the interval
+//!     midpoint. When the next-lower column is absent, its own finite-difference series is used,
+//!     recursively down to positions, so a positions-only table still gets velocity,
+//!     acceleration and jerk estimates.
+//!
+//! The two measures complement each other: a trajectory whose velocity jumps between two
+//! samples can report a modest pointwise acceleration on both sides of the jump, while the
+//! finite difference of the velocity shows the jump for what it is.
+//!
+//! Use of a limit is a ratio, computed with [`JointLimits::ratio`]: `value / max` for
+//! non-negative values and `value / min` for negative ones (so direction-dependent minima are
+//! respected); 1.0 is exactly at the limit, and an unlimited (infinite) limit gives 0.
+//!
+//! ```
+//! use trajkit::{check::{check_samples, Tolerance}, Limits, SampleTable};
+//! // One joint moving at 1 rad/s for 1 s, sampled at 4 Hz, positions only.
+//! let t = vec![0.0, 0.25, 0.5, 0.75, 1.0];
+//! let table = SampleTable::new(1, t.clone(), [Some(t), None, None, None])?;
+//! let report = check_samples(&table, &Limits::uniform(1, 2.0, 10.0, 100.0)?)?;
+//! assert!((report.worst() - 0.5).abs() < 1e-12); // half the velocity limit
+//! assert!(report.passes(&Tolerance::default()));
+//! # Ok::<(), trajkit::Error>(())
+//! ```
+
+use crate::error::{Error, Result};
+use crate::limits::{JointLimits, Limits};
+use crate::sample::SampleTable;
+use crate::traj::{Order, Trajectory};
+use serde_json::{json, Value};
+
+/// The largest use of a limit found in one series of values.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Peak {
+    /// `value / limit` with the directional limit of the value's sign (see
+    /// [`JointLimits::ratio`]); 0 when the limit is unlimited.
+    pub ratio: f64,
+    /// The value at the peak (same unit as the derivative).
+    pub value: f64,
+    /// When it happens, in seconds (the interval midpoint for finite differences).
+    pub time: f64,
+}
+
+/// The check of one derivative (velocity, acceleration or jerk) of one joint.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DerivativeCheck {
+    /// Which derivative.
+    pub order: Order,
+    /// Peak of the table's own column of this derivative; `None` when the table has no such
+    /// column.
+    pub pointwise: Option<Peak>,
+    /// Peak of the finite-difference estimate; `None` when there are too few samples to form
+    /// one difference: 2 are needed when the table has the next-lower derivative, up to
+    /// `order + 1` when that one is itself a finite difference.
+    pub finite_difference: Option<Peak>,
+}
+
+impl DerivativeCheck {
+    /// The larger of the pointwise and finite-difference ratios (0 when neither exists).
+    pub fn worst(&self) -> f64 {
+        [self.pointwise, self.finite_difference]
+            .iter()
+            .flatten()
+            .map(|p| p.ratio)
+            .fold(0.0, f64::max)
+    }
+}
+
+/// Observed positions of one joint against its position range.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PositionCheck {
+    /// Lowest position reached.
+    pub min: f64,
+    /// Highest position reached.
+    pub max: f64,
+    /// Largest distance outside `[position_min, position_max]`; 0 when always inside.
+    pub excursion: f64,
+    /// When the position is closest to (or farthest beyond) a bound: the time of
+    /// [`PositionCheck::excursion`] when it is positive. The first sample's time when the
+    /// range is unbounded.
+    pub time: f64,
+}
+
+/// Everything checked for one joint.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointReport {
+    /// 0-based joint index (messages print it 1-based).
+    pub joint: usize,
+    /// Joint name: the table's, else the limits', else empty.
+    pub name: String,
+    /// Position range.
+    pub position: PositionCheck,
+    /// Velocity, acceleration and jerk, in that order.
+    pub derivatives: [DerivativeCheck; 3],
+}
+
+impl JointReport {
+    /// `joint 3 (panda_joint3)`, or `joint 3` when unnamed (1-based).
+    fn label(&self) -> String {
+        if self.name.is_empty() {
+            format!("joint {}", self.joint + 1)
+        } else {
+            format!("joint {} ({})", self.joint + 1, self.name)
+        }
+    }
+
+    /// Largest ratio over velocity, acceleration and jerk, pointwise and finite difference.
+    pub fn worst(&self) -> f64 {
+        self.derivatives
+            .iter()
+            .map(DerivativeCheck::worst)
+            .fold(0.0, f64::max)
+    }
+}
+
+/// The result of checking a trajectory against limits.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LimitReport {
+    /// One report per joint, in joint order.
+    pub joints: Vec<JointReport>,
+    /// Number of samples checked.
+    pub samples: usize,
+    /// Time span of the samples in seconds.
+    pub duration: f64,
+}
+
+/// How far beyond a limit still counts as within it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Tolerance {
+    /// Allowed relative excess: a check passes when every ratio is `<= 1 + ratio`.
+    pub ratio: f64,
+    /// Allowed position excursion beyond the position range (joint units).
+    pub position: f64,
+}
+
+impl Default for Tolerance {
+    /// `ratio = 1e-6`, `position = 1e-9`: room for rounding, nothing more.
+    fn default() -> Self {
+        Tolerance {
+            ratio: 1e-6,
+            position: 1e-9,
+        }
+    }
+}
+
+/// Formats a number with up to `digits` significant digits, without trailing zeros.
+fn sig(x: f64, digits: usize) -> String {
+    if x == 0.0 {
+        return "0".to_string();
+    }
+    if !x.is_finite() {
+        return format!("{x}");
+    }
+    let mag = x.abs().log10().floor() as i64;
+    if !(-4..=9).contains(&mag) {
+        return format!("{:.*e}", digits.saturating_sub(1), x);
+    }
+    let decimals = (digits as i64 - 1 - mag).max(0) as usize;
+    let s = format!("{x:.decimals$}");
+    if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        s
+    }
+}
+
+/// A ratio for people: more digits when it is close to 1, where they matter.
+fn fmt_ratio(r: f64) -> String {
+    if (r - 1.0).abs() < 1e-3 {
+        sig(r, 9)
+    } else {
+        sig(r, 3)
+    }
+}
+
+impl LimitReport {
+    /// Largest ratio over all joints, orders, pointwise and finite difference (0 for no
+    /// joints).
+    pub fn worst(&self) -> f64 {
+        self.joints
+            .iter()
+            .map(JointReport::worst)
+            .fold(0.0, f64::max)
+    }
+
+    /// Largest ratio of joint `j` (0-based); 0 when there is no such joint.
+    pub fn worst_for_joint(&self, j: usize) -> f64 {
+        self.joints.get(j).map_or(0.0, JointReport::worst)
+    }
+
+    /// One line per violated item, for people, e.g.
+    /// `joint 2 (panda_joint2) acceleration (finite difference) 1.23 × limit at t = 0.512 s
+    /// (value -9.23)`. Empty when everything is within `tol`.
+    pub fn violations(&self, tol: &Tolerance) -> Vec<String> {
+        let mut out = Vec::new();
+        for jr in &self.joints {
+            let p = &jr.position;
+            if p.excursion > tol.position {
+                out.push(format!(
+                    "{} position outside its range by {} at t = {} s (reached [{}, {}])",
+                    jr.label(),
+                    sig(p.excursion, 4),
+                    sig(p.time, 6),
+                    sig(p.min, 6),
+                    sig(p.max, 6)
+                ));
+            }
+            for d in &jr.derivatives {
+                for (kind, peak) in [
+                    ("pointwise", d.pointwise),
+                    ("finite difference", d.finite_difference),
+                ] {
+                    if let Some(pk) = peak {
+                        if pk.ratio.is_nan() || pk.ratio > 1.0 + tol.ratio {
+                            out.push(format!(
+                                "{} {} ({}) {} × limit at t = {} s (value {})",
+                                jr.label(),
+                                d.order.name(),
+                                kind,
+                                fmt_ratio(pk.ratio),
+                                sig(pk.time, 6),
+                                sig(pk.value, 6)
+                            ));
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// True when [`LimitReport::violations`] is empty.
+    pub fn passes(&self, tol: &Tolerance) -> bool {
+        self.violations(tol).is_empty()
+    }
+
+    /// An aligned text table: one row per joint with the position range used and, for
+    /// velocity, acceleration and jerk, `pointwise / finite-difference` ratios (`-` where not
+    /// available), followed by the worst ratio.
+    pub fn to_text(&self) -> String {
+        let header = [
+            "joint".to_string(),
+            "position range used".to_string(),
+            "velocity (pw / fd)".to_string(),
+            "acceleration (pw / fd)".to_string(),
+            "jerk (pw / fd)".to_string(),
+        ];
+        let mut rows: Vec<[String; 5]> = vec![header];
+        for jr in &self.joints {
+            let p = &jr.position;
+            let mut pos = format!("[{}, {}]", sig(p.min, 4), sig(p.max, 4));
+            if p.excursion > 0.0 {
+                pos.push_str(&format!(" OUT by {}", sig(p.excursion, 3)));
+            }
+            let cell = |d: &DerivativeCheck| {
+                let f = |pk: Option<Peak>| pk.map_or("-".to_string(), |pk| fmt_ratio(pk.ratio));
+                format!("{} / {}", f(d.pointwise), f(d.finite_difference))
+            };
+            let name = if jr.name.is_empty() {
+                format!("{}", jr.joint + 1)
+            } else {
+                format!("{} {}", jr.joint + 1, jr.name)
+            };
+            rows.push([
+                name,
+                pos,
+                cell(&jr.derivatives[0]),
+                cell(&jr.derivatives[1]),
+                cell(&jr.derivatives[2]),
+            ]);
+        }
+        let mut widths = [0usize; 5];
+        for r in &rows {
+            for (w, c) in widths.iter_mut().zip(r.iter()) {
+                *w = (*w).max(c.chars().count());
+            }
+        }
+        let mut s = format!(
+            "{} samples over {} s; ratios are value / limit (1 = at the limit)\n",
+            self.samples,
+            sig(self.duration, 6)
+        );
+        for r in &rows {
+            let mut line = String::new();
+            for (k, (c, w)) in r.iter().zip(widths.iter()).enumerate() {
+                if k > 0 {
+                    line.push_str("  ");
+                }
+                let pad = w - c.chars().count();
+                line.push_str(c);
+                line.push_str(&" ".repeat(pad));
+            }
+            s.push_str(line.trim_end());
+            s.push('\n');
+        }
+        s.push_str(&format!("worst: {} × limit\n", fmt_ratio(self.worst())));
+        s
+    }
+
+    /// The report as JSON: `{samples, duration, worst, joints: [{joint, name, worst,
+    /// position: {min, max, excursion, time}, velocity|acceleration|jerk: {pointwise,
+    /// finite_difference}}]}` where each peak is `{ratio, value, time}` or `null`.
+    /// Non-finite numbers become `null`.
+    pub fn to_json(&self) -> Value {
+        let peak = |p: Option<Peak>| match p {
+            Some(p) => json!({"ratio": p.ratio, "value": p.value, "time": p.time}),
+            None => Value::Null,
+        };
+        let joints: Vec<Value> = self
+            .joints
+            .iter()
+            .map(|jr| {
+                let mut o = json!({
+                    "joint": jr.joint,
+                    "name": jr.name,
+                    "worst": jr.worst(),
+                    "position": {
+                        "min": jr.position.min,
+                        "max": jr.position.max,
+                        "excursion": jr.position.excursion,
+                        "time": jr.position.time,
+                    },
+                });
+                for d in &jr.derivatives {
+                    o[d.order.name()] = json!({
+                        "pointwise": peak(d.pointwise),
+                        "finite_difference": peak(d.finite_difference),
+                    });
+                }
+                o
+            })
+            .collect();
+        json!({
+            "samples": self.samples,
+            "duration": self.duration,
+            "worst": self.worst(),
+            "joints": joints,
+        })
+    }
+}
+
+/// The peak of a series against the limits of `order`: largest ratio, ties (e.g. all zero for
+/// an unlimited joint) broken by the largest magnitude, then by the earliest time.
+fn peak_of(jl: &JointLimits, order: Order, times: &[f64], values: &[f64]) -> Option<Peak> {
+    let mut best: Option<Peak> = None;
+    for (&time, &value) in times.iter().zip(values) {
+        let ratio = jl.ratio(order, value);
+        let better = match &best {
+            None => true,
+            // A NaN ratio (only from overflowing differences) wins, so that it gets reported.
+            Some(b) if b.ratio.is_nan() => false,
+            Some(b) => {
+                ratio.is_nan()
+                    || ratio > b.ratio
+                    || (ratio == b.ratio && value.abs() > b.value.abs())
+            }
+        };
+        if better {
+            best = Some(Peak { ratio, value, time });
+        }
+    }
+    best
+}
+
+/// Divided differences of a series, attributed to the interval midpoints.
+fn divided_difference(times: &[f64], values: &[f64]) -> (Vec<f64>, Vec<f64>) {
+    let n = times.len().saturating_sub(1);
+    let mut t = Vec::with_capacity(n);
+    let mut v = Vec::with_capacity(n);
+    for i in 0..n {
+        let dt = times[i + 1] - times[i];
+        t.push(0.5 * (times[i] + times[i + 1]));
+        v.push((values[i + 1] - values[i]) / dt);
+    }
+    (t, v)
+}
+
+fn check_position(jl: &JointLimits, times: &[f64], q: &[f64]) -> PositionCheck {
+    let mut min = f64::INFINITY;
+    let mut max = f64::NEG_INFINITY;
+    // Signed distance beyond the nearest bound: negative inside the range.
+    let mut beyond = f64::NEG_INFINITY;
+    let mut time = times.first().copied().unwrap_or(0.0);
+    for (&t, &x) in times.iter().zip(q) {
+        min = min.min(x);
+        max = max.max(x);
+        let d = (jl.position_min - x).max(x - jl.position_max);
+        if d > beyond {
+            beyond = d;
+            time = t;
+        }
+    }
+    PositionCheck {
+        min,
+        max,
+        excursion: beyond.max(0.0),
+        time,
+    }
+}
+
+/// Checks a sample table against limits (see the module documentation).
+///
+/// Errors: [`Error::DimensionMismatch`] when the table and the limits have different joint
+/// counts; [`Error::InvalidValue`] for a table without samples.
+pub fn check_samples(table: &SampleTable, limits: &Limits) -> Result<LimitReport> {
+    limits.expect_dof(table.dof(), "the sample table")?;
+    if table.is_empty() {
+        return Err(Error::InvalidValue {
+            field: "sample table row count".into(),
+            value: 0.0,
+            reason: "is too small to check (at least 1 sample is needed)",
+        });
+    }
+    let dof = table.dof();
+    let rows = table.len();
+    let times = table.times();
+    let column = |order: Order, j: usize| -> Option<Vec<f64>> {
+        table
+            .matrix(order)
+            .map(|m| (0..rows).map(|i| m[i * dof + j]).collect())
+    };
+    let mut joints = Vec::with_capacity(dof);
+    for j in 0..dof {
+        let jl = limits.joint(j);
+        let q = column(Order::Position, j).unwrap_or_default();
+        let position = check_position(jl, times, &q);
+        // The series one order below the current one: (times, values).
+        let mut lower: (Vec<f64>, Vec<f64>) = (times.to_vec(), q);
+        let mut derivatives = [DerivativeCheck {
+            order: Order::Velocity,
+            pointwise: None,
+            finite_difference: None,
+        }; 3];
+        for (k, d) in derivatives.iter_mut().enumerate() {
+            let order = Order::ALL[k + 1];
+            let own = column(order, j);
+            let fd = divided_difference(&lower.0, &lower.1);
+            d.order = order;
+            d.pointwise = own.as_ref().and_then(|v| peak_of(jl, order, times, v));
+            d.finite_difference = peak_of(jl, order, &fd.0, &fd.1);
+            lower = match own {
+                Some(v) => (times.to_vec(), v),
+                None => fd,
+            };
+        }
+        let name = match table.names().get(j) {
+            Some(n) if !n.is_empty() => n.clone(),
+            _ => jl.name.clone(),
+        };
+        joints.push(JointReport {
+            joint: j,
+            name,
+            position,
+            derivatives,
+        });
+    }
+    Ok(LimitReport {
+        joints,
+        samples: rows,
+        duration: table.duration(),
+    })
+}
+
+/// Samples `traj` at `rate_hz` with [`crate::sample::sample`] (both ends included, exact
+/// derivatives) and checks the samples against `limits`.
+pub fn check_trajectory<T: Trajectory + ?Sized>(
+    traj: &T,
+    limits: &Limits,
+    rate_hz: f64,
+) -> Result<LimitReport> {
+    limits.expect_dof(traj.dof(), "the trajectory")?;
+    let table = crate::sample::sample(traj, rate_hz)?;
+    check_samples(&table, limits)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table(dof: usize, t: Vec<f64>, cols: [Option<Vec<f64>>; 4]) -> SampleTable {
+        SampleTable::new(dof, t, cols).unwrap()
+    }
+
+    fn grid(n: usize, dt: f64) -> Vec<f64> {
+        (0..n).map(|i| i as f64 * dt).collect()
+    }
+
+    #[test]
+    fn constant_velocity_fd_ratio_is_exact() {
+        let t = grid(11, 0.1);
+        let q: Vec<f64> = t.iter().map(|&t| 0.5 * t).collect();
+        let tb = table(1, t, [Some(q), None, None, None]);
+        let lim = Limits::uniform(1, 2.0, 1.0, 1.0).unwrap();
+        let r = check_samples(&tb, &lim).unwrap();
+        let v = r.joints[0].derivatives[0];
+        assert_eq!(v.order, Order::Velocity);
+        assert!(v.pointwise.is_none());
+        let fd = v.finite_difference.unwrap();
+        assert!((fd.ratio - 0.25).abs() < 1e-12, "{fd:?}");
+        // Positions only: FD acceleration and jerk exist and are (nearly) zero.
+        let a = r.joints[0].derivatives[1].finite_difference.unwrap();
+        let j = r.joints[0].derivatives[2].finite_difference.unwrap();
+        assert!(a.ratio.abs() < 1e-9 && j.ratio.abs() < 1e-6);
+        assert!(r.passes(&Tolerance::default()));
+        assert_eq!(r.samples, 11);
+        assert!((r.duration - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn velocity_jump_is_caught_by_fd_acceleration() {
+        // Velocity 0 then 1 from t = 0.5 on, accelerations reported as 0 everywhere: the
+        // pointwise column hides the jump, the finite difference shows it.
+        let t = grid(11, 0.1);
+        let v: Vec<f64> = t
+            .iter()
+            .map(|&t| if t < 0.45 { 0.0 } else { 1.0 })
+            .collect();
+        let q: Vec<f64> = t.iter().map(|&t| (t - 0.5).max(0.0)).collect();
+        let a = vec![0.0; 11];
+        let tb = table(1, t, [Some(q), Some(v), Some(a), None]);
+        let lim = Limits::uniform(1, 2.0, 5.0, 1000.0).unwrap();
+        let r = check_samples(&tb, &lim).unwrap();
+        let acc = r.joints[0].derivatives[1];
+        assert_eq!(acc.pointwise.unwrap().ratio, 0.0);
+        let fd = acc.finite_difference.unwrap();
+        assert!((fd.value - 10.0).abs() < 1e-9, "{fd:?}");
+        assert!((fd.ratio - 2.0).abs() < 1e-9);
+        assert!((fd.time - 0.45).abs() < 1e-12);
+        let tol = Tolerance::default();
+        assert!(!r.passes(&tol));
+        let v = r.violations(&tol);
+        assert!(
+            v.iter().any(
+                |l| l.contains("joint 1 acceleration (finite difference) 2 × limit")
+                    && l.contains("t = 0.45 s")
+            ),
+            "{v:?}"
+        );
+        assert!((r.worst() - 2.0).abs() < 1e-9);
+        assert!((r.worst_for_joint(0) - 2.0).abs() < 1e-9);
+        assert_eq!(r.worst_for_joint(5), 0.0);
+    }
+
+    #[test]
+    fn position_excursion_and_time() {
+        let t = grid(5, 0.25);
+        let q = vec![0.0, 0.5, 1.3, 0.9, -0.2];
+        let tb = table(1, t, [Some(q), None, None, None]);
+        let mut jl = JointLimits::symmetric(100.0, 100.0, 1e6);
+        jl.position_min = -1.0;
+        jl.position_max = 1.0;
+        jl.name = "elbow".into();
+        let r = check_samples(&tb, &Limits::new(vec![jl]).unwrap()).unwrap();
+        let p = r.joints[0].position;
+        assert_eq!((p.min, p.max), (-0.2, 1.3));
+        assert!((p.excursion - 0.3).abs() < 1e-12);
+        assert_eq!(p.time, 0.5);
+        assert_eq!(r.joints[0].name, "elbow");
+        let v = r.violations(&Tolerance::default());
+        assert_eq!(v.len(), 1, "{v:?}");
+        assert!(v[0].starts_with("joint 1 (elbow) position outside its range by 0.3 at t = 0.5 s"));
+        assert!(r.passes(&Tolerance {
+            ratio: 1e-6,
+            position: 0.31
+        }));
+    }
+
+    #[test]
+    fn directional_minima_are_respected() {
+        // Velocity -1.5 pointwise; max 2, min -1: ratio 1.5 (negative side).
+        let t = grid(3, 1.0);
+        let q = vec![0.0, -1.5, -3.0];
+        let v = vec![-1.5; 3];
+        let tb = table(1, t, [Some(q), Some(v), None, None]);
+        let mut jl = JointLimits::symmetric(2.0, 10.0, 100.0);
+        jl.min_velocity = Some(-1.0);
+        let r = check_samples(&tb, &Limits::new(vec![jl.clone()]).unwrap()).unwrap();
+        let d = r.joints[0].derivatives[0];
+        assert!((d.pointwise.unwrap().ratio - 1.5).abs() < 1e-12);
+        assert!((d.finite_difference.unwrap().ratio - 1.5).abs() < 1e-12);
+        // Same magnitude forward is within the limits.
+        let tb = table(
+            1,
+            grid(3, 1.0),
+            [Some(vec![0.0, 1.5, 3.0]), Some(vec![1.5; 3]), None, None],
+        );
+        let r = check_samples(&tb, &Limits::new(vec![jl]).unwrap()).unwrap();
+        assert!((r.worst() - 0.75).abs() < 1e-12);
+    }
+
+    #[test]
+    fn positions_only_table_gets_all_fd_orders() {
+        // q = t³: jerk 6 everywhere; third divided difference on a uniform grid is exact.
+        let t = grid(21, 0.05);
+        let q: Vec<f64> = t.iter().map(|&t| t * t * t).collect();
+        let tb = table(1, t, [Some(q), None, None, None]);
+        let r = check_samples(&tb, &Limits::uniform(1, 10.0, 10.0, 12.0).unwrap()).unwrap();
+        let jerk = r.joints[0].derivatives[2];
+        assert!(jerk.pointwise.is_none());
+        let fd = jerk.finite_difference.unwrap();
+        assert!((fd.value - 6.0).abs() < 1e-6, "{fd:?}");
+        assert!((fd.ratio - 0.5).abs() < 1e-6);
+        let text = r.to_text();
+        assert!(text.contains("- / 0.5"), "{text}");
+        let js = r.to_json();
+        assert!(js["joints"][0]["jerk"]["pointwise"].is_null());
+        assert!(
+            (js["joints"][0]["jerk"]["finite_difference"]["ratio"]
+                .as_f64()
+                .unwrap()
+                - 0.5)
+                .abs()
+                < 1e-6
+        );
+    }
+
+    #[test]
+    fn unlimited_gives_zero_ratio_and_short_tables() {
+        let tb = table(1, vec![0.0], [Some(vec![1.0]), Some(vec![3.0]), None, None]);
+        let lim = Limits::new(vec![JointLimits::default()]).unwrap();
+        let r = check_samples(&tb, &lim).unwrap();
+        let d = r.joints[0].derivatives[0];
+        assert_eq!(d.pointwise.unwrap().ratio, 0.0);
+        assert_eq!(d.pointwise.unwrap().value, 3.0);
+        assert!(d.finite_difference.is_none());
+        assert_eq!(r.worst(), 0.0);
+        let empty = table(1, vec![], [Some(vec![]), None, None, None]);
+        assert!(check_samples(&empty, &lim).is_err());
+    }
+
+    #[test]
+    fn dof_mismatch_is_an_error() {
+        let tb = table(2, vec![0.0, 1.0], [Some(vec![0.0; 4]), None, None, None]);
+        let e = check_samples(&tb, &Limits::uniform(3, 1.0, 1.0, 1.0).unwrap()).unwrap_err();
+        assert!(matches!(
+            e,
+            Error::DimensionMismatch {
+                expected: 2,
+                found: 3,
+                ..
+            }
+        ));
+    }
+
+    struct Ramp;
+    impl Trajectory for Ramp {
+        fn dof(&self) -> usize {
+            2
+        }
+        fn duration(&self) -> f64 {
+            1.0
+        }
+        fn eval(&self, t: f64, order: Order, out: &mut [f64]) {
+            let t = crate::traj::clamp_time(t, 1.0);
+            let (a, b) = match order {
+                Order::Position => (t, -2.0 * t),
+                Order::Velocity => (1.0, -2.0),
+                _ => (0.0, 0.0),
+            };
+            out[0] = a;
+            out[1] = b;
+        }
+    }
+
+    #[test]
+    fn trajectory_check_and_text() {
+        let mut lim = Limits::preset("panda").unwrap().joints()[..2].to_vec();
+        lim[1].min_velocity = Some(-1.0);
+        let lim = Limits::new(lim).unwrap();
+        let r = check_trajectory(&Ramp, &lim, 100.0).unwrap();
+        assert_eq!(r.samples, 101);
+        assert_eq!(r.joints[1].name, "panda_joint2");
+        assert!((r.joints[1].derivatives[0].pointwise.unwrap().ratio - 2.0).abs() < 1e-12);
+        let v = r.violations(&Tolerance::default());
+        // Joint 2 leaves its range (-1.7628) and uses twice its negative velocity limit.
+        assert_eq!(v.len(), 3, "{v:?}");
+        assert!(v[0].contains("(reached [-2, 0])"), "{v:?}");
+        assert!(v[1].starts_with("joint 2 (panda_joint2) velocity (pointwise) 2 × limit"));
+        let text = r.to_text();
+        assert!(
+            text.contains("panda_joint1") && text.contains("worst: 2 × limit"),
+            "{text}"
+        );
+        assert!(
+            check_trajectory(&Ramp, &Limits::uniform(3, 1.0, 1.0, 1.0).unwrap(), 10.0).is_err()
+        );
+        assert!(check_trajectory(&Ramp, &lim, 0.0).is_err());
+    }
+
+    #[test]
+    fn number_formatting() {
+        assert_eq!(sig(1.23456, 3), "1.23");
+        assert_eq!(sig(2.0, 3), "2");
+        assert_eq!(sig(0.000123, 3), "0.000123");
+        assert_eq!(fmt_ratio(1.0000012), "1.0000012");
+        assert_eq!(sig(-12345.0, 3), "-12345");
+    }
+}

@@ -1,0 +1,368 @@
+//! Multi-waypoint piecewise polynomials: one synchronized polynomial segment between each pair
+//! of consecutive waypoints, with chosen velocities at the via points.
+
+use super::{
+    min_duration, min_duration_rest_to_rest, worst_ratio_of, Degree, EndState, Polynomial,
+};
+use crate::error::{Error, Result};
+use crate::limits::Limits;
+use crate::traj::{find_piece, Order, Trajectory};
+
+/// Velocities at the interior waypoints (the first and last are always at rest).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ViaVelocities {
+    /// Stop at every waypoint (as MATLAB's `quinticpolytraj` does by default).
+    Zero,
+    /// Continuous-velocity heuristic: per joint, the mean of the average velocities of the
+    /// segments before and after the waypoint, or zero where they differ in sign (the joint
+    /// turns around there) or either is zero. Average velocities come from the rest-to-rest
+    /// timing of each segment; each segment is then re-timed for its actual end velocities.
+    Heuristic,
+    /// Given velocities, row-major `(waypoints − 2) × dof` for the interior waypoints.
+    Given(Vec<f64>),
+}
+
+/// How segment durations are chosen.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ViaTiming<'a> {
+    /// Given durations, one per segment.
+    Durations(Vec<f64>),
+    /// The shortest duration of each segment that keeps every joint within these limits (all
+    /// joints of a segment arrive together).
+    Limits(&'a Limits),
+}
+
+/// Piecewise polynomial through waypoints: segment i joins waypoint i to i+1 over
+/// `[breaks[i], breaks[i+1]]`, accelerations (and jerks) zero at every waypoint, velocities per
+/// [`ViaVelocities`]. Position, velocity and acceleration are continuous at the waypoints
+/// (jerk too for septic segments, acceleration not for cubic ones).
+///
+/// ```
+/// use trajkit::poly::{Degree, ViaTrajectory, ViaTiming, ViaVelocities};
+/// use trajkit::{Limits, Trajectory};
+/// let limits = Limits::uniform(2, 1.0, 5.0, 50.0)?;
+/// let waypoints = [0.0, 0.0, 1.0, 0.5, 2.0, 0.0]; // 3 waypoints × 2 joints, row-major
+/// let tr = ViaTrajectory::new(&waypoints, 2, Degree::Quintic, ViaVelocities::Heuristic,
+///                             ViaTiming::Limits(&limits))?;
+/// assert_eq!(tr.segments(), 2);
+/// assert!(tr.worst_limit_ratio(&limits)? <= 1.0 + 1e-9);
+/// # Ok::<(), trajkit::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct ViaTrajectory {
+    dof: usize,
+    breaks: Vec<f64>,
+    /// `segments × dof` polynomials, row-major.
+    polys: Vec<Polynomial>,
+}
+
+impl ViaTrajectory {
+    /// Builds the trajectory through `waypoints` (row-major, `n × dof`, n ≥ 2). Consecutive
+    /// identical waypoints are an error ([`Error::DuplicateWaypoint`]); remove them first with
+    /// [`crate::io::Waypoints::dedup`] if the input may hold them.
+    pub fn new(
+        waypoints: &[f64],
+        dof: usize,
+        degree: Degree,
+        velocities: ViaVelocities,
+        timing: ViaTiming<'_>,
+    ) -> Result<Self> {
+        if dof == 0 || waypoints.len() % dof != 0 {
+            return Err(Error::DimensionMismatch {
+                what: "waypoint values (a multiple of the joint count)".into(),
+                expected: dof.max(1) * (waypoints.len() / dof.max(1)).max(2),
+                found: waypoints.len(),
+            });
+        }
+        let n = waypoints.len() / dof;
+        if n < 2 {
+            return Err(Error::TooFewWaypoints {
+                needed: 2,
+                found: n,
+            });
+        }
+        for (i, &v) in waypoints.iter().enumerate() {
+            crate::error::finite(|| format!("waypoint {} joint {}", i / dof, i % dof + 1), v)?;
+        }
+        let wp = |i: usize| &waypoints[i * dof..(i + 1) * dof];
+        for i in 1..n {
+            if wp(i) == wp(i - 1) {
+                return Err(Error::DuplicateWaypoint { index: i });
+            }
+        }
+        if let ViaTiming::Limits(l) = &timing {
+            l.expect_dof(dof, "waypoints")?;
+        }
+        let segs = n - 1;
+        // Rest-to-rest durations: the given ones, or the minimal ones.
+        let base: Vec<f64> = match &timing {
+            ViaTiming::Durations(d) => {
+                if d.len() != segs {
+                    return Err(Error::DimensionMismatch {
+                        what: "segment durations".into(),
+                        expected: segs,
+                        found: d.len(),
+                    });
+                }
+                for (i, &x) in d.iter().enumerate() {
+                    crate::error::positive(|| format!("duration of segment {i}"), x)?;
+                }
+                d.clone()
+            }
+            ViaTiming::Limits(l) => (0..segs)
+                .map(|i| min_duration_rest_to_rest(degree, wp(i), wp(i + 1), l))
+                .collect::<Result<_>>()?,
+        };
+        // Interior velocities.
+        let vel: Vec<f64> = match velocities {
+            ViaVelocities::Zero => vec![0.0; (n - 2) * dof],
+            ViaVelocities::Given(v) => {
+                if v.len() != (n - 2) * dof {
+                    return Err(Error::DimensionMismatch {
+                        what: "interior waypoint velocities ((waypoints − 2) × joints)".into(),
+                        expected: (n - 2) * dof,
+                        found: v.len(),
+                    });
+                }
+                for (i, &x) in v.iter().enumerate() {
+                    crate::error::finite(
+                        || format!("velocity at waypoint {} joint {}", i / dof + 1, i % dof + 1),
+                        x,
+                    )?;
+                }
+                v
+            }
+            ViaVelocities::Heuristic => {
+                let mut v = vec![0.0; (n - 2) * dof];
+                for k in 1..n - 1 {
+                    for j in 0..dof {
+                        let s0 = (wp(k)[j] - wp(k - 1)[j]) / base[k - 1];
+                        let s1 = (wp(k + 1)[j] - wp(k)[j]) / base[k];
+                        if s0 * s1 > 0.0 {
+                            v[(k - 1) * dof + j] = 0.5 * (s0 + s1);
+                        }
+                    }
+                }
+                v
+            }
+        };
+        let end_state = |k: usize| -> EndState {
+            let qd = if k == 0 || k == n - 1 {
+                Vec::new()
+            } else {
+                vel[(k - 1) * dof..k * dof].to_vec()
+            };
+            EndState {
+                q: wp(k).to_vec(),
+                qd,
+                ..Default::default()
+            }
+        };
+        let all_rest = vel.iter().all(|&v| v == 0.0);
+        let durations: Vec<f64> = match &timing {
+            ViaTiming::Durations(d) => d.clone(),
+            ViaTiming::Limits(l) if !all_rest => (0..segs)
+                .map(|i| min_duration(degree, &end_state(i), &end_state(i + 1), l))
+                .collect::<Result<_>>()?,
+            ViaTiming::Limits(_) => base,
+        };
+        let m = degree.conditions_per_end();
+        let mut breaks = Vec::with_capacity(n);
+        breaks.push(0.0);
+        let mut polys = Vec::with_capacity(segs * dof);
+        for i in 0..segs {
+            let (s, e) = (end_state(i), end_state(i + 1));
+            for j in 0..dof {
+                let sc: Vec<f64> = (0..m).map(|k| s.get(k, j)).collect();
+                let ec: Vec<f64> = (0..m).map(|k| e.get(k, j)).collect();
+                polys.push(Polynomial::from_boundary(&sc, &ec, durations[i])?);
+            }
+            breaks.push(breaks[i] + durations[i]);
+        }
+        Ok(ViaTrajectory { dof, breaks, polys })
+    }
+
+    /// Number of segments.
+    pub fn segments(&self) -> usize {
+        self.breaks.len() - 1
+    }
+
+    /// Segment boundaries in time, `segments() + 1` values starting at 0.
+    pub fn breaks(&self) -> &[f64] {
+        &self.breaks
+    }
+
+    /// The exact worst ratio of velocity, acceleration or jerk to the limits over the whole
+    /// trajectory (from each segment's polynomial extrema).
+    pub fn worst_limit_ratio(&self, limits: &Limits) -> Result<f64> {
+        limits.expect_dof(self.dof, "via-point trajectory")?;
+        Ok(self
+            .polys
+            .chunks(self.dof)
+            .map(|seg| worst_ratio_of(seg, limits))
+            .fold(0.0, f64::max))
+    }
+
+    /// Smallest and largest position of every joint over the trajectory (exact).
+    pub fn position_ranges(&self) -> Vec<(f64, f64)> {
+        let mut r = vec![(f64::INFINITY, f64::NEG_INFINITY); self.dof];
+        for seg in self.polys.chunks(self.dof) {
+            for (j, p) in seg.iter().enumerate() {
+                let (lo, hi) = p.position_range();
+                r[j].0 = r[j].0.min(lo);
+                r[j].1 = r[j].1.max(hi);
+            }
+        }
+        r
+    }
+}
+
+impl Trajectory for ViaTrajectory {
+    fn dof(&self) -> usize {
+        self.dof
+    }
+    fn duration(&self) -> f64 {
+        *self.breaks.last().expect("at least two breaks")
+    }
+    fn eval(&self, t: f64, order: Order, out: &mut [f64]) {
+        let t = crate::traj::clamp_time(t, self.duration());
+        let i = find_piece(&self.breaks, t);
+        let local = t - self.breaks[i];
+        let seg = &self.polys[i * self.dof..(i + 1) * self.dof];
+        for (o, p) in out[..self.dof].iter_mut().zip(seg) {
+            *o = p.eval(local, order.index());
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn wps() -> Vec<f64> {
+        vec![0.0, 0.0, 1.0, 0.5, 2.0, 0.2, 2.5, -0.5]
+    }
+
+    #[test]
+    fn passes_through_waypoints_with_continuity() {
+        let l = Limits::uniform(2, 1.0, 4.0, 40.0).unwrap();
+        for deg in Degree::ALL {
+            for vel in [ViaVelocities::Zero, ViaVelocities::Heuristic] {
+                let tr =
+                    ViaTrajectory::new(&wps(), 2, deg, vel.clone(), ViaTiming::Limits(&l)).unwrap();
+                let mut q = [0.0; 2];
+                for (k, &b) in tr.breaks().iter().enumerate() {
+                    tr.eval(b, Order::Position, &mut q);
+                    assert!(
+                        (q[0] - wps()[2 * k]).abs() < 1e-12
+                            && (q[1] - wps()[2 * k + 1]).abs() < 1e-12
+                    );
+                }
+                // Continuity of position, velocity, acceleration across breaks.
+                let max_cont = if deg == Degree::Cubic { 2 } else { 3 };
+                for &b in &tr.breaks()[1..tr.segments()] {
+                    for k in 0..max_cont {
+                        let o = Order::from_index(k).unwrap();
+                        let (mut a, mut c) = ([0.0; 2], [0.0; 2]);
+                        tr.eval(b - 1e-9, o, &mut a);
+                        tr.eval(b + 1e-9, o, &mut c);
+                        for j in 0..2 {
+                            assert!(
+                                (a[j] - c[j]).abs() < 1e-5 * (1.0 + a[j].abs()),
+                                "{:?} order {k}",
+                                deg
+                            );
+                        }
+                    }
+                }
+                let w = tr.worst_limit_ratio(&l).unwrap();
+                let w = if deg == Degree::Cubic { w.min(1.0) } else { w };
+                assert!(w <= 1.0 + 1e-9, "{deg:?} {vel:?} worst {w}");
+            }
+        }
+    }
+
+    #[test]
+    fn heuristic_stops_where_a_joint_turns() {
+        let l = Limits::uniform(2, 1.0, 4.0, 40.0).unwrap();
+        let tr = ViaTrajectory::new(
+            &wps(),
+            2,
+            Degree::Quintic,
+            ViaVelocities::Heuristic,
+            ViaTiming::Limits(&l),
+        )
+        .unwrap();
+        let mut v = [0.0; 2];
+        // Joint 2 goes 0 -> 0.5 -> 0.2: turns at waypoint 1, so velocity 0 there.
+        tr.eval(tr.breaks()[1], Order::Velocity, &mut v);
+        assert!(v[0] > 0.0 && v[1].abs() < 1e-12, "{v:?}");
+        // Faster than stopping everywhere.
+        let stop = ViaTrajectory::new(
+            &wps(),
+            2,
+            Degree::Quintic,
+            ViaVelocities::Zero,
+            ViaTiming::Limits(&l),
+        )
+        .unwrap();
+        assert!(tr.duration() < stop.duration());
+    }
+
+    #[test]
+    fn bad_input() {
+        let l = Limits::uniform(2, 1.0, 4.0, 40.0).unwrap();
+        let e = ViaTrajectory::new(
+            &[0.0, 0.0, 0.0, 0.0],
+            2,
+            Degree::Quintic,
+            ViaVelocities::Zero,
+            ViaTiming::Limits(&l),
+        )
+        .unwrap_err();
+        assert_eq!(e, Error::DuplicateWaypoint { index: 1 });
+        assert!(matches!(
+            ViaTrajectory::new(
+                &[0.0, 0.0],
+                2,
+                Degree::Quintic,
+                ViaVelocities::Zero,
+                ViaTiming::Limits(&l)
+            ),
+            Err(Error::TooFewWaypoints { .. })
+        ));
+        assert!(ViaTrajectory::new(
+            &[0.0, 0.0, 1.0],
+            2,
+            Degree::Quintic,
+            ViaVelocities::Zero,
+            ViaTiming::Limits(&l)
+        )
+        .is_err());
+        assert!(ViaTrajectory::new(
+            &[0.0, 0.0, 1.0, f64::INFINITY],
+            2,
+            Degree::Quintic,
+            ViaVelocities::Zero,
+            ViaTiming::Limits(&l)
+        )
+        .is_err());
+        assert!(ViaTrajectory::new(
+            &wps(),
+            2,
+            Degree::Quintic,
+            ViaVelocities::Zero,
+            ViaTiming::Durations(vec![1.0, 1.0])
+        )
+        .is_err());
+        let tr = ViaTrajectory::new(
+            &wps(),
+            2,
+            Degree::Quintic,
+            ViaVelocities::Given(vec![0.1; 4]),
+            ViaTiming::Durations(vec![1.0, 2.0, 1.5]),
+        )
+        .unwrap();
+        assert!((tr.duration() - 4.5).abs() < 1e-15);
+    }
+}
