@@ -169,7 +169,7 @@ fn cholesky_in_place(l: &mut [f64], n: usize) -> std::result::Result<(), usize> 
                 let (ri, rj) = (i * n, j * n);
                 let s = l[ri + j] - dot(&l[ri + k0..ri + j], &l[rj + k0..rj + j]);
                 if i == j {
-                    if !(s > 0.0) || !s.is_finite() {
+                    if s.is_nan() || s <= 0.0 || s.is_infinite() {
                         return Err(i);
                     }
                     l[ri + i] = s.sqrt();
@@ -183,9 +183,9 @@ fn cholesky_in_place(l: &mut [f64], n: usize) -> std::result::Result<(), usize> 
         while i < n {
             let ib = (n - i).min(4);
             let mut j = k1;
-            while j <= i + ib - 1 {
+            while j < i + ib {
                 let jb = (i + ib - j).min(2);
-                if ib == 4 && jb == 2 && j + 1 <= i {
+                if ib == 4 && jb == 2 && j < i {
                     let c = {
                         let row = |r: usize| &l[r * n + k0..r * n + k1];
                         kernel4x2(

@@ -101,7 +101,10 @@ fn dmp_fit_reproduces_better_than_movement_primitives() {
             hi = hi.max(q[k * dof + j]);
         }
         let rel = (se / t.len() as f64).sqrt() / (hi - lo);
-        eprintln!("joint {j}: trajkit {rel:.2e}, movement_primitives {:.2e}", mp[j]);
+        eprintln!(
+            "joint {j}: trajkit {rel:.2e}, movement_primitives {:.2e}",
+            mp[j]
+        );
         assert!(rel < mp[j] / 5.0, "joint {j}: {rel} vs {}", mp[j]);
     }
 }
@@ -155,7 +158,11 @@ fn promp_weights_and_conditioning_match_movement_primitives() {
             // var_trajectory reshapes the joint-major diagonal as (n_dims, n_steps).T
             let e = cv[k * dof + j];
             let _ = n;
-            assert!((v[j] - e).abs() < 1e-8 * (1.0 + e), "var t={tk} j={j}: {} vs {e}", v[j]);
+            assert!(
+                (v[j] - e).abs() < 1e-8 * (1.0 + e),
+                "var t={tk} j={j}: {} vs {e}",
+                v[j]
+            );
         }
     }
     assert!(f["mp_mutates_time_array"].as_bool().unwrap());

@@ -2,6 +2,8 @@
 //!
 //! - [`basis`]: normalized Gaussian basis functions over a phase, with exact derivatives.
 //! - [`dmp`]: discrete dynamic movement primitives ([`Dmp`], rollouts as [`DmpRollout`]).
+//! - [`gmm`]: Gaussian mixture (EM) and regression on time, for KMP references.
+//! - [`kmp`]: kernelized movement primitives ([`Kmp`]) with via points.
 //! - [`promp`]: probabilistic movement primitives ([`ProMp`]): fit, conditioning, sampling.
 //!
 //! Every primitive yields a [`crate::Trajectory`] (a DMP rollout, a ProMP mean or sample, a KMP
@@ -10,8 +12,12 @@
 
 pub mod basis;
 pub mod dmp;
+pub mod gmm;
+pub mod kmp;
 pub mod promp;
 
 pub use basis::GaussianBasis;
 pub use dmp::{Coupling, Dmp, DmpConfig, DmpRollout, ForcingScaling, GoalChange, RolloutOptions};
+pub use gmm::{Gmm, GmmConfig};
+pub use kmp::{Kmp, KmpConfig, KmpReference, KmpVia};
 pub use promp::{Demo, ProMp, ProMpConfig, ProMpSampler, ViaPoint, WeightTrajectory};
