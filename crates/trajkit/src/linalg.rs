@@ -161,6 +161,7 @@ fn cholesky_in_place(l: &mut [f64], n: usize) -> std::result::Result<(), usize> 
     // Right-looking, blocked by panels of NB columns: factor the panel with row dot products,
     // then subtract its outer product from the trailing lower triangle with a 4×2 kernel.
     let mut k0 = 0;
+    let mut panel: Vec<f64> = Vec::with_capacity(n * NB);
     while k0 < n {
         let k1 = (k0 + NB).min(n);
         for i in k0..n {
@@ -178,38 +179,50 @@ fn cholesky_in_place(l: &mut [f64], n: usize) -> std::result::Result<(), usize> 
                 }
             }
         }
-        // Trailing update of rows/columns k1..n.
-        let mut i = k1;
-        while i < n {
-            let ib = (n - i).min(4);
-            let mut j = k1;
-            while j < i + ib {
-                let jb = (i + ib - j).min(2);
-                if ib == 4 && jb == 2 && j < i {
-                    let c = {
-                        let row = |r: usize| &l[r * n + k0..r * n + k1];
-                        kernel4x2(
-                            [row(i), row(i + 1), row(i + 2), row(i + 3)],
-                            [row(j), row(j + 1)],
-                        )
-                    };
-                    for r in 0..4 {
-                        for s in 0..2 {
-                            l[(i + r) * n + j + s] -= c[r][s];
-                        }
-                    }
-                } else {
-                    for r in i..i + ib {
-                        for s in j..(j + jb).min(r + 1) {
-                            let v = dot(&l[r * n + k0..r * n + k1], &l[s * n + k0..s * n + k1]);
-                            l[r * n + s] -= v;
-                        }
-                    }
-                }
-                j += jb;
-            }
-            i += ib;
+        // Trailing update of rows/columns k1..n from a packed copy of the panel, blocked so
+        // that a block of JB panel rows stays in L1 while all rows below stream past it.
+        let w = k1 - k0;
+        let rows = n - k1;
+        panel.clear();
+        for r in k1..n {
+            panel.extend_from_slice(&l[r * n + k0..r * n + k1]);
         }
+        let prow = |r: usize| &panel[(r - k1) * w..(r - k1 + 1) * w];
+        const JB: usize = 32;
+        let mut jb0 = k1;
+        while jb0 < n {
+            let jb1 = (jb0 + JB).min(n);
+            let mut i = jb0;
+            while i < n {
+                let ib = (n - i).min(4);
+                let mut j = jb0;
+                let jend = jb1.min(i + ib);
+                while j < jend {
+                    let jb = (jend - j).min(2);
+                    if ib == 4 && jb == 2 && j + 1 < i + 1 && j < i {
+                        let c = kernel4x2(
+                            [prow(i), prow(i + 1), prow(i + 2), prow(i + 3)],
+                            [prow(j), prow(j + 1)],
+                        );
+                        for r in 0..4 {
+                            for s in 0..2 {
+                                l[(i + r) * n + j + s] -= c[r][s];
+                            }
+                        }
+                    } else {
+                        for r in i..i + ib {
+                            for s in j..(j + jb).min(r + 1) {
+                                l[r * n + s] -= dot(prow(r), prow(s));
+                            }
+                        }
+                    }
+                    j += jb;
+                }
+                i += ib;
+            }
+            jb0 = jb1;
+        }
+        let _ = rows;
         k0 = k1;
     }
     for i in 0..n {
@@ -343,42 +356,43 @@ impl Cholesky {
     /// The transpose of `L⁻¹`, row-major: row `j` holds column `j` of `L⁻¹`, non-zero from
     /// entry `j` on. With it, `vᵀ A⁻¹ v = ‖L⁻¹ v‖²` and `L⁻¹ v = Σ_j v_j · row_j`.
     pub fn inverse_factor_transposed(&self) -> Vec<f64> {
+        const G: usize = 32;
         let n = self.n;
         let l = &self.l;
-        // Column j of L⁻¹ solves L x = e_j and is zero above j. Four columns at a time, so each
-        // row of L is read once per group.
+        // Column j of L⁻¹ solves L x = e_j and is zero above j. G columns per group (their
+        // solutions fit in L2), each row segment of L dotted with four of them at a time.
         let mut out = vec![0.0; n * n];
-        let mut x = vec![0.0; 4 * n];
+        let mut x = vec![0.0; G * n];
         let mut j0 = 0;
         while j0 < n {
-            let nc = (n - j0).min(4);
+            let nc = (n - j0).min(G);
             x.iter_mut().for_each(|v| *v = 0.0);
             for c in 0..nc {
-                let xc = &mut x[c * n..c * n + n];
                 let j = j0 + c;
-                xc[j] = 1.0 / l[j * n + j];
+                x[c * n + j] = 1.0 / l[j * n + j];
             }
             for i in j0 + 1..n {
                 let d = 1.0 / l[i * n + i];
                 let row = &l[i * n + j0..i * n + i];
-                if nc == 4 {
-                    let s = {
-                        let (x0, rest) = x.split_at(n);
-                        let (x1, rest) = rest.split_at(n);
-                        let (x2, x3) = rest.split_at(n);
-                        dot4(row, [&x0[j0..i], &x1[j0..i], &x2[j0..i], &x3[j0..i]])
-                    };
-                    for c in 0..4 {
-                        if i > j0 + c {
-                            x[c * n + i] = -s[c] * d;
+                let mut c0 = 0;
+                while c0 < nc {
+                    if c0 + 4 <= nc {
+                        let s = {
+                            let v = |c: usize| &x[(c0 + c) * n + j0..(c0 + c) * n + i];
+                            dot4(row, [v(0), v(1), v(2), v(3)])
+                        };
+                        for c in 0..4 {
+                            if i > j0 + c0 + c {
+                                x[(c0 + c) * n + i] = -s[c] * d;
+                            }
                         }
-                    }
-                } else {
-                    for c in 0..nc {
-                        if i > j0 + c {
-                            let s = dot(row, &x[c * n + j0..c * n + i]);
-                            x[c * n + i] = -s * d;
+                        c0 += 4;
+                    } else {
+                        if i > j0 + c0 {
+                            let s = dot(row, &x[c0 * n + j0..c0 * n + i]);
+                            x[c0 * n + i] = -s * d;
                         }
+                        c0 += 1;
                     }
                 }
             }
