@@ -25,8 +25,9 @@ const BLOCK: usize = 64;
 /// call and the same on every platform.
 #[inline(always)]
 pub(crate) fn exp_neg(e: f64) -> f64 {
-    const LN2_HI: f64 = 0.693_147_180_369_123_816_49;
-    const LN2_LO: f64 = 1.908_214_929_270_587_7e-10;
+    // ln 2 split so that k · LN2_HI is exact (fdlibm's constants).
+    const LN2_HI: f64 = f64::from_bits(0x3fe6_2e42_fee0_0000);
+    const LN2_LO: f64 = f64::from_bits(0x3dea_39ef_3579_3c76);
     let x = -e;
     // Round to nearest with the 1.5·2⁵² trick (no libm call on baseline x86-64).
     const SHIFT: f64 = 6_755_399_441_055_744.0;
