@@ -325,3 +325,44 @@ fn caller_data_is_not_mutated_and_bad_input_is_typed() {
         assert!(dmp.rollout(&opts).is_err(), "{opts:?}");
     }
 }
+
+#[test]
+fn obstacle_coupling_steers_around_a_point() {
+    use trajkit::primitives::ObstacleAvoidance;
+    // Straight 2-D demonstration (0,0) → (1,0).
+    let n = 501;
+    let t: Vec<f64> = (0..n).map(|k| k as f64 / (n - 1) as f64).collect();
+    let q: Vec<f64> = t
+        .iter()
+        .flat_map(|&s| [10.0 * s.powi(3) - 15.0 * s.powi(4) + 6.0 * s.powi(5), 0.0])
+        .collect();
+    let dmp = Dmp::fit(&t, &q, 2, &DmpConfig::default()).unwrap();
+    let obs = ObstacleAvoidance::new(&[0.5, 0.02], 2).unwrap();
+    let free = dmp.rollout(&RolloutOptions::default()).unwrap();
+    let avoid = dmp
+        .rollout(&RolloutOptions {
+            coupling: Some(&obs),
+            duration: Some(2.0),
+            ..Default::default()
+        })
+        .unwrap();
+    let dist = |r: &dyn Trajectory| {
+        let mut y = [0.0; 2];
+        (0..=400)
+            .map(|k| {
+                r.eval(k as f64 / 200.0, Order::Position, &mut y);
+                ((y[0] - 0.5).powi(2) + (y[1] - 0.02).powi(2)).sqrt()
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let (d0, d1) = (dist(&free), dist(&avoid));
+    assert!(d1 > 2.0 * d0, "free {d0}, avoiding {d1}");
+    // Passes below the obstacle (away from it) and still reaches the goal.
+    let mut y = [0.0; 2];
+    avoid.eval(0.5, Order::Position, &mut y);
+    assert!(y[1] < 0.0, "{y:?}");
+    avoid.eval(2.0, Order::Position, &mut y);
+    assert!((y[0] - 1.0).abs() < 1e-2 && y[1].abs() < 1e-2, "{y:?}");
+    assert!(ObstacleAvoidance::new(&[0.0; 4], 4).is_err());
+    assert!(ObstacleAvoidance::new(&[0.0; 5], 2).is_err());
+}

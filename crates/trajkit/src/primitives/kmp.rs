@@ -623,7 +623,12 @@ mod tests {
                 }
             }
         }
-        let r = KmpReference { dof: d, t, mean, cov };
+        let r = KmpReference {
+            dof: d,
+            t,
+            mean,
+            cov,
+        };
         let cfg = KmpConfig::default();
         let kmp = Kmp::fit(&r, &cfg).unwrap();
         let nd = n * d;
@@ -642,7 +647,9 @@ mod tests {
             }
         }
         let mut direct = r.mean.clone();
-        Cholesky::factor(&a, nd).unwrap().solve_in_place(&mut direct);
+        Cholesky::factor(&a, nd)
+            .unwrap()
+            .solve_in_place(&mut direct);
         let scale = direct.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for (x, y) in kmp.alpha.iter().zip(&direct) {
             assert!((x - y).abs() < 1e-9 * scale, "{x} vs {y}");

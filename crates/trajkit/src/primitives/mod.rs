@@ -17,7 +17,10 @@ pub mod kmp;
 pub mod promp;
 
 pub use basis::GaussianBasis;
-pub use dmp::{Coupling, Dmp, DmpConfig, DmpRollout, ForcingScaling, GoalChange, RolloutOptions};
+pub use dmp::{
+    Coupling, CouplingTerm, Dmp, DmpConfig, DmpRollout, ForcingScaling, GoalChange,
+    ObstacleAvoidance, RolloutOptions,
+};
 pub use gmm::{Gmm, GmmConfig};
 pub use kmp::{Kmp, KmpConfig, KmpReference, KmpVia};
 pub use promp::{Demo, ProMp, ProMpConfig, ProMpSampler, ViaPoint, WeightTrajectory};
