@@ -366,3 +366,45 @@ fn obstacle_coupling_steers_around_a_point() {
     assert!(ObstacleAvoidance::new(&[0.0; 4], 4).is_err());
     assert!(ObstacleAvoidance::new(&[0.0; 5], 2).is_err());
 }
+
+#[test]
+fn rhythmic_dmp_repeats_its_period() {
+    use trajkit::primitives::RhythmicDmp;
+    let tau = std::f64::consts::TAU;
+    let f = |s: f64| {
+        [
+            (tau * s).sin() + 0.3 * (2.0 * tau * s).sin(),
+            0.5 * (tau * s).cos(),
+        ]
+    };
+    let n = 1001;
+    let period = 1.5;
+    let t: Vec<f64> = (0..n).map(|k| period * k as f64 / (n - 1) as f64).collect();
+    let q: Vec<f64> = t.iter().flat_map(|&s| f(s / period)).collect();
+    let dmp = RhythmicDmp::fit(&t, &q, 2, 50).unwrap();
+    let roll = dmp.rollout(3.0 * period, None, None, None).unwrap();
+    let mut y = [0.0; 2];
+    let mut worst: f64 = 0.0;
+    for k in 0..=300 {
+        let s = 3.0 * period * k as f64 / 300.0;
+        roll.eval(s, Order::Position, &mut y);
+        let e = f(s / period);
+        worst = worst
+            .max((y[0] - e[0]).abs() / 2.6)
+            .max((y[1] - e[1]).abs());
+    }
+    assert!(worst < 1e-3, "{worst}");
+    // Twice the amplitude, another anchor, half the period.
+    let roll = dmp
+        .rollout(period, Some(period / 2.0), Some(&[1.0, -1.0]), Some(2.0))
+        .unwrap();
+    for k in 0..=50 {
+        let s = period * k as f64 / 50.0;
+        roll.eval(s, Order::Position, &mut y);
+        let e = f(2.0 * s / period);
+        assert!((y[0] - (1.0 + 2.0 * e[0])).abs() < 1e-2, "s={s}");
+        assert!((y[1] - (-1.0 + 2.0 * e[1])).abs() < 1e-2, "s={s}");
+    }
+    assert!(dmp.rollout(-1.0, None, None, None).is_err());
+    assert!(dmp.rollout(1.0, None, Some(&[0.0]), None).is_err());
+}

@@ -320,7 +320,7 @@ pub struct Dmp {
 }
 
 /// Second-order finite-difference derivative on a possibly non-uniform grid.
-fn derivative(t: &[f64], y: &[f64], stride: usize, col: usize, out: &mut [f64]) {
+pub(crate) fn derivative(t: &[f64], y: &[f64], stride: usize, col: usize, out: &mut [f64]) {
     let n = t.len();
     let v = |k: usize| y[k * stride + col];
     if n == 2 {
@@ -872,6 +872,17 @@ pub struct DmpRollout {
 }
 
 impl DmpRollout {
+    /// Builds a rollout from integrated states (crate-internal: rhythmic DMPs reuse it).
+    pub(crate) fn from_states(
+        dof: usize,
+        t: Vec<f64>,
+        y: Vec<f64>,
+        v: Vec<f64>,
+        a: Vec<f64>,
+    ) -> Self {
+        DmpRollout { dof, t, y, v, a }
+    }
+
     /// Integration times (seconds), starting at 0.
     pub fn times(&self) -> &[f64] {
         &self.t

@@ -4,6 +4,7 @@
 //! - [`dmp`]: discrete dynamic movement primitives ([`Dmp`], rollouts as [`DmpRollout`]).
 //! - [`gmm`]: Gaussian mixture (EM) and regression on time, for KMP references.
 //! - [`kmp`]: kernelized movement primitives ([`Kmp`]) with via points.
+//! - [`rhythmic`]: rhythmic (periodic) DMPs ([`RhythmicDmp`]).
 //! - [`promp`]: probabilistic movement primitives ([`ProMp`]): fit, conditioning, sampling.
 //!
 //! Every primitive yields a [`crate::Trajectory`] (a DMP rollout, a ProMP mean or sample, a KMP
@@ -15,6 +16,7 @@ pub mod dmp;
 pub mod gmm;
 pub mod kmp;
 pub mod promp;
+pub mod rhythmic;
 
 pub use basis::GaussianBasis;
 pub use dmp::{
@@ -24,3 +26,4 @@ pub use dmp::{
 pub use gmm::{Gmm, GmmConfig};
 pub use kmp::{Kmp, KmpConfig, KmpReference, KmpVia};
 pub use promp::{Demo, ProMp, ProMpConfig, ProMpSampler, ViaPoint, WeightTrajectory};
+pub use rhythmic::RhythmicDmp;
