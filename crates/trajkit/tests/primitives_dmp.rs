@@ -408,3 +408,55 @@ fn rhythmic_dmp_repeats_its_period() {
     assert!(dmp.rollout(-1.0, None, None, None).is_err());
     assert!(dmp.rollout(1.0, None, Some(&[0.0]), None).is_err());
 }
+
+#[test]
+fn phase_stopping_waits_for_a_blocked_robot() {
+    use trajkit::primitives::PhaseStop;
+    let (t, q) = demo7(501, 1.0);
+    let dmp = Dmp::fit(&t, &q, 7, &DmpConfig::default()).unwrap();
+    let start = dmp.start().to_vec();
+    // The robot is stuck at its start until t = 0.5 s, then (smoothly, by t = 0.6 s) follows.
+    let actual = |t: f64, y: &[f64], out: &mut [f64]| {
+        let s = ((t - 0.5) / 0.1).clamp(0.0, 1.0);
+        let w = s * s * s * (10.0 - 15.0 * s + 6.0 * s * s);
+        for j in 0..y.len() {
+            out[j] = start[j] + w * (y[j] - start[j]);
+        }
+    };
+    let ps = PhaseStop {
+        gain: 1e4,
+        actual: &actual,
+    };
+    let opts = |spt| RolloutOptions {
+        phase_stop: Some(ps),
+        duration: Some(4.0),
+        steps_per_tau: Some(spt),
+        ..Default::default()
+    };
+    let stopped = dmp.rollout(&opts(2000)).unwrap();
+    let free = dmp.rollout(&RolloutOptions::default()).unwrap();
+    let (mut a, mut b) = ([0.0; 7], [0.0; 7]);
+    stopped.eval(0.5, Order::Position, &mut a);
+    free.eval(0.5, Order::Position, &mut b);
+    let moved = |y: &[f64; 7]| (0..7).map(|j| (y[j] - start[j]).abs()).fold(0.0, f64::max);
+    assert!(
+        moved(&a) < 0.2 * moved(&b),
+        "{} vs {}",
+        moved(&a),
+        moved(&b)
+    );
+    stopped.eval(4.0, Order::Position, &mut a);
+    for j in 0..7 {
+        assert!((a[j] - dmp.goal()[j]).abs() < 1e-3, "j={j}");
+    }
+    // RK4 with the phase as a state still converges.
+    let fine = dmp.rollout(&opts(4000)).unwrap();
+    for k in 0..=40 {
+        let s = 0.1 * k as f64;
+        stopped.eval(s, Order::Position, &mut a);
+        fine.eval(s, Order::Position, &mut b);
+        for j in 0..7 {
+            assert!((a[j] - b[j]).abs() < 1e-7, "t={s}: {}", (a[j] - b[j]).abs());
+        }
+    }
+}

@@ -268,6 +268,30 @@ pub struct RolloutOptions<'a> {
     pub goal_filter: Option<f64>,
     /// Extra acceleration-level coupling term (obstacles, user feedback, ...).
     pub coupling: Option<Coupling<'a>>,
+    /// Phase stopping: the phase slows down while the actual position lags the DMP's.
+    pub phase_stop: Option<PhaseStop<'a>>,
+}
+
+/// The measured position for [`PhaseStop`]: `(t, y, ỹ_out)`.
+pub type ActualPosition<'a> = &'a dyn Fn(f64, &[f64], &mut [f64]);
+
+/// Phase stopping (Ijspeert et al. 2013): `τ ẋ = −α_x x / (1 + α_px ‖ỹ − y‖²)`, with `ỹ` the
+/// actual (measured) position, so the movement waits while the robot cannot follow.
+#[derive(Clone, Copy)]
+pub struct PhaseStop<'a> {
+    /// Gain α_px (1/position²).
+    pub gain: f64,
+    /// Writes the actual position `ỹ` at time `t` given the DMP's position `y`:
+    /// `(t, y, ỹ_out)`.
+    pub actual: ActualPosition<'a>,
+}
+
+impl std::fmt::Debug for PhaseStop<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("PhaseStop")
+            .field("gain", &self.gain)
+            .finish()
+    }
 }
 
 impl std::fmt::Debug for RolloutOptions<'_> {
@@ -282,6 +306,7 @@ impl std::fmt::Debug for RolloutOptions<'_> {
             .field("goal_changes", &self.goal_changes)
             .field("goal_filter", &self.goal_filter)
             .field("coupling", &self.coupling.is_some())
+            .field("phase_stop", &self.phase_stop)
             .finish()
     }
 }
@@ -607,6 +632,9 @@ impl Dmp {
         if let Some(a) = opts.goal_filter {
             crate::error::positive(|| "goal filter gain".into(), a)?;
         }
+        if let Some(ps) = &opts.phase_stop {
+            crate::error::positive(|| "phase stopping gain".into(), ps.gain)?;
+        }
         let h = tau / spt as f64;
         let nsteps = ((duration / h).ceil() as usize).max(1);
         if nsteps > 100_000_000 {
@@ -657,11 +685,17 @@ impl Dmp {
             y0: &y0,
             goal_filter: opts.goal_filter,
             coupling: opts.coupling,
+            phase_stop: opts.phase_stop,
         };
+        let stop = opts.phase_stop.is_some();
+        let mut x = 1.0;
+        let mut xs = [0.0f64; 4];
+        let mut scratch = vec![0.0; dof];
         let mut a_now = vec![0.0; dof];
         let mut dummy = vec![0.0; dof];
         let mut dummy_g = vec![0.0; dof];
-        self.forcing(ctx.phase(0.0), &scale, &mut f_cur);
+        self.forcing(1.0, &scale, &mut f_cur);
+        let mut f_stage = vec![0.0; dof];
         let mut t = 0.0;
         for step in 0..=nsteps {
             // Goal changes due now.
@@ -674,6 +708,7 @@ impl Dmp {
             }
             ctx.deriv(
                 t,
+                x,
                 &y,
                 &v,
                 &g,
@@ -696,11 +731,21 @@ impl Dmp {
             } else {
                 (step + 1) as f64 * h
             };
-            self.forcing(ctx.phase(t + 0.5 * hs), &scale, &mut f_mid);
-            self.forcing(ctx.phase(t_end), &scale, &mut f_end);
-            // RK4 on (y, v, g).
+            // Without phase stopping the phase is the exact exponential and the two midpoint
+            // stages share one forcing evaluation.
+            if !stop {
+                self.forcing(ctx.phase(t + 0.5 * hs), &scale, &mut f_mid);
+                self.forcing(ctx.phase(t_end), &scale, &mut f_end);
+            }
+            // RK4 on (y, v, g) and, with phase stopping, x.
+            xs[0] = if stop {
+                ctx.phase_rate(t, x, &y, &mut scratch)
+            } else {
+                0.0
+            };
             ctx.deriv(
                 t,
+                x,
                 &y,
                 &v,
                 &g,
@@ -719,10 +764,23 @@ impl Dmp {
                     tmp.1[j] = v[j] + c * p.1[j];
                     tmp.2[j] = g[j] + c * p.2[j];
                 }
-                let f = if stage == 3 { &f_end } else { &f_mid };
+                let (xst, f) = if stop {
+                    let xst = x + c * xs[stage - 1];
+                    self.forcing(xst, &scale, &mut f_stage);
+                    xs[stage] = ctx.phase_rate(t + c, xst, &tmp.0, &mut scratch);
+                    if stage == 3 {
+                        f_end.copy_from_slice(&f_stage);
+                    }
+                    (xst, &f_stage)
+                } else if stage == 3 {
+                    (ctx.phase(t_end), &f_end)
+                } else {
+                    (ctx.phase(t + 0.5 * hs), &f_mid)
+                };
                 let cur = &mut rest[0];
                 ctx.deriv(
                     t + c,
+                    xst,
                     &tmp.0,
                     &tmp.1,
                     &tmp.2,
@@ -737,6 +795,12 @@ impl Dmp {
                 y[j] += hs / 6.0 * (k[0].0[j] + 2.0 * k[1].0[j] + 2.0 * k[2].0[j] + k[3].0[j]);
                 v[j] += hs / 6.0 * (k[0].1[j] + 2.0 * k[1].1[j] + 2.0 * k[2].1[j] + k[3].1[j]);
                 g[j] += hs / 6.0 * (k[0].2[j] + 2.0 * k[1].2[j] + 2.0 * k[2].2[j] + k[3].2[j]);
+            }
+            if stop {
+                x += hs / 6.0 * (xs[0] + 2.0 * xs[1] + 2.0 * xs[2] + xs[3]);
+                self.forcing(x, &scale, &mut f_end);
+            } else {
+                x = ctx.phase(t_end);
             }
             if !y.iter().chain(&v).all(|x| x.is_finite()) {
                 return Err(Error::Infeasible(format!(
@@ -770,6 +834,7 @@ struct Ctx<'a, 'b> {
     y0: &'a [f64],
     goal_filter: Option<f64>,
     coupling: Option<Coupling<'b>>,
+    phase_stop: Option<PhaseStop<'b>>,
 }
 
 impl Ctx<'_, '_> {
@@ -777,10 +842,22 @@ impl Ctx<'_, '_> {
         (-self.dmp.cfg.alpha_x * t / self.tau).exp()
     }
 
-    /// Time derivatives of (y, v, g); `f` is the forcing term already evaluated at `t`.
+    /// `ẋ` with phase stopping: `τ ẋ = −α_x x / (1 + α_px ‖ỹ − y‖²)`.
+    fn phase_rate(&self, t: f64, x: f64, y: &[f64], scratch: &mut [f64]) -> f64 {
+        let mut slow = 1.0;
+        if let Some(ps) = &self.phase_stop {
+            (ps.actual)(t, y, scratch);
+            let e2: f64 = scratch.iter().zip(y).map(|(a, b)| (a - b) * (a - b)).sum();
+            slow += ps.gain * e2;
+        }
+        -self.dmp.cfg.alpha_x * x / (self.tau * slow)
+    }
+
+    /// Time derivatives of (y, v, g) at phase `x`; `f` is the forcing term at that phase.
     fn deriv(
         &self,
         t: f64,
+        x: f64,
         y: &[f64],
         v: &[f64],
         g: &[f64],
@@ -792,7 +869,6 @@ impl Ctx<'_, '_> {
     ) {
         let (az, bz) = (self.dmp.cfg.alpha_z, self.dmp.cfg.beta_z);
         let tau = self.tau;
-        let x = self.phase(t);
         for j in 0..y.len() {
             let mut acc = az * (bz * (g[j] - y[j]) - tau * v[j]) + f[j];
             if self.dmp.cfg.scaling == ForcingScaling::Hoffmann2009 {

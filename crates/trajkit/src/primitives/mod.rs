@@ -20,8 +20,8 @@ pub mod rhythmic;
 
 pub use basis::GaussianBasis;
 pub use dmp::{
-    Coupling, CouplingTerm, Dmp, DmpConfig, DmpRollout, ForcingScaling, GoalChange,
-    ObstacleAvoidance, RolloutOptions,
+    ActualPosition, Coupling, CouplingTerm, Dmp, DmpConfig, DmpRollout, ForcingScaling, GoalChange,
+    ObstacleAvoidance, PhaseStop, RolloutOptions,
 };
 pub use gmm::{Gmm, GmmConfig};
 pub use kmp::{Kmp, KmpConfig, KmpReference, KmpVia};
