@@ -636,7 +636,8 @@ impl Dmp {
             crate::error::positive(|| "phase stopping gain".into(), ps.gain)?;
         }
         let h = tau / spt as f64;
-        let nsteps = ((duration / h).ceil() as usize).max(1);
+        // Round near-integers down so the last step is never a sliver of roundoff size.
+        let nsteps = ((duration / h - 1e-9).ceil() as usize).max(1);
         if nsteps > 100_000_000 {
             return Err(Error::InvalidValue {
                 field: "duration".into(),
@@ -1010,8 +1011,16 @@ impl Trajectory for DmpRollout {
         let i = crate::traj::find_piece(&self.t, t);
         let (t0, t1) = (self.t[i], self.t[i + 1]);
         let h = t1 - t0;
-        let s = (t - t0) / h;
         let k = order.index();
+        if h.is_nan() || h <= 0.0 {
+            // Degenerate (zero-length) step: report the sample itself.
+            let src = [&self.y, &self.v, &self.a];
+            for j in 0..dof {
+                out[j] = if k < 3 { src[k][(i + 1) * dof + j] } else { 0.0 };
+            }
+            return;
+        }
+        let s = (t - t0) / h;
         for j in 0..dof {
             let (p0, p1) = (self.y[i * dof + j], self.y[(i + 1) * dof + j]);
             let (v0, v1) = (self.v[i * dof + j] * h, self.v[(i + 1) * dof + j] * h);

@@ -183,7 +183,8 @@ impl RhythmicDmp {
         let tau = period / std::f64::consts::TAU;
         let steps_per_period = 2000usize;
         let h = period / steps_per_period as f64;
-        let nsteps = ((duration / h).ceil() as usize).max(1);
+        // Round near-integers down so the last step is never a sliver of roundoff size.
+        let nsteps = ((duration / h - 1e-9).ceil() as usize).max(1);
         if nsteps > 100_000_000 {
             return Err(Error::InvalidValue {
                 field: "duration".into(),
