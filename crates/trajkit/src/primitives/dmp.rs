@@ -902,20 +902,46 @@ pub(crate) fn ridge_fit(
     ridge: f64,
     relative: bool,
 ) -> Result<Vec<f64>> {
+    // Column-major copies so that every Gram entry is one long dot product over the rows
+    // where both basis functions are non-zero (each column's support is contiguous in time).
+    let mut pt = vec![0.0; nb * rows];
+    for (k, r) in phi.chunks_exact(nb).take(rows).enumerate() {
+        for (i, &v) in r.iter().enumerate() {
+            pt[i * rows + k] = v;
+        }
+    }
+    let mut ft = vec![0.0; cols * rows];
+    for (k, r) in targets.chunks_exact(cols).take(rows).enumerate() {
+        for (j, &v) in r.iter().enumerate() {
+            ft[j * rows + k] = v;
+        }
+    }
+    let support: Vec<(usize, usize)> = pt
+        .chunks_exact(rows)
+        .map(|c| {
+            let lo = c.iter().position(|&v| v != 0.0).unwrap_or(rows);
+            let hi = c.iter().rposition(|&v| v != 0.0).map_or(lo, |p| p + 1);
+            (lo, hi.max(lo))
+        })
+        .collect();
     let mut gram = vec![0.0; nb * nb];
     let mut rhs = vec![0.0; nb * cols];
-    for k in 0..rows {
-        let r = &phi[k * nb..(k + 1) * nb];
-        let lo = r.iter().position(|&v| v != 0.0).unwrap_or(nb);
-        let hi = r.iter().rposition(|&v| v != 0.0).map_or(0, |p| p + 1);
-        for i in lo..hi {
-            let ri = r[i];
-            let gi = &mut gram[i * nb..i * nb + nb];
-            for jj in lo..=i {
-                gi[jj] += ri * r[jj];
-            }
-            let tk = &targets[k * cols..(k + 1) * cols];
-            crate::linalg::axpy(ri, tk, &mut rhs[i * cols..(i + 1) * cols]);
+    for i in 0..nb {
+        let ci = &pt[i * rows..(i + 1) * rows];
+        for j in 0..=i {
+            let a = support[i].0.max(support[j].0);
+            let b = support[i].1.min(support[j].1);
+            let v = if a < b {
+                crate::linalg::dot(&ci[a..b], &pt[j * rows + a..j * rows + b])
+            } else {
+                0.0
+            };
+            gram[i * nb + j] = v;
+            gram[j * nb + i] = v;
+        }
+        let (a, b) = support[i];
+        for c in 0..cols {
+            rhs[i * cols + c] = crate::linalg::dot(&ci[a..b], &ft[c * rows + a..c * rows + b]);
         }
     }
     let s = (0..nb).map(|i| gram[i * nb + i]).sum::<f64>() / nb as f64;
@@ -1016,7 +1042,11 @@ impl Trajectory for DmpRollout {
             // Degenerate (zero-length) step: report the sample itself.
             let src = [&self.y, &self.v, &self.a];
             for j in 0..dof {
-                out[j] = if k < 3 { src[k][(i + 1) * dof + j] } else { 0.0 };
+                out[j] = if k < 3 {
+                    src[k][(i + 1) * dof + j]
+                } else {
+                    0.0
+                };
             }
             return;
         }
