@@ -507,3 +507,69 @@ fn quaternion_dmp_reproduces_and_reaches_new_goals() {
     }
     assert!(QuaternionDmp::fit(&t, &vec![0.0; 4 * n]).is_err());
 }
+
+#[test]
+fn bounded_dmp_stays_inside_joint_limits() {
+    use trajkit::primitives::BoundedDmp;
+    use trajkit::{JointLimits, Limits};
+    let (t, q) = demo7(1001, 1.0);
+    let limits = Limits::new(
+        (0..7)
+            .map(|_| JointLimits {
+                position_min: -2.0,
+                position_max: 2.0,
+                ..JointLimits::default()
+            })
+            .collect(),
+    )
+    .unwrap();
+    let dmp = BoundedDmp::fit(&t, &q, 7, &DmpConfig::default(), &limits).unwrap();
+    let roll = dmp.rollout(&RolloutOptions::default()).unwrap();
+    let e = rms_rel(&roll, &t, &q, 7);
+    assert!(e.iter().all(|&v| v <= 1e-4), "{e:?}");
+    // A goal next to the limit and a strong push outwards: never outside.
+    let push =
+        |_t: f64, _y: &[f64], _v: &[f64], out: &mut [f64]| out.iter_mut().for_each(|o| *o += 500.0);
+    let roll = dmp
+        .rollout(&RolloutOptions {
+            goal: Some(vec![1.999; 7]),
+            coupling: Some(&push),
+            duration: Some(3.0),
+            ..Default::default()
+        })
+        .unwrap();
+    let mut y = [0.0; 7];
+    for k in 0..=3000 {
+        roll.eval(k as f64 / 1000.0, Order::Position, &mut y);
+        assert!(y.iter().all(|&v| v > -2.0 && v < 2.0), "{y:?}");
+    }
+    // Chain-rule derivatives agree with finite differences.
+    let e = 1e-6;
+    let (mut lo, mut hi, mut d) = ([0.0; 7], [0.0; 7], [0.0; 7]);
+    for k in 1..30 {
+        let s = k as f64 * 0.1;
+        for o in 0..3 {
+            roll.eval(s - e, Order::from_index(o).unwrap(), &mut lo);
+            roll.eval(s + e, Order::from_index(o).unwrap(), &mut hi);
+            roll.eval(s, Order::from_index(o + 1).unwrap(), &mut d);
+            for j in 0..7 {
+                let fd = (hi[j] - lo[j]) / (2.0 * e);
+                assert!(
+                    (fd - d[j]).abs() < 1e-5 * (1.0 + d[j].abs()) * 10f64.powi(2 * o as i32),
+                    "t={s} o={o} j={j}: {fd} vs {}",
+                    d[j]
+                );
+            }
+        }
+    }
+    // Goals on or outside the limits, and demonstrations touching them, are refused.
+    assert!(dmp
+        .rollout(&RolloutOptions {
+            goal: Some(vec![2.5; 7]),
+            ..Default::default()
+        })
+        .is_err());
+    let mut bad = q.clone();
+    bad[10] = 2.0;
+    assert!(BoundedDmp::fit(&t, &bad, 7, &DmpConfig::default(), &limits).is_err());
+}

@@ -1,6 +1,7 @@
 //! Movement primitives learned from demonstration: DMP, ProMP and KMP.
 //!
 //! - [`basis`]: normalized Gaussian basis functions over a phase, with exact derivatives.
+//! - [`bounded_dmp`]: DMPs whose rollouts stay inside joint position limits ([`BoundedDmp`]).
 //! - [`cartesian_dmp`]: orientation DMPs with unit quaternions ([`QuaternionDmp`]).
 //! - [`dmp`]: discrete dynamic movement primitives ([`Dmp`], rollouts as [`DmpRollout`]).
 //! - [`gmm`]: Gaussian mixture (EM) and regression on time, for KMP references.
@@ -13,6 +14,7 @@
 //! trajectory. Each module states its precision contract.
 
 pub mod basis;
+pub mod bounded_dmp;
 pub mod cartesian_dmp;
 pub mod dmp;
 pub mod gmm;
@@ -21,6 +23,7 @@ pub mod promp;
 pub mod rhythmic;
 
 pub use basis::GaussianBasis;
+pub use bounded_dmp::{BoundedDmp, BoundedRollout};
 pub use cartesian_dmp::{quat_exp, quat_log, quat_mul, QuaternionDmp, QuaternionRollout};
 pub use dmp::{
     ActualPosition, Coupling, CouplingTerm, Dmp, DmpConfig, DmpRollout, ForcingScaling, GoalChange,
