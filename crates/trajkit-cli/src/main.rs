@@ -16,7 +16,7 @@ use std::process::ExitCode;
     name = "trajkit",
     version,
     about = "Robot paths in, trajectories out: time-parameterize waypoints within joint limits, check and plot trajectories.",
-    after_help = "Examples:\n  trajkit plan                       # embedded 7-joint Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits ur5e --plot traj.svg\n  trajkit poly --table               # peak coefficients of cubic/quintic/septic moves\n  trajkit check trajectory.csv --limits panda"
+    after_help = "Examples:\n  trajkit plan                       # embedded 7-joint Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits ur5e --plot traj.svg\n  trajkit poly --table               # peak coefficients of cubic/quintic/septic moves\n  trajkit check trajectory.csv --limits panda\n  trajkit spline --points path.csv --curve minimum-jerk --duration 4 --plot s.svg"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -38,6 +38,9 @@ enum Command {
     Promp(cmd::promp::PrompArgs),
     /// Learn a kernelized movement primitive from demonstrations; adapt it to via points.
     Kmp(cmd::kmp::KmpArgs),
+    /// Fit a curve (cubic, PCHIP, Akima, Catmull-Rom, B-spline, minimum jerk/snap) through
+    /// points and sample it with its derivatives.
+    Spline(cmd::spline::SplineArgs),
 }
 
 fn main() -> ExitCode {
@@ -69,6 +72,7 @@ fn main() -> ExitCode {
         Command::Dmp(a) => cmd::dmp::run(a),
         Command::Promp(a) => cmd::promp::run(a),
         Command::Kmp(a) => cmd::kmp::run(a),
+        Command::Spline(a) => cmd::spline::run(a),
     };
     match result {
         Ok(code) => ExitCode::from(code),

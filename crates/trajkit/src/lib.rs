@@ -29,7 +29,8 @@
 //! - [`sample`], [`check`], [`plot`], [`io`]: sampling into tables, limit checking, SVG plots,
 //!   CSV/JSON reading and writing.
 //!
-//! - [`spline`]: splines and curves (issue in progress).
+//! - [`spline`]: splines and curves (cubic, Hermite, PCHIP, Akima, Catmull-Rom, Bézier,
+//!   B-spline, NURBS, arc length, SO(3)); every curve is a [`Path`].
 //! - [`topp`]: time-optimal path parameterization (issue in progress).
 //! - [`primitives`]: movement primitives, DMP, ProMP and KMP (issue in progress).
 //!

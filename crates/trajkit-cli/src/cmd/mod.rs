@@ -13,4 +13,4 @@ pub mod kmp;
 pub mod plan;
 pub mod poly;
 pub mod promp;
-
+pub mod spline;

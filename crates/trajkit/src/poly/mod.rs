@@ -126,6 +126,80 @@ pub fn peak_coefficients(degree: Degree) -> [f64; 3] {
 pub struct PolyMove {
     joints: Vec<Polynomial>,
     duration: f64,
+    table: JointTable,
+}
+
+/// Several joints' polynomials of one common duration, laid out for evaluation: for each half
+/// (τ ≤ ½ in τ, else in u = 1 − τ) and order 0..=3, the coefficients are stored power-major
+/// and joint-minor, so one Horner pass runs over all joints at once (independent chains the
+/// CPU overlaps, and that the compiler can vectorize).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct JointTable {
+    dof: usize,
+    /// Coefficient count (degree + 1).
+    len: usize,
+    duration: f64,
+    /// `[half][order]` blocks of `len × dof` values.
+    data: Vec<f64>,
+}
+
+impl JointTable {
+    /// From polynomials that all have `duration` and the same coefficient count.
+    pub(crate) fn new(joints: &[Polynomial]) -> JointTable {
+        let dof = joints.len();
+        let len = joints.iter().map(|p| p.degree() + 1).max().unwrap_or(1);
+        let duration = joints.first().map(|p| p.duration()).unwrap_or(1.0);
+        let block = len * dof;
+        let mut data = vec![0.0; 2 * 4 * block];
+        for (h, first) in [true, false].into_iter().enumerate() {
+            for k in 0..4 {
+                for (j, p) in joints.iter().enumerate() {
+                    if k > p.degree() {
+                        continue;
+                    }
+                    for (i, &v) in p.table(k, first).iter().enumerate() {
+                        data[(h * 4 + k) * block + i * dof + j] = v;
+                    }
+                }
+            }
+        }
+        JointTable {
+            dof,
+            len,
+            duration,
+            data,
+        }
+    }
+
+    /// Order `k` ≤ 3 at local time `t` (clamped to the table's duration) into `out[..dof]`.
+    #[inline]
+    pub(crate) fn eval(&self, t: f64, k: usize, out: &mut [f64]) {
+        let out = &mut out[..self.dof];
+        let tc = crate::traj::clamp_time(t, self.duration);
+        if k >= self.len {
+            out.fill(if tc.is_nan() { f64::NAN } else { 0.0 });
+            return;
+        }
+        let tau = tc / self.duration;
+        let first = tau <= 0.5;
+        let x = if first {
+            tau
+        } else {
+            (self.duration - tc) / self.duration
+        };
+        let h = if first { 0 } else { 1 };
+        let block = self.len * self.dof;
+        let base = (h * 4 + k) * block;
+        let n = self.len - k;
+        let top = &self.data[base + (n - 1) * self.dof..base + n * self.dof];
+        out.copy_from_slice(top);
+        for i in (0..n - 1).rev() {
+            let row = &self.data[base + i * self.dof..base + (i + 1) * self.dof];
+            for (o, &c) in out.iter_mut().zip(row) {
+                *o = *o * x + c;
+            }
+        }
+    }
 }
 
 /// A kinematic state of all joints at one end of a move. Missing derivatives are zero.
@@ -224,7 +298,12 @@ impl PolyMove {
                 Polynomial::from_boundary(&s, &e, duration)
             })
             .collect::<Result<Vec<_>>>()?;
-        Ok(PolyMove { joints, duration })
+        let table = JointTable::new(&joints);
+        Ok(PolyMove {
+            joints,
+            duration,
+            table,
+        })
     }
 
     /// The polynomial of joint `j`.
@@ -290,10 +369,7 @@ impl Trajectory for PolyMove {
         self.duration
     }
     fn eval(&self, t: f64, order: Order, out: &mut [f64]) {
-        let k = order.index();
-        for (o, p) in out[..self.joints.len()].iter_mut().zip(&self.joints) {
-            *o = p.eval(t, k);
-        }
+        self.table.eval(t, order.index(), out);
     }
 }
 
@@ -446,6 +522,35 @@ pub fn min_duration(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn joint_table_matches_each_polynomial() {
+        let mut g = crate::rng::SplitMix64::new(5);
+        for d in Degree::ALL {
+            let q0: Vec<f64> = (0..5).map(|_| g.uniform(-2.0, 2.0)).collect();
+            let q1: Vec<f64> = (0..5).map(|_| g.uniform(-2.0, 2.0)).collect();
+            let start = EndState {
+                q: q0,
+                qd: (0..5).map(|_| g.uniform(-1.0, 1.0)).collect(),
+                ..Default::default()
+            };
+            let mv = PolyMove::between(d, &start, &EndState::at_rest(&q1), 1.7).unwrap();
+            let mut out = [0.0; 5];
+            for i in 0..=100 {
+                let t = -0.1 + 1.9 * i as f64 / 100.0;
+                for o in Order::ALL {
+                    mv.eval(t, o, &mut out);
+                    for j in 0..5 {
+                        let want = mv.joint(j).eval(t, o.index());
+                        assert!(
+                            (out[j] - want).abs() <= 1e-12 * (1.0 + want.abs()),
+                            "{d:?} {o:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
 
     #[test]
     fn seed_peak_coefficient_table() {

@@ -23,6 +23,11 @@ pub struct Polynomial {
     r: [f64; 8],
     len: usize,
     duration: f64,
+    /// Evaluation tables for orders 0..=3: `fwd[k]` are the τ-coefficients of the k-th time
+    /// derivative (factorial factors and T⁻ᵏ folded in), `rev[k]` the same in u = 1 − τ with the
+    /// sign (−1)ᵏ folded in. Evaluation is then one Horner pass.
+    fwd: [[f64; 8]; 4],
+    rev: [[f64; 8]; 4],
 }
 
 impl Polynomial {
@@ -49,12 +54,7 @@ impl Polynomial {
                 .sum();
             r[k] = if k % 2 == 0 { s } else { -s };
         }
-        Ok(Polynomial {
-            c: a,
-            r,
-            len: c.len(),
-            duration,
-        })
+        Ok(Polynomial::assemble(a, r, c.len(), duration))
     }
 
     /// The polynomial of odd degree 2m−1 that meets m conditions at each end: `start` and `end`
@@ -96,12 +96,39 @@ impl Polynomial {
                 reason: "gives non-finite coefficients for these boundary conditions",
             });
         }
-        Ok(Polynomial {
+        Ok(Polynomial::assemble(c, r, n, duration))
+    }
+
+    fn assemble(c: [f64; 8], r: [f64; 8], len: usize, duration: f64) -> Polynomial {
+        let mut fwd = [[0.0; 8]; 4];
+        let mut rev = [[0.0; 8]; 4];
+        for k in 0..4.min(len) {
+            let scale = duration.powi(-(k as i32));
+            let sign = if k % 2 == 0 { 1.0 } else { -1.0 };
+            for i in k..len {
+                fwd[k][i - k] = c[i] * falling(i, k) * scale;
+                rev[k][i - k] = sign * r[i] * falling(i, k) * scale;
+            }
+        }
+        Polynomial {
             c,
             r,
-            len: n,
+            len,
             duration,
-        })
+            fwd,
+            rev,
+        }
+    }
+
+    /// The evaluation table of order `k` (< 4) for the first (`first_half`) or second half:
+    /// `len() - k` coefficients of a polynomial in τ (first half) or u = 1 − τ (second half).
+    pub(crate) fn table(&self, k: usize, first_half: bool) -> &[f64] {
+        let n = self.len.saturating_sub(k);
+        if first_half {
+            &self.fwd[k][..n]
+        } else {
+            &self.rev[k][..n]
+        }
     }
 
     /// Degree (number of coefficients − 1).
@@ -139,12 +166,30 @@ impl Polynomial {
             return if tc.is_nan() { f64::NAN } else { 0.0 };
         }
         let tau = tc / self.duration;
-        let (coef, x, sign) = if tau <= 0.5 {
-            (&self.c, tau, 1.0)
+        let first_half = tau <= 0.5;
+        // u = 1 − τ, computed from T − t so that u is exactly 0 at the end.
+        let x = if first_half {
+            tau
         } else {
-            // u = 1 − τ, computed from T − t so that u is exactly 0 at the end.
-            let u = (self.duration - tc) / self.duration;
-            (&self.r, u, if k % 2 == 0 { 1.0 } else { -1.0 })
+            (self.duration - tc) / self.duration
+        };
+        let n = self.len - k;
+        if k < 4 {
+            let tab = if first_half {
+                &self.fwd[k]
+            } else {
+                &self.rev[k]
+            };
+            let mut acc = 0.0;
+            for i in (0..n).rev() {
+                acc = acc * x + tab[i];
+            }
+            return acc;
+        }
+        let (coef, sign) = if first_half {
+            (&self.c, 1.0)
+        } else {
+            (&self.r, if k % 2 == 0 { 1.0 } else { -1.0 })
         };
         let mut acc = 0.0;
         for i in (k..self.len).rev() {

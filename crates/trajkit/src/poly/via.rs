@@ -2,7 +2,8 @@
 //! of consecutive waypoints, with chosen velocities at the via points.
 
 use super::{
-    min_duration, min_duration_rest_to_rest, worst_ratio_of, Degree, EndState, Polynomial,
+    min_duration, min_duration_rest_to_rest, worst_ratio_of, Degree, EndState, JointTable,
+    Polynomial,
 };
 use crate::error::{Error, Result};
 use crate::limits::Limits;
@@ -54,6 +55,8 @@ pub struct ViaTrajectory {
     breaks: Vec<f64>,
     /// `segments × dof` polynomials, row-major.
     polys: Vec<Polynomial>,
+    /// One evaluation table per segment.
+    tables: Vec<JointTable>,
 }
 
 impl ViaTrajectory {
@@ -65,6 +68,19 @@ impl ViaTrajectory {
         dof: usize,
         degree: Degree,
         velocities: ViaVelocities,
+        timing: ViaTiming<'_>,
+    ) -> Result<Self> {
+        ViaTrajectory::with_accelerations(waypoints, dof, degree, velocities, None, timing)
+    }
+
+    /// Like [`ViaTrajectory::new`], with given accelerations at the interior waypoints
+    /// (row-major `(waypoints − 2) × dof`; quintic and septic only). `None` means zero.
+    pub fn with_accelerations(
+        waypoints: &[f64],
+        dof: usize,
+        degree: Degree,
+        velocities: ViaVelocities,
+        accelerations: Option<&[f64]>,
         timing: ViaTiming<'_>,
     ) -> Result<Self> {
         if dof == 0 || waypoints.len() % dof != 0 {
@@ -146,19 +162,51 @@ impl ViaTrajectory {
                 v
             }
         };
+        if let Some(acc) = accelerations {
+            if acc.len() != (n - 2) * dof {
+                return Err(Error::DimensionMismatch {
+                    what: "interior waypoint accelerations ((waypoints − 2) × joints)".into(),
+                    expected: (n - 2) * dof,
+                    found: acc.len(),
+                });
+            }
+            for (i, &x) in acc.iter().enumerate() {
+                crate::error::finite(
+                    || {
+                        format!(
+                            "acceleration at waypoint {} joint {}",
+                            i / dof + 1,
+                            i % dof + 1
+                        )
+                    },
+                    x,
+                )?;
+            }
+        }
         let end_state = |k: usize| -> EndState {
-            let qd = if k == 0 || k == n - 1 {
-                Vec::new()
-            } else {
+            let interior = k != 0 && k != n - 1;
+            let qd = if interior {
                 vel[(k - 1) * dof..k * dof].to_vec()
+            } else {
+                Vec::new()
+            };
+            let qdd = match accelerations {
+                Some(a) if interior => a[(k - 1) * dof..k * dof].to_vec(),
+                _ => Vec::new(),
             };
             EndState {
                 q: wp(k).to_vec(),
                 qd,
+                qdd,
                 ..Default::default()
             }
         };
-        let all_rest = vel.iter().all(|&v| v == 0.0);
+        for k in 1..n - 1 {
+            let st = end_state(k);
+            st.validate("via point", dof, degree)?;
+        }
+        let all_rest = vel.iter().all(|&v| v == 0.0)
+            && accelerations.is_none_or(|a| a.iter().all(|&x| x == 0.0));
         let durations: Vec<f64> = match &timing {
             ViaTiming::Durations(d) => d.clone(),
             ViaTiming::Limits(l) if !all_rest => (0..segs)
@@ -179,7 +227,13 @@ impl ViaTrajectory {
             }
             breaks.push(breaks[i] + durations[i]);
         }
-        Ok(ViaTrajectory { dof, breaks, polys })
+        let tables = polys.chunks(dof).map(JointTable::new).collect();
+        Ok(ViaTrajectory {
+            dof,
+            breaks,
+            polys,
+            tables,
+        })
     }
 
     /// Number of segments.
@@ -228,10 +282,7 @@ impl Trajectory for ViaTrajectory {
         let t = crate::traj::clamp_time(t, self.duration());
         let i = find_piece(&self.breaks, t);
         let local = t - self.breaks[i];
-        let seg = &self.polys[i * self.dof..(i + 1) * self.dof];
-        for (o, p) in out[..self.dof].iter_mut().zip(seg) {
-            *o = p.eval(local, order.index());
-        }
+        self.tables[i].eval(local, order.index(), out);
     }
 }
 

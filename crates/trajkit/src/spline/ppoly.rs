@@ -1,0 +1,438 @@
+//! Piecewise polynomials: breaks and per-piece coefficients in the local variable.
+
+use crate::error::{Error, Result};
+use crate::spline::validate;
+
+/// A vector-valued piecewise polynomial of one degree on increasing breaks
+/// `b_0 < b_1 < … < b_n` (n pieces).
+///
+/// On piece `i` (`b_i <= s < b_{i+1}`, the last piece closed) component `d` is
+/// `p(s) = Σ_j c[i][d][j] · (s − b_i)^j`, `j = 0..=degree`. Coefficients are stored flat,
+/// `coeffs[(i·dim + d)·(degree + 1) + j]`. Every interpolating spline of this module that is
+/// polynomial between its breaks is one of these.
+///
+/// Parameters outside `[b_0, b_n]` are clamped (see the [module policy](crate::spline)).
+///
+/// ```
+/// use trajkit::spline::PiecewisePolynomial;
+/// use trajkit::Path;
+/// // Two pieces of one component: s² on [0, 1], then 1 + 2(s − 1) on [1, 2].
+/// let pp = PiecewisePolynomial::new(vec![0.0, 1.0, 2.0], 1, 2, vec![0.0, 0.0, 1.0, 1.0, 2.0, 0.0])?;
+/// let mut v = [0.0];
+/// pp.eval(1.5, 0, &mut v);
+/// assert_eq!(v[0], 2.0);
+/// pp.eval(0.5, 1, &mut v);
+/// assert_eq!(v[0], 1.0);
+/// # Ok::<(), trajkit::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct PiecewisePolynomial {
+    breaks: Vec<f64>,
+    dim: usize,
+    degree: usize,
+    coeffs: Vec<f64>,
+}
+
+/// Coefficients (ascending powers of the local variable) of the quintic on `[0, h]` with
+/// values `p0, p1`, slopes `v0, v1` and second derivatives `a0, a1` at its ends.
+pub(crate) fn quintic_coeffs(
+    h: f64,
+    p0: f64,
+    p1: f64,
+    v0: f64,
+    v1: f64,
+    a0: f64,
+    a1: f64,
+) -> [f64; 6] {
+    // Remaining conditions on c3 h³, c4 h⁴, c5 h⁵ after c0..c2 fix p0, v0, a0.
+    let e0 = p1 - p0 - v0 * h - 0.5 * a0 * h * h;
+    let e1 = (v1 - v0 - a0 * h) * h;
+    let e2 = (a1 - a0) * h * h;
+    let c3 = 10.0 * e0 - 4.0 * e1 + 0.5 * e2;
+    let c4 = -15.0 * e0 + 7.0 * e1 - e2;
+    let c5 = 6.0 * e0 - 3.0 * e1 + 0.5 * e2;
+    let h3 = h * h * h;
+    [p0, v0, 0.5 * a0, c3 / h3, c4 / (h3 * h), c5 / (h3 * h * h)]
+}
+
+/// j! / (j − m)!, as f64.
+#[inline]
+fn falling(j: usize, m: usize) -> f64 {
+    let mut f = 1.0;
+    for k in (j - m + 1)..=j {
+        f *= k as f64;
+    }
+    f
+}
+
+impl PiecewisePolynomial {
+    /// A piecewise polynomial from breaks (at least 2, finite, strictly increasing) and
+    /// coefficients laid out as in the type documentation
+    /// (`(breaks.len() − 1) · dim · (degree + 1)` finite values).
+    pub fn new(breaks: Vec<f64>, dim: usize, degree: usize, coeffs: Vec<f64>) -> Result<Self> {
+        validate::dim(dim)?;
+        validate::increasing("breaks", &breaks, 2)?;
+        let n = breaks.len() - 1;
+        let k = degree + 1;
+        if coeffs.len() != n * dim * k {
+            return Err(Error::DimensionMismatch {
+                what: format!(
+                    "coefficient count (pieces × dim × (degree + 1) = {n} × {dim} × {k})"
+                ),
+                expected: n * dim * k,
+                found: coeffs.len(),
+            });
+        }
+        validate::finite("coeffs", &coeffs, k)?;
+        Ok(PiecewisePolynomial {
+            breaks,
+            dim,
+            degree,
+            coeffs,
+        })
+    }
+
+    /// Internal constructor for already validated data.
+    pub(crate) fn from_parts(
+        breaks: Vec<f64>,
+        dim: usize,
+        degree: usize,
+        coeffs: Vec<f64>,
+    ) -> Self {
+        debug_assert_eq!(coeffs.len(), (breaks.len() - 1) * dim * (degree + 1));
+        PiecewisePolynomial {
+            breaks,
+            dim,
+            degree,
+            coeffs,
+        }
+    }
+
+    /// The broken line through `y` (row-major `n × dim`) at the breaks `x` (Drake's
+    /// `FirstOrderHold`): degree 1, continuous, its derivative jumps at the breaks.
+    pub fn linear(x: &[f64], y: &[f64], dim: usize) -> Result<Self> {
+        validate::interpolation_data(x, y, dim, 2)?;
+        let n = x.len() - 1;
+        let mut c = vec![0.0; n * dim * 2];
+        for i in 0..n {
+            let h = x[i + 1] - x[i];
+            for d in 0..dim {
+                let o = (i * dim + d) * 2;
+                c[o] = y[i * dim + d];
+                c[o + 1] = (y[(i + 1) * dim + d] - y[i * dim + d]) / h;
+            }
+        }
+        Ok(Self::from_parts(x.to_vec(), dim, 1, c))
+    }
+
+    /// The piecewise cubic that takes values `y` (row-major `n × dim`) and first derivatives
+    /// `dydx` (same shape) at the breaks `x` (Drake's `CubicHermite`): C¹.
+    pub fn cubic_hermite(x: &[f64], y: &[f64], dydx: &[f64], dim: usize) -> Result<Self> {
+        validate::dim(dim)?;
+        validate::increasing("x", x, 2)?;
+        validate::values("y", y, x.len(), dim)?;
+        validate::values("dydx", dydx, x.len(), dim)?;
+        Ok(Self::cubic_hermite_unchecked(x, y, dydx, dim))
+    }
+
+    pub(crate) fn cubic_hermite_unchecked(x: &[f64], y: &[f64], m: &[f64], dim: usize) -> Self {
+        let n = x.len() - 1;
+        let mut c = vec![0.0; n * dim * 4];
+        for i in 0..n {
+            let h = x[i + 1] - x[i];
+            for d in 0..dim {
+                let y0 = y[i * dim + d];
+                let y1 = y[(i + 1) * dim + d];
+                let m0 = m[i * dim + d];
+                let m1 = m[(i + 1) * dim + d];
+                let slope = (y1 - y0) / h;
+                let t = (m0 + m1 - 2.0 * slope) / h;
+                let o = (i * dim + d) * 4;
+                c[o] = y0;
+                c[o + 1] = m0;
+                c[o + 2] = (slope - m0) / h - t;
+                c[o + 3] = t / h;
+            }
+        }
+        Self::from_parts(x.to_vec(), dim, 3, c)
+    }
+
+    /// The piecewise quintic that takes values `y`, first derivatives `dydx` and second
+    /// derivatives `d2ydx2` (each row-major `n × dim`) at the breaks `x`: C².
+    pub fn quintic_hermite(
+        x: &[f64],
+        y: &[f64],
+        dydx: &[f64],
+        d2ydx2: &[f64],
+        dim: usize,
+    ) -> Result<Self> {
+        validate::dim(dim)?;
+        validate::increasing("x", x, 2)?;
+        validate::values("y", y, x.len(), dim)?;
+        validate::values("dydx", dydx, x.len(), dim)?;
+        validate::values("d2ydx2", d2ydx2, x.len(), dim)?;
+        let n = x.len() - 1;
+        let mut c = vec![0.0; n * dim * 6];
+        for i in 0..n {
+            let h = x[i + 1] - x[i];
+            for d in 0..dim {
+                let (p0, p1) = (y[i * dim + d], y[(i + 1) * dim + d]);
+                let (v0, v1) = (dydx[i * dim + d], dydx[(i + 1) * dim + d]);
+                let (a0, a1) = (d2ydx2[i * dim + d], d2ydx2[(i + 1) * dim + d]);
+                let o = (i * dim + d) * 6;
+                c[o..o + 6].copy_from_slice(&quintic_coeffs(h, p0, p1, v0, v1, a0, a1));
+            }
+        }
+        Ok(Self::from_parts(x.to_vec(), dim, 5, c))
+    }
+
+    /// The breaks `b_0 < … < b_n`.
+    pub fn breaks(&self) -> &[f64] {
+        &self.breaks
+    }
+
+    /// Number of components.
+    pub fn dim(&self) -> usize {
+        self.dim
+    }
+
+    /// Polynomial degree of every piece.
+    pub fn degree(&self) -> usize {
+        self.degree
+    }
+
+    /// Number of pieces (`breaks().len() − 1`).
+    pub fn num_pieces(&self) -> usize {
+        self.breaks.len() - 1
+    }
+
+    /// All coefficients, laid out as in the type documentation.
+    pub fn coeffs(&self) -> &[f64] {
+        &self.coeffs
+    }
+
+    /// The coefficients of piece `i` (`dim × (degree + 1)`, row-major, ascending powers of
+    /// `s − b_i`). Panics if `i >= num_pieces()`.
+    pub fn piece(&self, i: usize) -> &[f64] {
+        let k = (self.degree + 1) * self.dim;
+        &self.coeffs[i * k..(i + 1) * k]
+    }
+
+    /// The piece that holds `s` (clamped): `b_i <= s < b_{i+1}`, the last piece for `s >= b_n`.
+    #[inline]
+    pub fn piece_index(&self, s: f64) -> usize {
+        crate::traj::find_piece(&self.breaks, s)
+    }
+
+    /// Like [`PiecewisePolynomial::piece_index`], starting the search at piece `hint`: O(1) when
+    /// `s` is in that piece or the next one (sorted sweeps), binary search otherwise.
+    #[inline]
+    pub fn piece_index_from(&self, s: f64, hint: usize) -> usize {
+        let n = self.breaks.len() - 1;
+        if hint < n && s >= self.breaks[hint] {
+            if hint + 1 == n || s < self.breaks[hint + 1] {
+                return hint;
+            }
+            if hint + 2 == n || (hint + 2 < n && s < self.breaks[hint + 2]) {
+                return hint + 1;
+            }
+        }
+        self.piece_index(s)
+    }
+
+    /// Writes the `order`-th derivative at `s` (clamped to the interval) into `out[..dim]`.
+    /// Orders above the degree give zeros; a NaN `s` gives NaN.
+    #[inline]
+    pub fn eval(&self, s: f64, order: usize, out: &mut [f64]) {
+        let s = self.clamp(s);
+        let i = self.piece_index(s);
+        self.eval_piece(i, s, order, out);
+    }
+
+    /// Clamps `s` to the interval (NaN stays NaN).
+    #[inline]
+    pub(crate) fn clamp(&self, s: f64) -> f64 {
+        let a = self.breaks[0];
+        let b = self.breaks[self.breaks.len() - 1];
+        if s < a {
+            a
+        } else if s > b {
+            b
+        } else {
+            s
+        }
+    }
+
+    /// Evaluates piece `i`'s polynomial at `s` (no clamping).
+    #[inline]
+    pub(crate) fn eval_piece(&self, i: usize, s: f64, order: usize, out: &mut [f64]) {
+        let dim = self.dim;
+        let out = &mut out[..dim];
+        if s.is_nan() {
+            out.fill(f64::NAN);
+            return;
+        }
+        let k = self.degree + 1;
+        if order > self.degree {
+            out.fill(0.0);
+            return;
+        }
+        let h = s - self.breaks[i];
+        let base = i * dim * k;
+        let block = &self.coeffs[base..base + dim * k];
+        if order == 0 {
+            for (o, c) in out.iter_mut().zip(block.chunks_exact(k)) {
+                let mut acc = c[k - 1];
+                for j in (0..k - 1).rev() {
+                    acc = acc * h + c[j];
+                }
+                *o = acc;
+            }
+        } else {
+            for (o, c) in out.iter_mut().zip(block.chunks_exact(k)) {
+                let mut acc = 0.0;
+                for j in (order..k).rev() {
+                    acc = acc * h + c[j] * falling(j, order);
+                }
+                *o = acc;
+            }
+        }
+    }
+
+    /// The `order`-th derivative as a piecewise polynomial of degree `degree − order` (degree 0
+    /// with zero coefficients when `order > degree`).
+    pub fn derivative(&self, order: usize) -> PiecewisePolynomial {
+        let n = self.num_pieces();
+        let k = self.degree + 1;
+        if order > self.degree {
+            return Self::from_parts(self.breaks.clone(), self.dim, 0, vec![0.0; n * self.dim]);
+        }
+        let nk = k - order;
+        let mut c = Vec::with_capacity(n * self.dim * nk);
+        for blk in self.coeffs.chunks_exact(k) {
+            for j in order..k {
+                c.push(blk[j] * falling(j, order));
+            }
+        }
+        Self::from_parts(self.breaks.clone(), self.dim, self.degree - order, c)
+    }
+
+    /// The antiderivative that is zero at `b_0`, continuous across breaks (degree + 1).
+    pub fn antiderivative(&self) -> PiecewisePolynomial {
+        let n = self.num_pieces();
+        let k = self.degree + 1;
+        let dim = self.dim;
+        let mut c = vec![0.0; n * dim * (k + 1)];
+        let mut acc = vec![0.0; dim];
+        for i in 0..n {
+            let h = self.breaks[i + 1] - self.breaks[i];
+            for d in 0..dim {
+                let src = &self.coeffs[(i * dim + d) * k..(i * dim + d + 1) * k];
+                let dst = &mut c[(i * dim + d) * (k + 1)..(i * dim + d + 1) * (k + 1)];
+                dst[0] = acc[d];
+                for j in 0..k {
+                    dst[j + 1] = src[j] / (j + 1) as f64;
+                }
+                let mut v = dst[k];
+                for j in (0..k).rev() {
+                    v = v * h + dst[j];
+                }
+                acc[d] = v;
+            }
+        }
+        Self::from_parts(self.breaks.clone(), dim, self.degree + 1, c)
+    }
+}
+
+impl crate::Path for PiecewisePolynomial {
+    fn dim(&self) -> usize {
+        self.dim
+    }
+    fn interval(&self) -> (f64, f64) {
+        (self.breaks[0], self.breaks[self.breaks.len() - 1])
+    }
+    fn eval(&self, s: f64, order: usize, out: &mut [f64]) {
+        PiecewisePolynomial::eval(self, s, order, out)
+    }
+    fn breakpoints(&self) -> Vec<f64> {
+        self.breaks.clone()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn derivative_and_antiderivative_roundtrip() {
+        let pp = PiecewisePolynomial::new(
+            vec![0.0, 1.0, 3.0],
+            2,
+            3,
+            vec![
+                1.0, 2.0, -1.0, 0.5, 0.0, 1.0, 1.0, 1.0, // piece 0
+                2.5, 0.5, 0.5, -0.25, 3.0, 6.0, 4.0, 1.0, // piece 1
+            ],
+        )
+        .unwrap();
+        let dp = pp.derivative(1);
+        let mut a = [0.0; 2];
+        let mut b = [0.0; 2];
+        for &s in &[0.0, 0.3, 1.0, 1.7, 2.9, 3.0] {
+            for ord in 0..5 {
+                pp.eval(s, ord + 1, &mut a);
+                dp.eval(s, ord, &mut b);
+                assert!((a[0] - b[0]).abs() < 1e-12 && (a[1] - b[1]).abs() < 1e-12);
+            }
+        }
+        let ip = dp.antiderivative();
+        let mut v0 = [0.0; 2];
+        pp.eval(0.0, 0, &mut v0);
+        for &s in &[0.0, 0.5, 1.0, 2.0, 3.0] {
+            pp.eval(s, 0, &mut a);
+            ip.eval(s, 0, &mut b);
+            // Piece 0 is continuous into piece 1 only at d = 0 (2.5 vs 1+2-1+0.5); compare
+            // within piece 0 where the antiderivative of the derivative is exact.
+            if s <= 1.0 {
+                assert!((a[0] - v0[0] - b[0]).abs() < 1e-12, "s={s}");
+            }
+        }
+    }
+
+    #[test]
+    fn hints_agree_with_binary_search() {
+        let breaks: Vec<f64> = (0..11).map(|i| (i * i) as f64).collect();
+        let pp = PiecewisePolynomial::from_parts(breaks, 1, 0, vec![0.0; 10]);
+        for h in 0..10 {
+            for k in 0..=1000 {
+                let s = k as f64 * 0.1 - 0.5;
+                assert_eq!(pp.piece_index_from(s, h), pp.piece_index(s), "s={s} h={h}");
+            }
+        }
+    }
+
+    #[test]
+    fn quintic_hermite_hits_its_data() {
+        let x = [0.0, 0.7, 2.0];
+        let y = [0.0, 1.0, -1.0];
+        let v = [0.5, -2.0, 1.0];
+        let a = [3.0, 0.0, -4.0];
+        let pp = PiecewisePolynomial::quintic_hermite(&x, &y, &v, &a, 1).unwrap();
+        let mut o = [0.0];
+        for i in 0..3 {
+            for (ord, want) in [(0, y[i]), (1, v[i]), (2, a[i])] {
+                pp.eval(x[i], ord, &mut o);
+                assert!(
+                    (o[0] - want).abs() < 1e-12,
+                    "i={i} ord={ord} {} {}",
+                    o[0],
+                    want
+                );
+                if i == 1 {
+                    pp.eval_piece(0, x[1], ord, &mut o);
+                    assert!((o[0] - want).abs() < 1e-12);
+                }
+            }
+        }
+    }
+}
