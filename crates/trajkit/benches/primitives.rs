@@ -18,7 +18,9 @@ fn q(m: usize, j: usize, s: f64) -> f64 {
     let amp = 0.5 + 0.1 * j as f64 + 0.02 * m as f64;
     0.1 * j as f64 - 0.3
         + amp * mj
-        + 0.2 * (std::f64::consts::PI * s).sin().powi(2) * (3.0 * s + j as f64 + 0.1 * m as f64).sin()
+        + 0.2
+            * (std::f64::consts::PI * s).sin().powi(2)
+            * (3.0 * s + j as f64 + 0.1 * m as f64).sin()
 }
 
 fn demo(m: usize, n: usize, dur: f64) -> (Vec<f64>, Vec<f64>) {
