@@ -96,6 +96,37 @@ fn dmp_reproduces_and_generalizes() {
 }
 
 #[test]
+fn dmp_within_limits() {
+    let d = scratch("dmp-within");
+    write_demos(&d, 1);
+    std::fs::write(
+        d.join("lim.yaml"),
+        "joints:\n  - position: [-1.5, 1.5]\n    velocity: 2\n    acceleration: 10\n    jerk: 100\n  - position: [-1, 1]\n    velocity: 2\n    acceleration: 10\n    jerk: 100\n",
+    )
+    .unwrap();
+    let o = trajkit(
+        &[
+            "dmp", "--demo", "d0.csv", "--within", "lim.yaml", "--goal", "1.49,0.2", "-o", "w.csv",
+        ],
+        &d,
+    );
+    assert!(o.status.success(), "{}", text(&o));
+    assert!(text(&o).contains("kept strictly inside"));
+    let s = std::fs::read_to_string(d.join("w.csv")).unwrap();
+    for l in s.lines().skip(1) {
+        let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+        assert!(v[1] < 1.5 && v[1] > -1.5 && v[2].abs() < 1.0, "{l}");
+    }
+    let o = trajkit(
+        &[
+            "dmp", "--demo", "d0.csv", "--within", "lim.yaml", "--goal", "2,0",
+        ],
+        &d,
+    );
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+}
+
+#[test]
 fn promp_via_point_and_band() {
     let d = scratch("promp");
     write_demos(&d, 3);

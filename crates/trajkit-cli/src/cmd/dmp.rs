@@ -4,7 +4,7 @@
 use super::common::{finite_list, CliError, CliResult, OutputArgs, Outputs};
 use clap::{Args, ValueEnum};
 use std::path::{Path, PathBuf};
-use trajkit::primitives::{Dmp, DmpConfig, ForcingScaling, RolloutOptions};
+use trajkit::primitives::{BoundedDmp, Dmp, DmpConfig, ForcingScaling, RolloutOptions};
 use trajkit::{Order, SampleTable, Trajectory};
 
 /// A demonstration read from a table file (CSV with columns t, q1..qn, or trajkit JSON).
@@ -172,6 +172,10 @@ pub struct DmpArgs {
     /// Basis functions per joint.
     #[arg(long, value_name = "N", default_value_t = 50)]
     pub basis: usize,
+    /// Keep the rollout strictly inside these joints' position limits (robot preset or limits
+    /// file, as for `plan --limits`); the demonstration, start and goal must lie inside them.
+    #[arg(long, value_name = "PRESET|FILE")]
+    pub within: Option<String>,
     /// Output table (CSV or JSON by extension; '-' for standard output).
     #[arg(long, short, value_name = "FILE", default_value = "trajectory.csv")]
     pub out: PathBuf,
@@ -203,8 +207,6 @@ pub fn run(a: &DmpArgs) -> CliResult<u8> {
         },
         ..Default::default()
     };
-    let dmp = Dmp::fit(&demo.t, &demo.q, demo.dof, &cfg)
-        .map_err(|e| CliError(format!("{}: {e}", demo.src)))?;
     let opts = RolloutOptions {
         goal: a.goal.clone(),
         start: a.start.clone(),
@@ -212,22 +214,43 @@ pub fn run(a: &DmpArgs) -> CliResult<u8> {
         duration: a.duration,
         ..Default::default()
     };
-    let roll = dmp.rollout(&opts)?;
+    let (roll, tau): (Box<dyn Trajectory>, f64) = match &a.within {
+        None => {
+            let dmp = Dmp::fit(&demo.t, &demo.q, demo.dof, &cfg)
+                .map_err(|e| CliError(format!("{}: {e}", demo.src)))?;
+            (Box::new(dmp.rollout(&opts)?), dmp.tau())
+        }
+        Some(spec) => {
+            let limits = trajkit::limits::load::from_spec(spec)?;
+            limits
+                .expect_dof(demo.dof, "the demonstration")
+                .map_err(|e| CliError(format!("{}: {e}", demo.src)))?;
+            let dmp = BoundedDmp::fit(&demo.t, &demo.q, demo.dof, &cfg, &limits)
+                .map_err(|e| CliError(format!("{}: {e}", demo.src)))?;
+            (Box::new(dmp.rollout(&opts)?), dmp.inner().tau())
+        }
+    };
+    let roll = &*roll;
     let mut outputs = Outputs::default();
     let title = format!("trajkit dmp ({}) — {}", cfg.scaling.name(), demo.src);
-    let table = queue_table(&roll, &demo.names, &a.out, &a.output, title, &mut outputs)?;
+    let table = queue_table(roll, &demo.names, &a.out, &a.output, title, &mut outputs)?;
     outputs.commit()?;
     let mut s = format!(
         "demonstration: {} samples, {} joints, τ = {:.6} s from {}\nrollout: {:.6} s, {} samples at {} Hz, scaling {}",
         demo.t.len(),
         demo.dof,
-        dmp.tau(),
+        tau,
         demo.src,
         roll.duration(),
         table.len(),
         a.output.rate,
         cfg.scaling.name()
     );
+    if let Some(spec) = &a.within {
+        s.push_str(&format!(
+            "\nkept strictly inside the position limits of {spec}"
+        ));
+    }
     if a.goal.is_none() && a.start.is_none() && a.tau.is_none() {
         // Reproduction error against the demonstration itself.
         let mut y = vec![0.0; demo.dof];
