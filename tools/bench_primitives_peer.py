@@ -117,6 +117,7 @@ def peers():
 
 def trajkit_medians(run_cargo):
     target = os.environ.get("CARGO_TARGET_DIR", os.path.join(ROOT, "target"))
+    started = time.time()
     if run_cargo:
         subprocess.check_call(["cargo", "bench", "-p", "trajkit", "--bench", "primitives",
                                "--", "--noplot"], cwd=ROOT, stdout=subprocess.DEVNULL)
@@ -124,7 +125,8 @@ def trajkit_medians(run_cargo):
     base = os.path.join(target, "criterion", "primitives")
     for name in sorted(os.listdir(base)):
         f = os.path.join(base, name, "new", "estimates.json")
-        if os.path.exists(f):
+        # Only results written by this run (older benchmark names may linger in the target).
+        if os.path.exists(f) and (not run_cargo or os.path.getmtime(f) >= started):
             with open(f) as fh:
                 res[name] = json.load(fh)["median"]["point_estimate"] * 1e-9
     return res

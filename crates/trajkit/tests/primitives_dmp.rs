@@ -86,6 +86,7 @@ fn integration_converges() {
         })
         .unwrap();
     let (mut ya, mut yb) = ([0.0; 7], [0.0; 7]);
+    // (the default is 500 steps per τ)
     for k in 0..=200 {
         let tk = 2.0 * k as f64 / 200.0;
         a.eval(tk, Order::Position, &mut ya);
@@ -433,7 +434,7 @@ fn phase_stopping_waits_for_a_blocked_robot() {
         steps_per_tau: Some(spt),
         ..Default::default()
     };
-    let stopped = dmp.rollout(&opts(2000)).unwrap();
+    let stopped = dmp.rollout(&opts(500)).unwrap();
     let free = dmp.rollout(&RolloutOptions::default()).unwrap();
     let (mut a, mut b) = ([0.0; 7], [0.0; 7]);
     stopped.eval(0.5, Order::Position, &mut a);
@@ -450,7 +451,7 @@ fn phase_stopping_waits_for_a_blocked_robot() {
         assert!((a[j] - dmp.goal()[j]).abs() < 1e-3, "j={j}");
     }
     // RK4 with the phase as a state still converges.
-    let fine = dmp.rollout(&opts(4000)).unwrap();
+    let fine = dmp.rollout(&opts(2000)).unwrap();
     for k in 0..=40 {
         let s = 0.1 * k as f64;
         stopped.eval(s, Order::Position, &mut a);
