@@ -250,6 +250,10 @@ impl GaussianBasis {
 
     /// Writes `dᵏφ_i/dzᵏ (z)` for every basis function into `out` (`k = order ≤ 3`; `out` has
     /// [`GaussianBasis::len`] entries).
+    ///
+    /// # Panics
+    /// If `out` is shorter than [`GaussianBasis::len`] (a programming error, like a short buffer
+    /// given to [`crate::Trajectory::eval`]).
     pub fn activations(&self, z: f64, order: usize, out: &mut [f64]) {
         let order = order.min(3);
         let m = self.min_exponent(z);
@@ -281,6 +285,9 @@ impl GaussianBasis {
 
     /// `out[r] = Σ_i dᵏφ_i/dzᵏ(z) · w[r·n + i]` for `rows` rows of row-major weights
     /// (`k = order ≤ 3`, `n` = [`GaussianBasis::len`]). Allocates nothing.
+    ///
+    /// # Panics
+    /// If `w` has fewer than `rows · n` entries or `out` fewer than `rows`.
     pub fn combine(&self, z: f64, order: usize, w: &[f64], rows: usize, out: &mut [f64]) {
         const CHUNK: usize = 16;
         let order = order.min(3);

@@ -402,6 +402,9 @@ impl Kmp {
     /// Covariance of positions (`Order::Position`) or velocities (`Order::Velocity`) at `t`
     /// (seconds after the first reference time, like [`Trajectory::eval`]), row-major
     /// `dof × dof` into `out`. Allocates a `dof × N·dof` scratch.
+    ///
+    /// # Panics
+    /// If `out` has fewer than `dof²` entries.
     pub fn covariance(&self, t: f64, order: Order, out: &mut [f64]) {
         let d = self.reference.dof;
         let n = self.reference.t.len();

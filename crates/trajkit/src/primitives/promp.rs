@@ -320,6 +320,9 @@ impl ProMp {
 
     /// Covariance of the `order`-th derivative (0 = positions, 1 = velocities per second) at
     /// `t`, row-major `dof × dof` into `out`. Allocates only a basis-sized scratch.
+    ///
+    /// # Panics
+    /// If `out` has fewer than `dof²` entries.
     pub fn covariance(&self, t: f64, order: Order, out: &mut [f64]) {
         let n = self.basis.len();
         let nw = self.dof * n;
@@ -341,6 +344,9 @@ impl ProMp {
     }
 
     /// Variances (diagonal of [`ProMp::covariance`]) into `out` (`dof` entries).
+    ///
+    /// # Panics
+    /// If `out` has fewer than `dof` entries.
     pub fn variance(&self, t: f64, order: Order, out: &mut [f64]) {
         let n = self.basis.len();
         let nw = self.dof * n;
