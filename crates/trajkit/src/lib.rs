@@ -42,6 +42,7 @@ pub mod check;
 pub mod error;
 pub mod io;
 pub mod limits;
+pub mod linalg;
 pub mod path;
 pub mod plot;
 pub mod poly;
