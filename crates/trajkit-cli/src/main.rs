@@ -31,6 +31,13 @@ enum Command {
     Poly(cmd::poly::PolyArgs),
     /// Check a sampled trajectory (from any tool) against joint limits.
     Check(cmd::check::CheckArgs),
+    /// Learn a dynamic movement primitive from a demonstration; reproduce it with a new start,
+    /// goal or duration.
+    Dmp(cmd::dmp::DmpArgs),
+    /// Learn a probabilistic movement primitive from demonstrations; condition on via points.
+    Promp(cmd::promp::PrompArgs),
+    /// Learn a kernelized movement primitive from demonstrations; adapt it to via points.
+    Kmp(cmd::kmp::KmpArgs),
     /// Fit a curve (cubic, PCHIP, Akima, Catmull-Rom, B-spline, minimum jerk/snap) through
     /// points and sample it with its derivatives.
     Spline(cmd::spline::SplineArgs),
@@ -62,6 +69,9 @@ fn main() -> ExitCode {
         Command::Plan(a) => cmd::plan::run(a),
         Command::Poly(a) => cmd::poly::run(a),
         Command::Check(a) => cmd::check::run(a),
+        Command::Dmp(a) => cmd::dmp::run(a),
+        Command::Promp(a) => cmd::promp::run(a),
+        Command::Kmp(a) => cmd::kmp::run(a),
         Command::Spline(a) => cmd::spline::run(a),
     };
     match result {

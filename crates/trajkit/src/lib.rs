@@ -26,13 +26,14 @@
 //! - [`limits`]: per-joint limits, robot presets, limits files and URDF.
 //! - [`poly`]: point-to-point polynomials (cubic, quintic/minimum-jerk, septic) and
 //!   multi-waypoint piecewise polynomials.
+//! - [`linalg`]: small dense solvers (Cholesky, LU) on row-major slices.
 //! - [`sample`], [`check`], [`plot`], [`io`]: sampling into tables, limit checking, SVG plots,
 //!   CSV/JSON reading and writing.
 //!
 //! - [`spline`]: splines and curves (cubic, Hermite, PCHIP, Akima, Catmull-Rom, Bézier,
 //!   B-spline, NURBS, arc length, SO(3)); every curve is a [`Path`].
 //! - [`topp`]: time-optimal path parameterization (issue in progress).
-//! - [`primitives`]: movement primitives, DMP, ProMP and KMP (issue in progress).
+//! - [`primitives`]: movement primitives learned from demonstrations: DMP, ProMP, KMP.
 //!
 //! See ARCHITECTURE.md in the repository for how data flows between them.
 
@@ -42,6 +43,7 @@ pub mod check;
 pub mod error;
 pub mod io;
 pub mod limits;
+pub mod linalg;
 pub mod path;
 pub mod plot;
 pub mod poly;

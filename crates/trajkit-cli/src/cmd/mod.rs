@@ -8,6 +8,9 @@
 
 pub mod check;
 pub mod common;
+pub mod dmp;
+pub mod kmp;
 pub mod plan;
 pub mod poly;
+pub mod promp;
 pub mod spline;

@@ -1,0 +1,139 @@
+//! `trajkit promp`: learn a ProMP from several demonstrations, condition it on via points,
+//! write the mean trajectory and its ±kσ band.
+
+use super::common::{CliError, CliResult, OutputArgs, Outputs};
+use super::dmp::{band_csv, parse_via, queue_table, read_demos};
+use clap::Args;
+use std::path::PathBuf;
+use trajkit::primitives::{Demo, ProMp, ProMpConfig, ViaPoint};
+use trajkit::{Order, Trajectory};
+
+/// Arguments of `trajkit promp`.
+#[derive(Args, Debug)]
+#[command(
+    after_help = "Examples:\n  trajkit promp --demo d1.csv --demo d2.csv --demo d3.csv --band band.csv --plot promp.svg\n  trajkit promp --demo d1.csv --demo d2.csv --via 0.5:0.3,-0.2 --via 1.0:0.0,0.1"
+)]
+pub struct PrompArgs {
+    /// Demonstrations (at least two): CSV with columns t,q1..qn, or trajkit JSON tables.
+    #[arg(long, value_name = "FILE", required = true)]
+    pub demo: Vec<PathBuf>,
+    /// Via point: time in seconds, then one position per joint. Repeatable.
+    #[arg(long, value_name = "T:Q1,Q2,..", allow_hyphen_values = true)]
+    pub via: Vec<String>,
+    /// Variance of every via point (0 = pass exactly).
+    #[arg(
+        long,
+        value_name = "V",
+        default_value_t = 0.0,
+        allow_hyphen_values = true
+    )]
+    pub via_variance: f64,
+    /// Basis functions per joint.
+    #[arg(long, value_name = "N", default_value_t = 20)]
+    pub basis: usize,
+    /// Prior variance added to the weight covariance's diagonal.
+    #[arg(
+        long,
+        value_name = "V",
+        default_value_t = 1e-6,
+        allow_hyphen_values = true
+    )]
+    pub prior_variance: f64,
+    /// New duration in seconds (default: the mean of the demonstrations').
+    #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
+    pub duration: Option<f64>,
+    /// Mean trajectory table (CSV or JSON by extension; '-' for standard output).
+    #[arg(long, short, value_name = "FILE", default_value = "trajectory.csv")]
+    pub out: PathBuf,
+    /// Also write the mean and ±k·σ band of positions as CSV (t, qJ, qJ_lo, qJ_hi).
+    #[arg(long, value_name = "FILE.csv")]
+    pub band: Option<PathBuf>,
+    /// Width of the band in standard deviations.
+    #[arg(
+        long,
+        value_name = "K",
+        default_value_t = 2.0,
+        allow_hyphen_values = true
+    )]
+    pub sigma: f64,
+    #[command(flatten)]
+    pub output: OutputArgs,
+}
+
+/// Runs `trajkit promp`.
+pub fn run(a: &PrompArgs) -> CliResult<u8> {
+    if a.demo.len() < 2 {
+        return Err(CliError(format!(
+            "--demo: {} demonstration given, at least 2 needed",
+            a.demo.len()
+        )));
+    }
+    if !(a.via_variance.is_finite() && a.via_variance >= 0.0) {
+        return Err(CliError(format!(
+            "--via-variance = {} is not a non-negative number",
+            a.via_variance
+        )));
+    }
+    let demos = read_demos(&a.demo)?;
+    let dof = demos[0].dof;
+    let ds: Vec<Demo> = demos.iter().map(|d| Demo { t: &d.t, q: &d.q }).collect();
+    let cfg = ProMpConfig {
+        n_basis: a.basis,
+        prior_variance: a.prior_variance,
+        ..Default::default()
+    };
+    let mut p = ProMp::fit(&ds, dof, &cfg)?;
+    if let Some(d) = a.duration {
+        p = p.with_duration(d)?;
+    }
+    let via: Vec<ViaPoint> = a
+        .via
+        .iter()
+        .map(|s| parse_via(s, dof).map(|(t, q)| ViaPoint::position(t, &q, a.via_variance)))
+        .collect::<CliResult<_>>()?;
+    let p = p.condition(&via)?;
+    let mut outputs = Outputs::default();
+    let title = format!("trajkit promp — mean of {} demonstrations", demos.len());
+    let table = queue_table(&p, &demos[0].names, &a.out, &a.output, title, &mut outputs)?;
+    if let Some(b) = &a.band {
+        let t = table.times();
+        let mut mean = vec![0.0; t.len() * dof];
+        let mut sd = vec![0.0; t.len() * dof];
+        for (i, &ti) in t.iter().enumerate() {
+            p.eval(ti, Order::Position, &mut mean[i * dof..(i + 1) * dof]);
+            p.variance(ti, Order::Position, &mut sd[i * dof..(i + 1) * dof]);
+        }
+        sd.iter_mut().for_each(|v| *v = v.sqrt());
+        outputs.add(b, band_csv(&demos[0].names, t, &mean, &sd, a.sigma));
+    }
+    outputs.commit()?;
+    let mut s = format!(
+        "demonstrations: {} ({} joints), duration {:.6} s, {} basis functions per joint",
+        demos.len(),
+        dof,
+        p.duration(),
+        p.n_basis()
+    );
+    let mut y = vec![0.0; dof];
+    for (k, v) in via.iter().enumerate() {
+        p.eval(v.t, Order::Position, &mut y);
+        let e = (0..dof)
+            .map(|j| (y[j] - v.value[j]).abs())
+            .fold(0.0, f64::max);
+        s.push_str(&format!(
+            "\nvia point {} at t = {}: max error {e:.3e}",
+            k + 1,
+            v.t
+        ));
+    }
+    s.push_str(&format!("\nwrote {}", a.out.display()));
+    for p in [&a.band, &a.output.plot].into_iter().flatten() {
+        s.push_str(&format!(" and {}", p.display()));
+    }
+    if a.out.as_os_str() == "-" {
+        eprintln!("{s}");
+    } else {
+        println!("{s}");
+    }
+    Ok(0)
+}
