@@ -47,13 +47,30 @@ fn plan_default_passes_check_against_panda() {
     assert!(d.join("trajectory.csv").exists() && d.join("t.svg").exists());
     let text = std::fs::read_to_string(d.join("trajectory.csv")).unwrap();
     assert!(text.starts_with("t,q1,q2,q3,q4,q5,q6,q7,qd1,"));
-    let o = trajkit(&["check", "trajectory.csv", "--limits", "panda"], &d);
+    // The default method (TOPP-RA) limits velocity and acceleration; jerk is not limited.
+    assert!(
+        out.contains("jerk: not limited by --method toppra"),
+        "{out}"
+    );
+    let o = trajkit(
+        &[
+            "check",
+            "trajectory.csv",
+            "--limits",
+            "panda",
+            "--max-jerk",
+            "inf",
+        ],
+        &d,
+    );
     assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
     assert!(stdout(&o).contains("PASS"));
-    // JSON output and a different degree.
+    // Polynomials: jerk limited too, JSON output and a different degree.
     let o = trajkit(
         &[
             "plan",
+            "--method",
+            "poly",
             "--degree",
             "septic",
             "--via-velocity",
@@ -293,6 +310,8 @@ fn urdf_limits_with_fill_from_preset() {
     let o = trajkit(
         &[
             "plan",
+            "--method",
+            "poly",
             "--waypoints",
             "w.csv",
             "--limits",
@@ -321,4 +340,68 @@ fn urdf_limits_with_fill_from_preset() {
         &d,
     );
     assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
+}
+
+#[test]
+fn plan_toppra_paths_gridpoints_and_messy_waypoints() {
+    let d = scratch("plan-toppra");
+    // A repeated waypoint and an exact reversal: the robot stops at the reversal.
+    std::fs::write(
+        d.join("w.csv"),
+        "a,b\n0,0\n0.5,0.2\n0.5,0.2\n1.0,0.4\n0.5,0.2\n0.3,0.9\n",
+    )
+    .unwrap();
+    std::fs::write(
+        d.join("two.json"),
+        r#"{"joints":[{"name":"a","velocity":1,"acceleration":2,"jerk":100},{"name":"b","velocity":1,"acceleration":2,"jerk":100}]}"#,
+    )
+    .unwrap();
+    for extra in [
+        vec![],
+        vec!["--path", "linear"],
+        vec!["--path", "not-a-knot", "--gridpoints", "auto"],
+        vec!["--path", "clamped", "--gridpoints", "200"],
+    ] {
+        let mut args = vec![
+            "plan",
+            "--waypoints",
+            "w.csv",
+            "--limits",
+            "two.json",
+            "--out",
+            "t.csv",
+        ];
+        args.extend(extra.iter().copied());
+        let o = trajkit(&args, &d);
+        assert!(o.status.success(), "{extra:?}: {}", stderr(&o));
+        let out = stdout(&o);
+        assert!(
+            out.contains("within limits") && out.contains("removed 1 duplicate"),
+            "{out}"
+        );
+        let o = trajkit(
+            &[
+                "check",
+                "t.csv",
+                "--limits",
+                "two.json",
+                "--max-jerk",
+                "inf",
+            ],
+            &d,
+        );
+        assert_eq!(o.status.code(), Some(0), "{extra:?}: {}", stdout(&o));
+    }
+    // Bad --gridpoints and --path values: exit 2, one line.
+    for (args, want) in [
+        (
+            vec!["plan", "--gridpoints", "0"],
+            "'0' is not a positive interval count",
+        ),
+        (vec!["plan", "--path", "bezier"], "bezier"),
+    ] {
+        let o = trajkit(&args, &d);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        assert!(stderr(&o).contains(want), "{}", stderr(&o));
+    }
 }

@@ -14,8 +14,48 @@ pub const DEFAULT_WAYPOINTS: &str = include_str!("../default_waypoints.csv");
 /// Time-parameterization method.
 #[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {
+    /// Time-optimal parameterization (TOPP-RA) of a C² spline through the waypoints, within the
+    /// velocity and acceleration limits (jerk is not limited by this method).
+    Toppra,
     /// Synchronized polynomial segments between waypoints, each as short as the limits allow.
     Poly,
+}
+
+/// Geometric path through the waypoints for `--method toppra`.
+#[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PathArg {
+    /// Natural cubic spline (C², zero curvature at the ends), chord-length parameterized.
+    Natural,
+    /// Not-a-knot cubic spline (C²).
+    NotAKnot,
+    /// Cubic spline with zero end slopes (C²).
+    Clamped,
+    /// Straight segments; the robot stops at every corner.
+    Linear,
+}
+
+impl From<PathArg> for trajkit::topp::messy::PathKind {
+    fn from(p: PathArg) -> Self {
+        use trajkit::topp::messy::PathKind;
+        match p {
+            PathArg::Natural => PathKind::NaturalCubic,
+            PathArg::NotAKnot => PathKind::NotAKnotCubic,
+            PathArg::Clamped => PathKind::ClampedCubic,
+            PathArg::Linear => PathKind::Linear,
+        }
+    }
+}
+
+/// Parses `--gridpoints`: a positive interval count or `auto`.
+fn parse_gridpoints(s: &str) -> Result<trajkit::topp::Gridpoints, String> {
+    use trajkit::topp::Gridpoints;
+    if s == "auto" {
+        return Ok(Gridpoints::Auto { tolerance: 1e-4 });
+    }
+    match s.parse::<usize>() {
+        Ok(n) if n > 0 => Ok(Gridpoints::Uniform(n)),
+        _ => Err(format!("'{s}' is not a positive interval count or 'auto'")),
+    }
 }
 
 /// Polynomial degree for `--method poly`.
@@ -51,7 +91,7 @@ pub enum ViaArg {
 /// Arguments of `trajkit plan`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "Examples:\n  trajkit plan                                  # embedded Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits robot.urdf --fill-from panda --out traj.json\n  trajkit plan --degree septic --via-velocity zero --rate 500 --plot traj.svg"
+    after_help = "Examples:\n  trajkit plan                                  # embedded Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits robot.urdf --fill-from panda --out traj.json\n  trajkit plan --method poly --degree septic --via-velocity zero --rate 500 --plot traj.svg\n  trajkit plan --path linear --gridpoints auto"
 )]
 pub struct PlanArgs {
     /// Waypoints: CSV (a row per waypoint, a column per joint, optional header) or JSON.
@@ -61,8 +101,16 @@ pub struct PlanArgs {
     #[command(flatten)]
     pub limits: LimitsArgs,
     /// Time-parameterization method.
-    #[arg(long, value_enum, default_value = "poly")]
+    #[arg(long, value_enum, default_value = "toppra")]
     pub method: Method,
+    /// Path through the waypoints (--method toppra). The robot stops where the path reverses
+    /// exactly (and at every corner of a linear path).
+    #[arg(long, value_enum, default_value = "natural")]
+    pub path: PathArg,
+    /// TOPP-RA gridpoints per rest-to-rest piece: an interval count, or `auto` (from a 1e-4
+    /// chord tolerance). Limits are also checked between gridpoints and the grid refined there.
+    #[arg(long, value_name = "N|auto", default_value = "1000", value_parser = parse_gridpoints)]
+    pub gridpoints: trajkit::topp::Gridpoints,
     /// Polynomial degree of each segment (--method poly).
     #[arg(long, value_enum, default_value = "quintic")]
     pub degree: DegreeArg,
@@ -126,6 +174,18 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
         .map_err(|e| CliError(format!("{src}: {e}")))?;
     check_waypoints_in_range(&w, &limits, &src)?;
     let traj: Box<dyn Trajectory> = match a.method {
+        Method::Toppra => {
+            use trajkit::topp::messy::{plan_waypoints, PlanOptions};
+            let opts = PlanOptions {
+                kind: a.path.into(),
+                toppra: trajkit::topp::Options {
+                    gridpoints: a.gridpoints.clone(),
+                    ..Default::default()
+                },
+                ..Default::default()
+            };
+            Box::new(plan_waypoints(w.points(), w.dof(), &limits, &opts)?)
+        }
         Method::Poly => {
             let vel = match a.via_velocity {
                 ViaArg::Heuristic => ViaVelocities::Heuristic,
@@ -142,7 +202,15 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
     };
     let names: Vec<String> = w.names().to_vec();
     let table = trajkit::sample::sample(&*traj, a.output.rate)?.with_names(names.clone())?;
-    let report = check_samples(&table, &limits)?;
+    // TOPP-RA is second order: it limits velocity and acceleration, not jerk (its path
+    // acceleration is piecewise constant). Its verdict leaves jerk out and says so.
+    let checked_limits = match a.method {
+        Method::Toppra => limits
+            .clone()
+            .with_override(trajkit::Order::Jerk, &[f64::INFINITY])?,
+        Method::Poly => limits.clone(),
+    };
+    let report = check_samples(&table, &checked_limits)?;
     let mut outputs = Outputs::default();
     outputs.add(&a.out, a.output.render(&table, &a.out));
     if let Some(p) = &a.output.plot {
@@ -168,6 +236,12 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
         table.len(),
         a.output.rate
     );
+    if a.method == Method::Toppra {
+        let _ = writeln!(
+            s,
+            "jerk: not limited by --method toppra (second order); use --method poly for jerk limits"
+        );
+    }
     let _ = writeln!(s, "worst limit ratio per joint (velocity / acceleration / jerk, pointwise and finite-difference):");
     for (j, jr) in report.joints.iter().enumerate() {
         let r = |k: usize| jr.derivatives[k].worst();

@@ -1,0 +1,574 @@
+//! Constraints on the path velocity and acceleration, in TOPP-RA's general linear form.
+//!
+//! Along a path σ(s) timed by s(t), the joint velocity is q̇ = σ′ṡ and the joint acceleration
+//! q̈ = σ′s̈ + σ″ṡ². With the state x = ṡ² and the control u = s̈, every constraint trajkit
+//! handles has, at each path point s, the form
+//!
+//! ```text
+//!     a(s)·u + b(s)·x + c(s) = v,   F(s)·v ≤ g(s),        x_min(s) ≤ x ≤ x_max(s)
+//! ```
+//!
+//! A [`Constraint`] writes that form at one path point into [`ConstraintRows`], which turns it
+//! into half-planes in the (u, x) plane for the solver. Built-ins:
+//! - [`JointVelocity`]: |q̇| within per-joint directional limits (bounds on x alone);
+//! - [`JointAcceleration`]: q̈ within per-joint directional limits;
+//! - [`JointTorque`]: τ = ID(q, q̇, q̈) (+ Coulomb friction) within torque limits, through an
+//!   [`InverseDynamics`] model the user implements;
+//! - [`EndEffectorSpeed`]: ‖J(q)·q̇‖ ≤ v_max through a user [`Jacobian`].
+//!
+//! User code can implement [`Constraint`] for anything else of this form.
+//!
+//! # Precision contract
+//! Rows are written exactly as the formulas above (no linearisation or padding); a limit of
+//! `±∞` writes no row. Zero limits are allowed here (they make the problem infeasible when the
+//! joint must move, which the solver reports with the path position and this constraint's
+//! name).
+
+use crate::error::{Error, Result};
+use crate::limits::Limits;
+use crate::Order;
+
+/// The path's derivatives at one path point, handed to every constraint.
+#[derive(Debug, Clone, Copy)]
+pub struct PathPoint<'a> {
+    /// The path parameter s.
+    pub s: f64,
+    /// σ(s).
+    pub q: &'a [f64],
+    /// σ′(s).
+    pub dq: &'a [f64],
+    /// σ″(s).
+    pub ddq: &'a [f64],
+}
+
+/// Collects one constraint's rows at one path point: half-planes `α·u + β·x ≤ γ` and bounds on
+/// x = ṡ². Written by [`Constraint::write`], read by the solver.
+#[derive(Debug, Default, Clone)]
+pub struct ConstraintRows {
+    /// Half-planes (α, β, γ): α·u + β·x ≤ γ.
+    pub(crate) rows: Vec<[f64; 3]>,
+    /// Lower bound on x.
+    pub(crate) x_min: f64,
+    /// Upper bound on x.
+    pub(crate) x_max: f64,
+    /// A row that can never hold (0·u + 0·x ≤ γ < 0) or a NaN was written.
+    pub(crate) broken: Option<&'static str>,
+}
+
+impl ConstraintRows {
+    /// Empty rows, x unbounded.
+    pub fn new() -> Self {
+        ConstraintRows {
+            rows: Vec::new(),
+            x_min: 0.0,
+            x_max: f64::INFINITY,
+            broken: None,
+        }
+    }
+
+    pub(crate) fn clear(&mut self) {
+        self.rows.clear();
+        self.x_min = 0.0;
+        self.x_max = f64::INFINITY;
+        self.broken = None;
+    }
+
+    /// The half-planes written so far, `(α, β, γ)` meaning `α·u + β·x ≤ γ`.
+    pub fn half_planes(&self) -> &[[f64; 3]] {
+        &self.rows
+    }
+
+    /// The bounds on x = ṡ² written so far (`[0, ∞)` when none).
+    pub fn x_bounds(&self) -> (f64, f64) {
+        (self.x_min, self.x_max)
+    }
+
+    /// Adds `α·u + β·x ≤ γ`.
+    pub fn half_plane(&mut self, alpha: f64, beta: f64, gamma: f64) {
+        if alpha.is_nan() || beta.is_nan() || gamma.is_nan() {
+            self.broken = Some("produced a NaN coefficient");
+            return;
+        }
+        if gamma == f64::INFINITY {
+            return;
+        }
+        if alpha == 0.0 && beta == 0.0 {
+            if gamma < 0.0 {
+                self.broken = Some("cannot hold at any velocity");
+            }
+            return;
+        }
+        self.rows.push([alpha, beta, gamma]);
+    }
+
+    /// Adds `lo ≤ a·u + b·x + c ≤ hi` (either side may be infinite).
+    pub fn interval(&mut self, a: f64, b: f64, c: f64, lo: f64, hi: f64) {
+        if hi < f64::INFINITY {
+            self.half_plane(a, b, hi - c);
+        }
+        if lo > f64::NEG_INFINITY {
+            self.half_plane(-a, -b, c - lo);
+        }
+    }
+
+    /// Adds `F·(a·u + b·x + c) ≤ g` for a general polytope: `a`, `b`, `c` have `m` entries,
+    /// `f` is row-major `k × m`, `g` has `k` entries.
+    pub fn polytope(&mut self, a: &[f64], b: &[f64], c: &[f64], f: &[f64], g: &[f64]) {
+        let m = a.len();
+        if b.len() != m || c.len() != m || f.len() != g.len() * m {
+            self.broken = Some("wrote a polytope with inconsistent sizes");
+            return;
+        }
+        for (r, &gr) in g.iter().enumerate() {
+            let fr = &f[r * m..(r + 1) * m];
+            let (mut fa, mut fb, mut fc) = (0.0, 0.0, 0.0);
+            for j in 0..m {
+                fa += fr[j] * a[j];
+                fb += fr[j] * b[j];
+                fc += fr[j] * c[j];
+            }
+            self.half_plane(fa, fb, gr - fc);
+        }
+    }
+
+    /// Requires `x ≤ value` (x = ṡ²).
+    pub fn x_at_most(&mut self, value: f64) {
+        if value.is_nan() {
+            self.broken = Some("produced a NaN velocity bound");
+        } else if value < self.x_max {
+            self.x_max = value;
+        }
+    }
+
+    /// Requires `x ≥ value` (x = ṡ²).
+    pub fn x_at_least(&mut self, value: f64) {
+        if value.is_nan() {
+            self.broken = Some("produced a NaN velocity bound");
+        } else if value > self.x_min {
+            self.x_min = value;
+        }
+    }
+}
+
+/// A constraint of the general form of the module documentation.
+///
+/// Implementations are evaluated once per gridpoint when a problem is solved (not in a control
+/// loop) and may allocate.
+pub trait Constraint {
+    /// A short human name used in error messages, e.g. `"joint acceleration"`.
+    fn name(&self) -> String;
+
+    /// The number of joints the constraint expects (the path's dimension).
+    fn dof(&self) -> usize;
+
+    /// Writes the constraint at path point `p` into `out`.
+    fn write(&self, p: &PathPoint<'_>, out: &mut ConstraintRows);
+
+    /// Whether [`Constraint::write`] reads `p.q` (the path position). The solver skips
+    /// evaluating σ(s) when no constraint does; `p.q` then holds unspecified values. Default
+    /// `true`.
+    fn uses_position(&self) -> bool {
+        true
+    }
+
+    /// When the solver finds that the path cannot move at `p`, a sentence naming the cause
+    /// (e.g. a joint that must move but has a zero limit), if this constraint knows one.
+    fn diagnose(&self, p: &PathPoint<'_>) -> Option<String> {
+        let _ = p;
+        None
+    }
+}
+
+impl<C: Constraint + ?Sized> Constraint for Box<C> {
+    fn name(&self) -> String {
+        (**self).name()
+    }
+    fn dof(&self) -> usize {
+        (**self).dof()
+    }
+    fn write(&self, p: &PathPoint<'_>, out: &mut ConstraintRows) {
+        (**self).write(p, out)
+    }
+    fn uses_position(&self) -> bool {
+        (**self).uses_position()
+    }
+    fn diagnose(&self, p: &PathPoint<'_>) -> Option<String> {
+        (**self).diagnose(p)
+    }
+}
+
+/// Validates directional limit pairs: `lo ≤ 0 ≤ hi`, no NaN. Zero is allowed.
+fn check_ranges(what: &str, lo: &[f64], hi: &[f64]) -> Result<()> {
+    if lo.len() != hi.len() {
+        return Err(Error::DimensionMismatch {
+            what: format!("{what} lower limits"),
+            expected: hi.len(),
+            found: lo.len(),
+        });
+    }
+    if hi.is_empty() {
+        return Err(Error::DimensionMismatch {
+            what: format!("{what} limits joint count"),
+            expected: 1,
+            found: 0,
+        });
+    }
+    for j in 0..hi.len() {
+        if hi[j].is_nan() || hi[j] < 0.0 {
+            return Err(Error::InvalidValue {
+                field: format!("joint {} {what} upper limit", j + 1),
+                value: hi[j],
+                reason: "is not a number >= 0",
+            });
+        }
+        if lo[j].is_nan() || lo[j] > 0.0 {
+            return Err(Error::InvalidValue {
+                field: format!("joint {} {what} lower limit", j + 1),
+                value: lo[j],
+                reason: "is not a number <= 0",
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Names the joints that move at `p` (σ′ ≠ 0) but have a zero limit in a direction they need.
+fn zero_limit_joints(what: &str, lo: &[f64], hi: &[f64], p: &PathPoint<'_>) -> Option<String> {
+    let bad: Vec<String> = (0..hi.len())
+        .filter(|&j| p.dq[j] != 0.0 && (hi[j] == 0.0 || lo[j] == 0.0))
+        .map(|j| {
+            format!(
+                "joint {} must move (dq/ds = {:.6}) but its {what} limit is [{}, {}]",
+                j + 1,
+                p.dq[j],
+                lo[j],
+                hi[j]
+            )
+        })
+        .collect();
+    if bad.is_empty() {
+        None
+    } else {
+        Some(bad.join("; "))
+    }
+}
+
+fn ranges_from(limits: &Limits, order: Order) -> (Vec<f64>, Vec<f64>) {
+    limits.joints().iter().map(|j| j.range(order)).unzip()
+}
+
+/// Joint velocity limits `lo_j ≤ σ′_j(s)·ṡ ≤ hi_j`: an upper bound on x = ṡ² at each point.
+///
+/// ```
+/// use trajkit::topp::{JointVelocity, Constraint};
+/// let c = JointVelocity::new(&[-1.0, -2.0], &[1.0, 2.0])?;
+/// assert_eq!(c.dof(), 2);
+/// # Ok::<(), trajkit::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointVelocity {
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+}
+
+impl JointVelocity {
+    /// Limits per joint: `lo[j] ≤ 0 ≤ hi[j]` (infinite = unlimited; zero allowed).
+    pub fn new(lo: &[f64], hi: &[f64]) -> Result<Self> {
+        check_ranges("velocity", lo, hi)?;
+        Ok(JointVelocity {
+            lo: lo.to_vec(),
+            hi: hi.to_vec(),
+        })
+    }
+
+    /// The velocity limits of `limits` (directional minima included).
+    pub fn from_limits(limits: &Limits) -> Self {
+        let (lo, hi) = ranges_from(limits, Order::Velocity);
+        JointVelocity { lo, hi }
+    }
+}
+
+impl Constraint for JointVelocity {
+    fn name(&self) -> String {
+        "joint velocity".into()
+    }
+    fn dof(&self) -> usize {
+        self.hi.len()
+    }
+    fn write(&self, p: &PathPoint<'_>, out: &mut ConstraintRows) {
+        let mut sd_max = f64::INFINITY;
+        for j in 0..self.hi.len() {
+            let d = p.dq[j];
+            let bound = if d > 0.0 {
+                self.hi[j] / d
+            } else if d < 0.0 {
+                self.lo[j] / d
+            } else {
+                f64::INFINITY
+            };
+            sd_max = sd_max.min(bound);
+        }
+        out.x_at_most(sd_max * sd_max);
+    }
+    fn uses_position(&self) -> bool {
+        false
+    }
+    fn diagnose(&self, p: &PathPoint<'_>) -> Option<String> {
+        zero_limit_joints("velocity", &self.lo, &self.hi, p)
+    }
+}
+
+/// Joint acceleration limits `lo_j ≤ σ′_j·u + σ″_j·x ≤ hi_j` (direction-dependent minima).
+///
+/// ```
+/// use trajkit::{topp::JointAcceleration, Limits};
+/// let c = JointAcceleration::from_limits(&Limits::preset("panda")?);
+/// # Ok::<(), trajkit::Error>(())
+/// ```
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointAcceleration {
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+}
+
+impl JointAcceleration {
+    /// Limits per joint: `lo[j] ≤ 0 ≤ hi[j]` (infinite = unlimited; zero allowed).
+    pub fn new(lo: &[f64], hi: &[f64]) -> Result<Self> {
+        check_ranges("acceleration", lo, hi)?;
+        Ok(JointAcceleration {
+            lo: lo.to_vec(),
+            hi: hi.to_vec(),
+        })
+    }
+
+    /// The acceleration limits of `limits` (directional minima included).
+    pub fn from_limits(limits: &Limits) -> Self {
+        let (lo, hi) = ranges_from(limits, Order::Acceleration);
+        JointAcceleration { lo, hi }
+    }
+}
+
+impl Constraint for JointAcceleration {
+    fn name(&self) -> String {
+        "joint acceleration".into()
+    }
+    fn dof(&self) -> usize {
+        self.hi.len()
+    }
+    fn write(&self, p: &PathPoint<'_>, out: &mut ConstraintRows) {
+        for j in 0..self.hi.len() {
+            out.interval(p.dq[j], p.ddq[j], 0.0, self.lo[j], self.hi[j]);
+        }
+    }
+    fn uses_position(&self) -> bool {
+        false
+    }
+    fn diagnose(&self, p: &PathPoint<'_>) -> Option<String> {
+        zero_limit_joints("acceleration", &self.lo, &self.hi, p)
+    }
+}
+
+/// A robot's inverse dynamics τ = ID(q, q̇, q̈) = M(q)q̈ + C(q, q̇)q̇ + g(q), implemented by the
+/// user (from a rigid-body library or a hand-derived model).
+///
+/// TOPP-RA uses that ID is affine in q̈ and quadratic in q̇ (no friction terms here: see
+/// [`JointTorque::with_coulomb_friction`]).
+pub trait InverseDynamics {
+    /// Number of joints.
+    fn dof(&self) -> usize;
+    /// Writes the joint torques for `q`, `qd`, `qdd` into `tau` (all of length `dof()`).
+    fn torque(&self, q: &[f64], qd: &[f64], qdd: &[f64], tau: &mut [f64]);
+}
+
+/// Joint torque limits `τ_min ≤ ID(q, q̇, q̈) + f_c·sign(q̇) ≤ τ_max`.
+///
+/// With q̇ = σ′ṡ and q̈ = σ′u + σ″x the torque is `a·u + b·x + c` with
+/// `c = ID(σ, 0, 0)`, `a = ID(σ, 0, σ′) − c` and `b = ID(σ, σ′, σ″) − c`. Coulomb friction
+/// `f_c·sign(σ′_j)` (ṡ ≥ 0) is added to `c` when given.
+pub struct JointTorque<D: InverseDynamics> {
+    dynamics: D,
+    lo: Vec<f64>,
+    hi: Vec<f64>,
+    coulomb: Vec<f64>,
+}
+
+impl<D: InverseDynamics> JointTorque<D> {
+    /// Torque limits per joint: `lo[j] ≤ 0 ≤ hi[j]`.
+    pub fn new(dynamics: D, lo: &[f64], hi: &[f64]) -> Result<Self> {
+        check_ranges("torque", lo, hi)?;
+        if dynamics.dof() != hi.len() {
+            return Err(Error::DimensionMismatch {
+                what: "inverse dynamics joint count".into(),
+                expected: hi.len(),
+                found: dynamics.dof(),
+            });
+        }
+        Ok(JointTorque {
+            dynamics,
+            coulomb: vec![0.0; hi.len()],
+            lo: lo.to_vec(),
+            hi: hi.to_vec(),
+        })
+    }
+
+    /// Symmetric torque limits `±effort` from the `effort` entries of `limits`.
+    pub fn from_limits(dynamics: D, limits: &Limits) -> Result<Self> {
+        let mut hi = Vec::with_capacity(limits.dof());
+        for (j, jl) in limits.joints().iter().enumerate() {
+            match jl.effort {
+                Some(e) => hi.push(e),
+                None => {
+                    return Err(Error::InvalidValue {
+                        field: format!("joint {} effort limit", j + 1),
+                        value: f64::NAN,
+                        reason: "is missing (needed for torque limits)",
+                    })
+                }
+            }
+        }
+        let lo: Vec<f64> = hi.iter().map(|h| -h).collect();
+        Self::new(dynamics, &lo, &hi)
+    }
+
+    /// Adds Coulomb friction `f_c[j]·sign(q̇_j)` (each `f_c[j] ≥ 0`).
+    pub fn with_coulomb_friction(mut self, fc: &[f64]) -> Result<Self> {
+        if fc.len() != self.hi.len() {
+            return Err(Error::DimensionMismatch {
+                what: "Coulomb friction coefficients".into(),
+                expected: self.hi.len(),
+                found: fc.len(),
+            });
+        }
+        for (j, &f) in fc.iter().enumerate() {
+            if !(f >= 0.0 && f.is_finite()) {
+                return Err(Error::InvalidValue {
+                    field: format!("joint {} Coulomb friction", j + 1),
+                    value: f,
+                    reason: "is not a finite number >= 0",
+                });
+            }
+        }
+        self.coulomb = fc.to_vec();
+        Ok(self)
+    }
+}
+
+impl<D: InverseDynamics> Constraint for JointTorque<D> {
+    fn name(&self) -> String {
+        "joint torque".into()
+    }
+    fn dof(&self) -> usize {
+        self.hi.len()
+    }
+    fn write(&self, p: &PathPoint<'_>, out: &mut ConstraintRows) {
+        let n = self.hi.len();
+        let zero = vec![0.0; n];
+        let mut c = vec![0.0; n];
+        let mut a = vec![0.0; n];
+        let mut b = vec![0.0; n];
+        self.dynamics.torque(p.q, &zero, &zero, &mut c);
+        self.dynamics.torque(p.q, &zero, p.dq, &mut a);
+        self.dynamics.torque(p.q, p.dq, p.ddq, &mut b);
+        for j in 0..n {
+            let friction = self.coulomb[j] * p.dq[j].signum() * (p.dq[j] != 0.0) as u8 as f64;
+            out.interval(
+                a[j] - c[j],
+                b[j] - c[j],
+                c[j] + friction,
+                self.lo[j],
+                self.hi[j],
+            );
+        }
+    }
+}
+
+/// A user-supplied kinematic Jacobian: the linear velocity of a point (the end effector) is
+/// `J(q)·q̇`, with `J` row-major `rows() × dof()`.
+pub trait Jacobian {
+    /// Number of joints.
+    fn dof(&self) -> usize;
+    /// Number of rows (3 for a linear velocity in space, 2 in a plane).
+    fn rows(&self) -> usize;
+    /// Writes J(q) row-major into `out` (`rows() · dof()` entries).
+    fn jacobian(&self, q: &[f64], out: &mut [f64]);
+}
+
+/// End-effector speed limit `‖J(q)·σ′·ṡ‖ ≤ v_max`: a bound on x = ṡ².
+pub struct EndEffectorSpeed<J: Jacobian> {
+    jacobian: J,
+    v_max: f64,
+}
+
+impl<J: Jacobian> EndEffectorSpeed<J> {
+    /// Limits the speed of the point whose Jacobian is `jacobian` to `v_max` (> 0).
+    pub fn new(jacobian: J, v_max: f64) -> Result<Self> {
+        crate::error::positive(|| "end-effector speed limit".into(), v_max)?;
+        Ok(EndEffectorSpeed { jacobian, v_max })
+    }
+}
+
+impl<J: Jacobian> Constraint for EndEffectorSpeed<J> {
+    fn name(&self) -> String {
+        "end-effector speed".into()
+    }
+    fn dof(&self) -> usize {
+        self.jacobian.dof()
+    }
+    fn write(&self, p: &PathPoint<'_>, out: &mut ConstraintRows) {
+        let (r, n) = (self.jacobian.rows(), self.jacobian.dof());
+        let mut jm = vec![0.0; r * n];
+        self.jacobian.jacobian(p.q, &mut jm);
+        let mut sq = 0.0;
+        for i in 0..r {
+            let v: f64 = (0..n).map(|j| jm[i * n + j] * p.dq[j]).sum();
+            sq += v * v;
+        }
+        if sq > 0.0 {
+            out.x_at_most(self.v_max * self.v_max / sq);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rows_from_acceleration_and_velocity() {
+        let p = PathPoint {
+            s: 0.0,
+            q: &[0.0, 0.0],
+            dq: &[2.0, -1.0],
+            ddq: &[0.5, 0.0],
+        };
+        let mut r = ConstraintRows::new();
+        JointVelocity::new(&[-1.0, -3.0], &[4.0, 1.0])
+            .unwrap()
+            .write(&p, &mut r);
+        // joint 1: ṡ ≤ 4/2 = 2; joint 2 moves negatively: ṡ ≤ -3/-1 = 3 → x ≤ 4.
+        assert_eq!(r.x_bounds(), (0.0, 4.0));
+        let mut r = ConstraintRows::new();
+        JointAcceleration::new(&[-1.0, -2.0], &[3.0, f64::INFINITY])
+            .unwrap()
+            .write(&p, &mut r);
+        assert_eq!(
+            r.half_planes(),
+            &[[2.0, 0.5, 3.0], [-2.0, -0.5, 1.0], [1.0, -0.0, 2.0]]
+        );
+        assert!(JointVelocity::new(&[0.5], &[1.0]).is_err());
+        let e = JointAcceleration::new(&[-1.0], &[f64::NAN]).unwrap_err();
+        assert!(e
+            .to_string()
+            .contains("joint 1 acceleration upper limit = NaN"));
+    }
+
+    #[test]
+    fn polytope_and_broken_rows() {
+        let mut r = ConstraintRows::new();
+        // v = (u, x) itself, F = [1 1], g = [2]: u + x ≤ 2.
+        r.polytope(&[1.0, 0.0], &[0.0, 1.0], &[0.0, 0.0], &[1.0, 1.0], &[2.0]);
+        assert_eq!(r.half_planes(), &[[1.0, 1.0, 2.0]]);
+        r.interval(0.0, 0.0, 1.0, -1.0, 0.5);
+        assert!(r.broken.is_some());
+    }
+}

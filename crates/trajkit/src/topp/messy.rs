@@ -1,0 +1,345 @@
+//! Planner output as it comes: duplicate waypoints, reversals, corners.
+//!
+//! [`plan_waypoints`] takes joint-space waypoints straight from a motion planner and returns a
+//! time-optimal trajectory through them:
+//! 1. consecutive waypoints closer than a tolerance are merged ([`dedup_waypoints`]);
+//! 2. the waypoints are split into pieces at *stops* ([`stop_indices`]): exact reversals (the
+//!    path turns back on itself, a cusp where the robot must stop) for splines, and every
+//!    corner for piecewise-linear paths (a polyline's velocity jumps at a corner);
+//! 3. each piece becomes a path ([`PathKind`]: a C² cubic spline parameterized by chord length,
+//!    or a polyline) and is timed by TOPP-RA from rest to rest;
+//! 4. the pieces are played one after the other ([`Sequence`]).
+//!
+//! Nearly collinear waypoints need nothing special. A joint with a zero limit that must move
+//! is an [`Error::Infeasible`] naming the joint, and an infeasible problem names the path piece,
+//! the position s and the constraint.
+//!
+//! # Precision contract
+//! Each piece carries the precision contract of [`crate::topp::toppra`]; at piece boundaries
+//! the robot is at rest (velocity exactly zero) and the position is the shared waypoint.
+
+use super::paths::{check_waypoints, seg_len, LinearPath};
+use super::{Options, Parametrized, Toppra};
+use crate::error::{Error, Result};
+use crate::spline::CubicSpline;
+use crate::traj::{clamp_time, find_piece};
+use crate::{Limits, Order, Path, Trajectory};
+
+/// Removes consecutive waypoints within `tol` (Euclidean distance) of the previous kept one.
+/// Returns the kept waypoints (row-major) and their indices in the input.
+pub fn dedup_waypoints(waypoints: &[f64], dim: usize, tol: f64) -> Result<(Vec<f64>, Vec<usize>)> {
+    let count = check_waypoints(waypoints, dim).or_else(|e| match e {
+        Error::TooFewWaypoints { .. } if waypoints.len() == dim => Ok(1),
+        e => Err(e),
+    })?;
+    if !(tol >= 0.0 && tol.is_finite()) {
+        return Err(Error::InvalidValue {
+            field: "duplicate waypoint tolerance".into(),
+            value: tol,
+            reason: "is not a finite number >= 0",
+        });
+    }
+    let mut out = waypoints[..dim].to_vec();
+    let mut kept = vec![0];
+    for i in 1..count {
+        let last = &out[out.len() - dim..];
+        let w = &waypoints[i * dim..(i + 1) * dim];
+        let d: f64 = last
+            .iter()
+            .zip(w)
+            .map(|(a, b)| (a - b) * (a - b))
+            .sum::<f64>()
+            .sqrt();
+        if d > tol {
+            out.extend_from_slice(w);
+            kept.push(i);
+        }
+    }
+    Ok((out, kept))
+}
+
+/// Interior waypoint indices where the path must stop: where the turning angle between the
+/// incoming and outgoing segments exceeds `max_turn` radians (π − 1e-9 for "exact reversals
+/// only", 0 for "every corner"). Waypoints must have no consecutive duplicates.
+pub fn stop_indices(waypoints: &[f64], dim: usize, max_turn: f64) -> Vec<usize> {
+    let count = waypoints.len() / dim.max(1);
+    let mut out = Vec::new();
+    for i in 1..count.saturating_sub(1) {
+        let (l0, l1) = (seg_len(waypoints, dim, i - 1), seg_len(waypoints, dim, i));
+        if l0 == 0.0 || l1 == 0.0 {
+            continue;
+        }
+        let mut dot = 0.0;
+        for j in 0..dim {
+            let a = waypoints[i * dim + j] - waypoints[(i - 1) * dim + j];
+            let b = waypoints[(i + 1) * dim + j] - waypoints[i * dim + j];
+            dot += a * b;
+        }
+        let turn = (dot / (l0 * l1)).clamp(-1.0, 1.0).acos();
+        if turn > max_turn {
+            out.push(i);
+        }
+    }
+    out
+}
+
+/// The geometric path through each piece of waypoints.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PathKind {
+    /// Natural cubic spline (zero curvature at the ends), C², parameterized by chord length.
+    #[default]
+    NaturalCubic,
+    /// Not-a-knot cubic spline, C², parameterized by chord length.
+    NotAKnotCubic,
+    /// Cubic spline with zero end slopes (the path itself starts and ends at rest), C².
+    ClampedCubic,
+    /// Straight segments (stops at every corner).
+    Linear,
+}
+
+impl PathKind {
+    /// Parses `natural`, `not-a-knot`, `clamped`, `linear`.
+    pub fn parse(name: &str) -> Result<Self> {
+        match name {
+            "natural" | "cubic" => Ok(PathKind::NaturalCubic),
+            "not-a-knot" => Ok(PathKind::NotAKnotCubic),
+            "clamped" => Ok(PathKind::ClampedCubic),
+            "linear" => Ok(PathKind::Linear),
+            _ => Err(Error::Parse {
+                location: crate::error::Location {
+                    source: "path kind".into(),
+                    line: 0,
+                    field: String::new(),
+                },
+                message: format!(
+                    "'{name}' is not a path kind (natural, not-a-knot, clamped, linear)"
+                ),
+            }),
+        }
+    }
+}
+
+/// One piece's path: a spline or a polyline.
+#[derive(Debug, Clone)]
+pub enum PiecePath {
+    /// A cubic spline through the piece's waypoints.
+    Cubic(CubicSpline),
+    /// A polyline.
+    Linear(LinearPath),
+}
+
+impl Path for PiecePath {
+    fn dim(&self) -> usize {
+        match self {
+            PiecePath::Cubic(p) => p.dim(),
+            PiecePath::Linear(p) => p.dim(),
+        }
+    }
+    fn interval(&self) -> (f64, f64) {
+        match self {
+            PiecePath::Cubic(p) => p.interval(),
+            PiecePath::Linear(p) => p.interval(),
+        }
+    }
+    fn eval(&self, s: f64, order: usize, out: &mut [f64]) {
+        match self {
+            PiecePath::Cubic(p) => p.eval(s, order, out),
+            PiecePath::Linear(p) => p.eval(s, order, out),
+        }
+    }
+    fn breakpoints(&self) -> Vec<f64> {
+        match self {
+            PiecePath::Cubic(p) => p.breakpoints(),
+            PiecePath::Linear(p) => p.breakpoints(),
+        }
+    }
+}
+
+/// Trajectories played one after the other (each starts where the previous ended).
+#[derive(Debug, Clone)]
+pub struct Sequence<T: Trajectory> {
+    pieces: Vec<T>,
+    starts: Vec<f64>,
+}
+
+impl<T: Trajectory> Sequence<T> {
+    /// At least one piece; all with the same joint count.
+    pub fn new(pieces: Vec<T>) -> Result<Self> {
+        if pieces.is_empty() {
+            return Err(Error::DimensionMismatch {
+                what: "trajectory piece count".into(),
+                expected: 1,
+                found: 0,
+            });
+        }
+        let mut starts = vec![0.0];
+        for (k, p) in pieces.iter().enumerate() {
+            if p.dof() != pieces[0].dof() {
+                return Err(Error::DimensionMismatch {
+                    what: format!("trajectory piece {k} joint count"),
+                    expected: pieces[0].dof(),
+                    found: p.dof(),
+                });
+            }
+            starts.push(starts[k] + p.duration());
+        }
+        Ok(Sequence { pieces, starts })
+    }
+
+    /// The pieces.
+    pub fn pieces(&self) -> &[T] {
+        &self.pieces
+    }
+
+    /// Start time of each piece, then the total duration.
+    pub fn boundaries(&self) -> &[f64] {
+        &self.starts
+    }
+}
+
+impl<T: Trajectory> Trajectory for Sequence<T> {
+    fn dof(&self) -> usize {
+        self.pieces[0].dof()
+    }
+    fn duration(&self) -> f64 {
+        self.starts[self.starts.len() - 1]
+    }
+    fn eval(&self, t: f64, order: Order, out: &mut [f64]) {
+        let t = clamp_time(t, self.duration());
+        let k = find_piece(&self.starts, t);
+        self.pieces[k].eval(t - self.starts[k], order, out)
+    }
+}
+
+/// Settings of [`plan_waypoints`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlanOptions {
+    /// Path through each piece.
+    pub kind: PathKind,
+    /// Waypoints closer than this (Euclidean, joint units) to the previous one are dropped.
+    pub duplicate_tolerance: f64,
+    /// Turning angle (radians) above which a spline path stops at a waypoint; the default
+    /// π − 1e-6 stops only at (numerically) exact reversals. Linear paths stop at every corner
+    /// sharper than 1e-9 rad.
+    pub reversal_angle: f64,
+    /// TOPP-RA options for each piece (boundary velocities are forced to zero).
+    pub toppra: Options,
+}
+
+impl Default for PlanOptions {
+    fn default() -> Self {
+        PlanOptions {
+            kind: PathKind::NaturalCubic,
+            duplicate_tolerance: 1e-9,
+            reversal_angle: std::f64::consts::PI - 1e-6,
+            toppra: Options::default(),
+        }
+    }
+}
+
+/// A time-optimal trajectory through messy waypoints (row-major `count × dim`) under the
+/// velocity and acceleration limits of `limits`. See the module documentation.
+///
+/// ```
+/// use trajkit::topp::messy::{plan_waypoints, PlanOptions};
+/// use trajkit::{Limits, Trajectory};
+/// let limits = Limits::uniform(2, 1.0, 2.0, f64::INFINITY)?;
+/// // A repeated waypoint and an exact reversal: two rest-to-rest pieces.
+/// let w = [0.0, 0.0, 1.0, 0.0, 1.0, 0.0, 0.0, 0.0];
+/// let traj = plan_waypoints(&w, 2, &limits, &PlanOptions::default())?;
+/// assert_eq!(traj.pieces().len(), 2);
+/// # Ok::<(), trajkit::Error>(())
+/// ```
+pub fn plan_waypoints(
+    waypoints: &[f64],
+    dim: usize,
+    limits: &Limits,
+    options: &PlanOptions,
+) -> Result<Sequence<Parametrized<PiecePath>>> {
+    limits.expect_dof(dim, "the waypoints")?;
+    let (w, kept) = dedup_waypoints(waypoints, dim, options.duplicate_tolerance)?;
+    let count = w.len() / dim;
+    if count < 2 {
+        return Err(Error::TooFewWaypoints {
+            needed: 2,
+            found: count,
+        });
+    }
+    let max_turn = if options.kind == PathKind::Linear {
+        1e-9
+    } else {
+        options.reversal_angle
+    };
+    let mut cuts = vec![0];
+    cuts.extend(stop_indices(&w, dim, max_turn));
+    cuts.push(count - 1);
+    let mut pieces = Vec::with_capacity(cuts.len() - 1);
+    for (p, c) in cuts.windows(2).enumerate() {
+        let piece_w = &w[c[0] * dim..(c[1] + 1) * dim];
+        let path = piece_path(piece_w, dim, options.kind)?;
+        let opts = Options {
+            start_velocity: 0.0,
+            end_velocity: 0.0,
+            ..options.toppra.clone()
+        };
+        let traj = Toppra::with_limits(path, limits)?
+            .options(opts)
+            .solve()
+            .map_err(|e| match e {
+                Error::Infeasible(m) => Error::Infeasible(format!(
+                    "path piece {} (waypoints {} to {}): {m}",
+                    p + 1,
+                    kept[c[0]],
+                    kept[c[1]]
+                )),
+                e => e,
+            })?;
+        pieces.push(traj);
+    }
+    Sequence::new(pieces)
+}
+
+fn piece_path(w: &[f64], dim: usize, kind: PathKind) -> Result<PiecePath> {
+    let count = w.len() / dim;
+    if kind == PathKind::Linear {
+        return Ok(PiecePath::Linear(LinearPath::new(w, dim)?));
+    }
+    let mut s = vec![0.0; count];
+    for i in 1..count {
+        s[i] = s[i - 1] + seg_len(w, dim, i - 1);
+    }
+    let sp = match kind {
+        PathKind::NaturalCubic => CubicSpline::natural(&s, w, dim)?,
+        PathKind::NotAKnotCubic => CubicSpline::not_a_knot(&s, w, dim)?,
+        PathKind::ClampedCubic => {
+            let zero = vec![0.0; dim];
+            CubicSpline::clamped(&s, w, dim, &zero, &zero)?
+        }
+        PathKind::Linear => unreachable!("handled above"),
+    };
+    Ok(PiecePath::Cubic(sp))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dedup_and_stops() {
+        let w = [0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 1.0, 1e-12, 2.0, 0.0, 1.0, 0.0];
+        let (d, kept) = dedup_waypoints(&w, 2, 1e-9).unwrap();
+        assert_eq!(kept, vec![0, 2, 4, 5]);
+        assert_eq!(d.len(), 8);
+        // 0 → 1 → 2 → 1 on a line: a reversal at index 2 only.
+        assert_eq!(stop_indices(&d, 2, std::f64::consts::PI - 1e-6), vec![2]);
+        // A right-angle corner is a stop for a polyline only.
+        let c = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0];
+        assert_eq!(stop_indices(&c, 2, 1e-9), vec![1]);
+        assert!(stop_indices(&c, 2, std::f64::consts::PI - 1e-6).is_empty());
+        assert!(dedup_waypoints(&w, 2, -1.0).is_err());
+        assert!(PathKind::parse("bogus")
+            .unwrap_err()
+            .to_string()
+            .contains("bogus"));
+    }
+}

@@ -1,0 +1,165 @@
+//! The solved timing: path velocity at every gridpoint, constant path acceleration between.
+//!
+//! A [`Profile`] holds gridpoints s_i, path velocities ṡ_i and the constant path acceleration
+//! u_i = (ṡ_{i+1}² − ṡ_i²) / (2Δ_i) of each interval. In time, interval i lasts
+//! Δt_i = 2Δ_i / (ṡ_i + ṡ_{i+1}) and, with τ = t − t_i,
+//! `ṡ = ṡ_i + u_i·τ`, `s = s_i + ṡ_i·τ + u_i·τ²/2`, s⃛ = 0 inside the interval.
+//!
+//! [`Parametrized`] is the path composed with that profile ([`crate::topp::Retimed`]): the
+//! output trajectory ξ(t) = σ(s(t)) of TOPP-RA, evaluated exactly (q̇ = σ′ṡ,
+//! q̈ = σ″ṡ² + σ′s̈, q⃛ = σ‴ṡ³ + 3σ″ṡs̈), never refitted by another spline.
+//!
+//! # Precision contract
+//! Profile evaluation is exact up to rounding; at the end of an interval s reaches s_{i+1}
+//! up to rounding, and s is clamped into `[s_i, s_{i+1}]`. Position is continuous, velocity is
+//! continuous, path acceleration is piecewise constant, so joint jerk contains the jumps of s̈
+//! as impulses that [`crate::Trajectory::eval`] does not show (it reports the jerk inside the
+//! interval).
+
+use super::rescale::{Retimed, TimeLaw};
+use crate::error::{Error, Result};
+use crate::traj::{clamp_time, find_piece};
+
+/// TOPP-RA's output trajectory: a path timed by a [`Profile`].
+pub type Parametrized<P> = Retimed<P, Profile>;
+
+/// Path velocity at gridpoints and constant path acceleration between them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Profile {
+    s: Vec<f64>,
+    sd: Vec<f64>,
+    sdd: Vec<f64>,
+    t: Vec<f64>,
+}
+
+impl Profile {
+    /// A profile from gridpoints (strictly increasing) and path velocities `sd` (≥ 0, finite,
+    /// one per gridpoint). Two consecutive zero velocities would take infinite time and are
+    /// refused.
+    pub fn new(s: &[f64], sd: &[f64]) -> Result<Self> {
+        if s.len() < 2 {
+            return Err(Error::DimensionMismatch {
+                what: "profile gridpoint count".into(),
+                expected: 2,
+                found: s.len(),
+            });
+        }
+        if sd.len() != s.len() {
+            return Err(Error::DimensionMismatch {
+                what: "profile velocity count".into(),
+                expected: s.len(),
+                found: sd.len(),
+            });
+        }
+        for i in 0..s.len() {
+            crate::error::finite(|| format!("profile gridpoint {i}"), s[i])?;
+            if i > 0 && s[i].partial_cmp(&s[i - 1]) != Some(std::cmp::Ordering::Greater) {
+                return Err(Error::InvalidValue {
+                    field: format!("profile gridpoint {i}"),
+                    value: s[i],
+                    reason: "does not increase",
+                });
+            }
+            if !(sd[i] >= 0.0 && sd[i].is_finite()) {
+                return Err(Error::InvalidValue {
+                    field: format!("profile path velocity {i}"),
+                    value: sd[i],
+                    reason: "is not a finite number >= 0",
+                });
+            }
+        }
+        let n = s.len() - 1;
+        let mut sdd = Vec::with_capacity(n);
+        let mut t = Vec::with_capacity(n + 1);
+        t.push(0.0);
+        for i in 0..n {
+            let d = s[i + 1] - s[i];
+            let v = sd[i] + sd[i + 1];
+            if v <= 0.0 {
+                return Err(Error::Infeasible(format!(
+                    "the path velocity is zero on [{}, {}]: the motion would take forever",
+                    s[i],
+                    s[i + 1]
+                )));
+            }
+            sdd.push((sd[i + 1] - sd[i]) * v / (2.0 * d));
+            t.push(t[i] + 2.0 * d / v);
+        }
+        if !t[n].is_finite() {
+            return Err(Error::Infeasible(
+                "the duration is not finite (path velocity too close to zero)".into(),
+            ));
+        }
+        Ok(Profile {
+            s: s.to_vec(),
+            sd: sd.to_vec(),
+            sdd,
+            t,
+        })
+    }
+
+    /// Gridpoints s_i.
+    pub fn gridpoints(&self) -> &[f64] {
+        &self.s
+    }
+
+    /// Path velocities ṡ_i at the gridpoints.
+    pub fn velocities(&self) -> &[f64] {
+        &self.sd
+    }
+
+    /// Path accelerations u_i, one per interval.
+    pub fn accelerations(&self) -> &[f64] {
+        &self.sdd
+    }
+
+    /// Times t_i at which the gridpoints are reached (t_0 = 0).
+    pub fn times(&self) -> &[f64] {
+        &self.t
+    }
+
+    /// Total duration.
+    pub fn duration(&self) -> f64 {
+        self.t[self.t.len() - 1]
+    }
+}
+
+impl TimeLaw for Profile {
+    fn duration(&self) -> f64 {
+        Profile::duration(self)
+    }
+    fn eval(&self, t: f64) -> [f64; 4] {
+        let t = clamp_time(t, Profile::duration(self));
+        let n = self.sdd.len();
+        if t >= self.t[n] {
+            // The end state exactly (rest stays rest).
+            return [self.s[n], self.sd[n], self.sdd[n - 1], 0.0];
+        }
+        let i = find_piece(&self.t, t);
+        let tau = t - self.t[i];
+        let u = self.sdd[i];
+        let sd = self.sd[i] + u * tau;
+        let s =
+            (self.s[i] + self.sd[i] * tau + 0.5 * u * tau * tau).clamp(self.s[i], self.s[i + 1]);
+        [s, sd.max(0.0), u, 0.0]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constant_acceleration_pieces() {
+        // From rest, u = 1 on [0, 0.5]: ṡ₁ = 1, t₁ = 1; then constant speed on [0.5, 1.5].
+        let p = Profile::new(&[0.0, 0.5, 1.5], &[0.0, 1.0, 1.0]).unwrap();
+        assert_eq!(p.accelerations(), &[1.0, 0.0]);
+        assert_eq!(p.times(), &[0.0, 1.0, 2.0]);
+        let [s, sd, sdd, _] = p.eval(0.5);
+        assert!((s - 0.125).abs() < 1e-15 && (sd - 0.5).abs() < 1e-15 && sdd == 1.0);
+        assert_eq!(p.eval(5.0)[0], 1.5);
+        assert!(Profile::new(&[0.0, 1.0, 2.0], &[1.0, 0.0, 0.0]).is_err());
+        assert!(Profile::new(&[0.0, 1.0], &[1.0, -1.0]).is_err());
+        assert!(Profile::new(&[0.0, 0.0], &[1.0, 1.0]).is_err());
+    }
+}

@@ -1,0 +1,749 @@
+//! TOPP-RA: time-optimal path parameterization by reachability analysis.
+//!
+//! With state x = ṡ² and control u = s̈, the path velocity evolves between gridpoints as
+//! x_{i+1} = x_i + 2Δ_i·u_i (constant s̈ on each interval). Each constraint gives half-planes in
+//! (u, x) at every gridpoint ([`crate::topp::constraint`]). The solver
+//! 1. evaluates the path and all constraints at every gridpoint;
+//! 2. **backward pass**: from the end set K_N = {ṡ_end²}, computes the controllable sets
+//!    K_i = [min, max] of the x from which some admissible u reaches K_{i+1} — two exact
+//!    two-variable linear programs per stage ([`crate::topp::lp`]);
+//! 3. **forward pass**: from x_0 = ṡ_start², takes the largest admissible u that stays in
+//!    K_{i+1} (a one-variable program: the smallest upper bound);
+//! 4. optionally checks every interval between gridpoints and refines the grid where a
+//!    constraint is violated there, then solves again.
+//!
+//! Discretization ([`Discretization`]): *interpolation* (default) enforces the constraints of
+//! interval i at both s_i and s_{i+1} with the same u_i (x_{i+1} = x_i + 2Δu_i), so the limits
+//! hold at every gridpoint for the acceleration actually used on both sides; *collocation*
+//! enforces them at s_i only (cheaper, but the acceleration at s_{i+1} within interval i is not
+//! checked).
+//!
+//! Nothing caps ṡ: the only bounds are the constraints. A stretch of path on which no constraint
+//! bounds the velocity is reported as an error.
+//!
+//! # Precision contract
+//! - The profile is the exact greedy solution of the discretized problem up to the LP tolerance
+//!   (1e-10 relative): at every gridpoint, every constraint holds for the interval's u on both
+//!   sides within 1e-9 relative.
+//! - Between gridpoints (where the problem is not discretized), with [`Options::refine`] on
+//!   (the default), every interval is checked at its midpoint, its quarters and at points
+//!   approaching both ends geometrically (down to 4⁻⁷ of its length), and cut into equal parts
+//!   (as many as the measured excess calls for, the excess shrinking as Δ²) where a constraint
+//!   is exceeded by more than 3e-7 relative, up to [`MAX_REFINE_ROUNDS`] times (and while the
+//!   grid stays below [`MAX_REFINED_INTERVALS`] intervals); the tests check
+//!   1e-6 relative on 1 ms samples. With `refine` off the excess between gridpoints is O(Δ²)
+//!   (it shrinks fourfold when N doubles), except across a kink of the velocity limit curve
+//!   (where the binding joint changes), where it is O(Δ). An interval found within the limits
+//!   in one round and unchanged in the next (same ends, ṡ² at both ends within 1e-9 relative)
+//!   is not checked again.
+//! - The duration is the sum of 2Δ_i/(ṡ_i + ṡ_{i+1}); it converges to the continuous optimum as
+//!   the grid is refined (see notes/topp.md for measured N = 100, 1000, 10000).
+
+use super::constraint::{Constraint, ConstraintRows, PathPoint};
+use super::grid::Gridpoints;
+use super::lp::{self, BOX};
+use super::parametrized::{Parametrized, Profile};
+use super::rescale::Retimed;
+use crate::error::{Error, Result};
+use crate::{Limits, Path};
+
+/// How constraints are enforced on an interval.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Discretization {
+    /// At both ends of each interval with the interval's u (default; safe).
+    #[default]
+    Interpolation,
+    /// At the start of each interval only.
+    Collocation,
+}
+
+/// Largest number of refinement rounds of [`Options::refine`].
+pub const MAX_REFINE_ROUNDS: usize = 8;
+
+/// Refinement stops before the grid would exceed this many intervals.
+pub const MAX_REFINED_INTERVALS: usize = 1 << 22;
+
+/// Relative excess between gridpoints that triggers refinement.
+const REFINE_TOL: f64 = 3e-7;
+
+/// Where each interval is checked (fractions of its length): the midpoint and points
+/// approaching both ends geometrically (4⁻¹ … 4⁻⁷ from each end). A constraint active at a
+/// gridpoint can be exceeded just inside the interval, in a bump whose peak lies at some
+/// distance d from the end; the nearest point between d/4 and d sees at least 7/16 of its height.
+const REFINE_POINTS: [f64; 15] = [
+    1.0 / 16384.0,
+    1.0 / 4096.0,
+    1.0 / 1024.0,
+    1.0 / 256.0,
+    1.0 / 64.0,
+    1.0 / 16.0,
+    0.25,
+    0.5,
+    0.75,
+    1.0 - 1.0 / 16.0,
+    1.0 - 1.0 / 64.0,
+    1.0 - 1.0 / 256.0,
+    1.0 - 1.0 / 1024.0,
+    1.0 - 1.0 / 4096.0,
+    1.0 - 1.0 / 16384.0,
+];
+
+/// Solver options. `Options::default()`: 1000 uniform intervals, interpolation, rest to rest,
+/// refinement on.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Options {
+    /// Gridpoints.
+    pub gridpoints: Gridpoints,
+    /// Discretization scheme.
+    pub discretization: Discretization,
+    /// Path velocity ṡ at the start (≥ 0).
+    pub start_velocity: f64,
+    /// Path velocity ṡ at the end (≥ 0).
+    pub end_velocity: f64,
+    /// Check between gridpoints and refine the grid where a constraint is exceeded.
+    pub refine: bool,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            gridpoints: Gridpoints::Uniform(1000),
+            discretization: Discretization::Interpolation,
+            start_velocity: 0.0,
+            end_velocity: 0.0,
+            refine: true,
+        }
+    }
+}
+
+/// A TOPP-RA problem: a path, constraints and options.
+///
+/// ```
+/// use trajkit::topp::{LinearPath, Toppra};
+/// use trajkit::{Limits, Order, Trajectory};
+///
+/// let path = LinearPath::new(&[0.0, 0.0, 1.0, 0.5], 2)?;
+/// let limits = Limits::uniform(2, 1.0, 2.0, f64::INFINITY)?;
+/// let traj = Toppra::with_limits(&path, &limits)?.solve()?;
+/// // Straight line, 1D in effect: bang-coast-bang, duration known in closed form.
+/// let d = 1.0f64; // joint 1 travel, the binding joint
+/// let t = d / 1.0 + 1.0 / 2.0;
+/// assert!((traj.duration() - t).abs() < 1e-3);
+/// # Ok::<(), trajkit::Error>(())
+/// ```
+pub struct Toppra<'c, P: Path> {
+    path: P,
+    constraints: Vec<Box<dyn Constraint + 'c>>,
+    options: Options,
+}
+
+impl<'c, P: Path> Toppra<'c, P> {
+    /// A problem on `path` with no constraints yet and default options.
+    pub fn new(path: P) -> Self {
+        Toppra {
+            path,
+            constraints: Vec::new(),
+            options: Options::default(),
+        }
+    }
+
+    /// A problem on `path` with the velocity and acceleration limits of `limits`.
+    pub fn with_limits(path: P, limits: &Limits) -> Result<Self> {
+        limits.expect_dof(path.dim(), "the path")?;
+        Self::new(path)
+            .constraint(super::JointVelocity::from_limits(limits))?
+            .constraint(super::JointAcceleration::from_limits(limits))
+    }
+
+    /// Adds a constraint (its joint count must equal the path's dimension).
+    pub fn constraint(mut self, c: impl Constraint + 'c) -> Result<Self> {
+        if c.dof() != self.path.dim() {
+            return Err(Error::DimensionMismatch {
+                what: format!("{} joint count", c.name()),
+                expected: self.path.dim(),
+                found: c.dof(),
+            });
+        }
+        self.constraints.push(Box::new(c));
+        Ok(self)
+    }
+
+    /// Replaces the options.
+    pub fn options(mut self, options: Options) -> Self {
+        self.options = options;
+        self
+    }
+
+    /// Sets the gridpoints.
+    pub fn gridpoints(mut self, g: Gridpoints) -> Self {
+        self.options.gridpoints = g;
+        self
+    }
+
+    /// Sets the path velocities ṡ at start and end.
+    pub fn boundary_velocities(mut self, start: f64, end: f64) -> Self {
+        self.options.start_velocity = start;
+        self.options.end_velocity = end;
+        self
+    }
+
+    /// The path.
+    pub fn path(&self) -> &P {
+        &self.path
+    }
+
+    /// Solves and returns the timing only.
+    pub fn solve_profile(&self) -> Result<Profile> {
+        let o = &self.options;
+        let (a, b) = self.path.interval();
+        crate::error::finite(|| "path interval start".into(), a)?;
+        crate::error::finite(|| "path interval end".into(), b)?;
+        if b.partial_cmp(&a) != Some(std::cmp::Ordering::Greater) {
+            return Err(Error::InvalidValue {
+                field: "path interval end".into(),
+                value: b,
+                reason: "is not above the interval start",
+            });
+        }
+        for (name, v) in [
+            ("start path velocity", o.start_velocity),
+            ("end path velocity", o.end_velocity),
+        ] {
+            if !(v >= 0.0 && v.is_finite()) {
+                return Err(Error::InvalidValue {
+                    field: name.into(),
+                    value: v,
+                    reason: "is not a finite number >= 0",
+                });
+            }
+        }
+        let mut grid = o.gridpoints.points(&self.path)?;
+        let mut ws = Workspace::default();
+        let mut round = 0;
+        loop {
+            ws.evaluate(&self.path, &self.constraints, &grid)?;
+            let x = ws.solve(self, &grid)?;
+            if !o.refine || round == MAX_REFINE_ROUNDS {
+                return profile_from(&grid, &x);
+            }
+            let added = ws.refine(
+                &self.path,
+                &self.constraints,
+                &mut grid,
+                &x,
+                o.discretization,
+            );
+            if !added {
+                return profile_from(&grid, &x);
+            }
+            round += 1;
+        }
+    }
+
+    /// Solves and returns the timed trajectory ξ(t) = σ(s(t)).
+    pub fn solve(self) -> Result<Parametrized<P>> {
+        let profile = self.solve_profile()?;
+        Retimed::new(self.path, profile)
+    }
+}
+
+fn profile_from(grid: &[f64], x: &[f64]) -> Result<Profile> {
+    let sd: Vec<f64> = x.iter().map(|v| v.max(0.0).sqrt()).collect();
+    Profile::new(grid, &sd)
+}
+
+/// Constraint data at every gridpoint and scratch space.
+#[derive(Default)]
+struct Workspace {
+    /// Raw half-planes of all gridpoints and constraints, concatenated.
+    rows: Vec<[f64; 3]>,
+    /// `off[i * (nc + 1) + k]`: start of constraint k's rows at gridpoint i.
+    off: Vec<usize>,
+    /// Bounds on x per gridpoint, and the constraint that set the upper one.
+    xlo: Vec<f64>,
+    xhi: Vec<f64>,
+    xhi_by: Vec<usize>,
+    nc: usize,
+    /// Controllable sets.
+    klo: Vec<f64>,
+    khi: Vec<f64>,
+    cr: ConstraintRows,
+    /// Intervals found within the limits by the last refinement check: (s_i, s_{i+1}, x_i,
+    /// x_{i+1}), in grid order. An interval unchanged since (same ends, x within 1e-9
+    /// relative) is not checked again.
+    clean: Vec<[f64; 4]>,
+    q: Vec<f64>,
+    dq: Vec<f64>,
+    ddq: Vec<f64>,
+}
+
+/// Stand-in for "no finite bound": velocities beyond this are reported as unbounded.
+const X_BIG: f64 = 1e30;
+
+impl Workspace {
+    fn evaluate<P: Path>(
+        &mut self,
+        path: &P,
+        cons: &[Box<dyn Constraint + '_>],
+        grid: &[f64],
+    ) -> Result<()> {
+        let n = path.dim();
+        let nc = cons.len();
+        self.nc = nc;
+        self.q.resize(n, 0.0);
+        self.dq.resize(n, 0.0);
+        self.ddq.resize(n, 0.0);
+        self.rows.clear();
+        self.off.clear();
+        self.xlo.clear();
+        self.xhi.clear();
+        self.xhi_by.clear();
+        let need_q = cons.iter().any(|c| c.uses_position());
+        self.q.iter_mut().for_each(|v| *v = 0.0);
+        for &s in grid {
+            if need_q {
+                path.eval(s, 0, &mut self.q);
+            }
+            path.eval(s, 1, &mut self.dq);
+            path.eval(s, 2, &mut self.ddq);
+            check_path_values(s, &self.q, &self.dq, &self.ddq)?;
+            let p = PathPoint {
+                s,
+                q: &self.q,
+                dq: &self.dq,
+                ddq: &self.ddq,
+            };
+            let (mut lo, mut hi, mut by) = (0.0f64, f64::INFINITY, usize::MAX);
+            for (k, c) in cons.iter().enumerate() {
+                self.off.push(self.rows.len());
+                self.cr.clear();
+                c.write(&p, &mut self.cr);
+                if let Some(why) = self.cr.broken {
+                    return Err(Error::Infeasible(format!(
+                        "constraint '{}' at s = {s}: {why}",
+                        c.name()
+                    )));
+                }
+                self.rows.extend_from_slice(&self.cr.rows);
+                lo = lo.max(self.cr.x_min);
+                if self.cr.x_max < hi {
+                    hi = self.cr.x_max;
+                    by = k;
+                }
+            }
+            self.off.push(self.rows.len());
+            if self.off.len() == nc + 1 {
+                // Every gridpoint usually has as many rows as the first: reserve once.
+                self.rows.reserve(self.rows.len() * grid.len());
+                self.off.reserve((nc + 1) * grid.len());
+                self.xlo.reserve(grid.len());
+                self.xhi.reserve(grid.len());
+                self.xhi_by.reserve(grid.len());
+            }
+            if lo > hi * (1.0 + 1e-12) {
+                return Err(Error::Infeasible(format!(
+                    "at s = {s}: the velocity bounds contradict each other (ṡ² ≥ {lo} but ṡ² ≤ {hi} by '{}')",
+                    cons[by].name()
+                )));
+            }
+            self.xlo.push(lo);
+            self.xhi.push(hi.max(lo));
+            self.xhi_by.push(by);
+        }
+        Ok(())
+    }
+
+    /// Rows of constraint k at gridpoint i.
+    fn rows_of(&self, i: usize, k: usize) -> &[[f64; 3]] {
+        let base = i * (self.nc + 1);
+        &self.rows[self.off[base + k]..self.off[base + k + 1]]
+    }
+
+    /// All rows at gridpoint i.
+    fn rows_at(&self, i: usize) -> &[[f64; 3]] {
+        let base = i * (self.nc + 1);
+        &self.rows[self.off[base]..self.off[base + self.nc]]
+    }
+
+    /// The half-planes of stage i in (u, x), restricted to constraint `only` when given.
+    fn stage(
+        &self,
+        i: usize,
+        delta: f64,
+        disc: Discretization,
+        only: Option<usize>,
+        khi: f64,
+        klo: f64,
+    ) -> Stage<'_> {
+        let (here, next) = match only {
+            Some(k) => (self.rows_of(i, k), self.rows_of(i + 1, k)),
+            None => (self.rows_at(i), self.rows_at(i + 1)),
+        };
+        Stage {
+            here,
+            next: if disc == Discretization::Interpolation {
+                next
+            } else {
+                &[]
+            },
+            two_delta: 2.0 * delta,
+            khi,
+            klo,
+        }
+    }
+
+    /// Backward and forward passes on `grid`; returns x_i = ṡ_i².
+    fn solve<P: Path>(&mut self, prob: &Toppra<'_, P>, grid: &[f64]) -> Result<Vec<f64>> {
+        let o = &prob.options;
+        let n = grid.len() - 1;
+        let disc = o.discretization;
+        let x_end = o.end_velocity * o.end_velocity;
+        let x_start = o.start_velocity * o.start_velocity;
+        self.klo.clear();
+        self.klo.resize(n + 1, 0.0);
+        self.khi.clear();
+        self.khi.resize(n + 1, 0.0);
+        if x_end > self.xhi[n] * (1.0 + 1e-9) || x_end < self.xlo[n] * (1.0 - 1e-9) {
+            return Err(Error::Infeasible(format!(
+                "the end path velocity ṡ = {} is outside what '{}' allows at s = {} (ṡ ≤ {})",
+                o.end_velocity,
+                self.name_of(prob, self.xhi_by[n]),
+                grid[n],
+                self.xhi[n].sqrt()
+            )));
+        }
+        self.klo[n] = x_end;
+        self.khi[n] = x_end;
+        let mut hint_max = [BOX, BOX];
+        let mut hint_min = [BOX, BOX];
+        for i in (0..n).rev() {
+            let delta = grid[i + 1] - grid[i];
+            let (klo, khi) = (self.klo[i + 1], self.khi[i + 1]);
+            let stage = self.stage(i, delta, disc, None, khi, klo);
+            let xhi = self.xhi[i].min(X_BIG);
+            let xlo = self.xlo[i];
+            let lo = [(klo - xhi) / (2.0 * delta), xlo];
+            let hi = [(khi - xlo) / (2.0 * delta), xhi];
+            let tol = 1e-10 * (1.0 + khi);
+            let best = lp::maximize([0.0, 1.0], &stage, lo, hi, hint_max, tol);
+            // The lowest controllable velocity is often zero (rest is admissible with u = 0):
+            // skip the second program then.
+            let rest_ok = xlo == 0.0
+                && klo <= 0.0
+                && stage.here.iter().chain(stage.next).all(|r| r[2] >= 0.0);
+            let worst = if rest_ok {
+                best.map(|_| lp::LpSolution {
+                    v: [0.0, 0.0],
+                    active: hint_min,
+                })
+            } else {
+                best.and_then(|_| lp::maximize([0.0, -1.0], &stage, lo, hi, hint_min, tol))
+            };
+            let (best, worst) = match (best, worst) {
+                (Some(b), Some(w)) => (b, w),
+                _ => return Err(self.explain_stage(prob, grid, i)),
+            };
+            if best.v[1] >= X_BIG * 0.5 {
+                return Err(Error::Infeasible(format!(
+                    "no constraint bounds the path velocity near s = {} (the path does not move there, or nothing limits it)",
+                    grid[i]
+                )));
+            }
+            hint_max = best.active;
+            hint_min = worst.active;
+            self.khi[i] = best.v[1].clamp(xlo, xhi);
+            self.klo[i] = worst.v[1].clamp(xlo, self.khi[i]);
+        }
+        if x_start > self.khi[0] * (1.0 + 1e-9) + 1e-300 || x_start < self.klo[0] * (1.0 - 1e-9) {
+            return Err(Error::Infeasible(format!(
+                "the start path velocity ṡ = {} is not controllable: from s = {} the path velocity must be in [{}, {}] to meet the constraints and the end velocity",
+                o.start_velocity,
+                grid[0],
+                self.klo[0].sqrt(),
+                self.khi[0].sqrt()
+            )));
+        }
+        // Forward pass.
+        let mut x = vec![0.0; n + 1];
+        x[0] = x_start.clamp(self.klo[0], self.khi[0]);
+        for i in 0..n {
+            let delta = grid[i + 1] - grid[i];
+            let xi = x[i];
+            let mut u = (self.khi[i + 1] - xi) / (2.0 * delta);
+            let mut bound = |a: f64, rhs: f64| {
+                if a > 0.0 {
+                    let v = rhs / a;
+                    if v < u {
+                        u = v;
+                    }
+                }
+            };
+            for &[a, b, g] in self.rows_at(i) {
+                bound(a, g - b * xi);
+            }
+            if disc == Discretization::Interpolation {
+                for &[a, b, g] in self.rows_at(i + 1) {
+                    bound(a + 2.0 * delta * b, g - b * xi);
+                }
+            }
+            let next = (xi + 2.0 * delta * u).clamp(self.klo[i + 1], self.khi[i + 1]);
+            x[i + 1] = next;
+            if next <= 0.0 && xi <= 0.0 {
+                return Err(self.explain_stall(prob, grid, i));
+            }
+        }
+        Ok(x)
+    }
+
+    fn name_of<P: Path>(&self, prob: &Toppra<'_, P>, k: usize) -> String {
+        prob.constraints
+            .get(k)
+            .map_or_else(|| "no constraint".into(), |c| c.name())
+    }
+
+    /// Why stage i has an empty controllable set.
+    fn explain_stage<P: Path>(&mut self, prob: &Toppra<'_, P>, grid: &[f64], i: usize) -> Error {
+        let delta = grid[i + 1] - grid[i];
+        let (klo, khi) = (self.klo[i + 1], self.khi[i + 1]);
+        let xhi = self.xhi[i].min(X_BIG);
+        let xlo = self.xlo[i];
+        let lo = [(klo - xhi) / (2.0 * delta), xlo];
+        let hi = [(khi - xlo) / (2.0 * delta), xhi];
+        let tol = 1e-10 * (1.0 + khi);
+        let mut culprits = Vec::new();
+        for k in 0..self.nc {
+            let stage = self.stage(i, delta, prob.options.discretization, Some(k), khi, klo);
+            if lp::maximize([0.0, 1.0], &stage, lo, hi, [BOX, BOX], tol).is_none() {
+                culprits.push(prob.constraints[k].name());
+            }
+        }
+        let who = if culprits.is_empty() {
+            "the constraints together".to_string()
+        } else {
+            format!("'{}'", culprits.join("', '"))
+        };
+        Error::Infeasible(format!(
+            "at s = {} (between gridpoints {i} and {}): {who} leave no admissible path acceleration that reaches the velocities controllable at s = {} (ṡ in [{}, {}])",
+            grid[i],
+            i + 1,
+            grid[i + 1],
+            klo.sqrt(),
+            khi.sqrt()
+        ))
+    }
+
+    /// Why the path cannot move on interval i (x = 0 at both ends).
+    fn explain_stall<P: Path>(&mut self, prob: &Toppra<'_, P>, grid: &[f64], i: usize) -> Error {
+        let mut who: Vec<String> = Vec::new();
+        // Joint-level explanations from the constraints themselves.
+        for &s in &grid[i..=i + 1] {
+            prob.path.eval(s, 0, &mut self.q);
+            prob.path.eval(s, 1, &mut self.dq);
+            prob.path.eval(s, 2, &mut self.ddq);
+            let p = PathPoint {
+                s,
+                q: &self.q,
+                dq: &self.dq,
+                ddq: &self.ddq,
+            };
+            for c in &prob.constraints {
+                if let Some(why) = c.diagnose(&p) {
+                    if !who.contains(&why) {
+                        who.push(why);
+                    }
+                }
+            }
+        }
+        if who.is_empty() {
+            for j in [i, i + 1] {
+                if self.xhi[j] <= 0.0 {
+                    who.push(format!(
+                        "'{}' allows only ṡ = 0",
+                        self.name_of(prob, self.xhi_by[j])
+                    ));
+                }
+            }
+            for k in 0..self.nc {
+                // From rest (x = 0), a row a·u ≤ g with a > 0 and g ≤ 0 forbids starting.
+                if self.rows_of(i, k).iter().any(|r| r[0] > 0.0 && r[2] <= 0.0) {
+                    who.push(format!(
+                        "'{}' allows no path acceleration from rest",
+                        prob.constraints[k].name()
+                    ));
+                }
+            }
+            who.dedup();
+        }
+        let who = if who.is_empty() {
+            "the constraints allow only ṡ = 0".to_string()
+        } else {
+            who.join("; ")
+        };
+        Error::Infeasible(format!(
+            "the path cannot move between s = {} and s = {}: {who}",
+            grid[i],
+            grid[i + 1]
+        ))
+    }
+
+    /// Checks each interval at its midpoint and at points approaching its ends; cuts intervals where a constraint is
+    /// exceeded. Returns whether the grid changed.
+    fn refine<P: Path>(
+        &mut self,
+        path: &P,
+        cons: &[Box<dyn Constraint + '_>],
+        grid: &mut Vec<f64>,
+        x: &[f64],
+        disc: Discretization,
+    ) -> bool {
+        let _ = disc;
+        let n = grid.len() - 1;
+        let need_q = cons.iter().any(|c| c.uses_position());
+        // For each interval, the number of equal parts to cut it into (1: leave it).
+        let mut split: Vec<usize> = vec![1; n];
+        let mut any = false;
+        let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
+        let previous = std::mem::take(&mut self.clean);
+        let mut p = 0;
+        for i in 0..n {
+            while p < previous.len() && previous[p][0] < grid[i] {
+                p += 1;
+            }
+            if p < previous.len() {
+                let c = previous[p];
+                if c[0] == grid[i]
+                    && c[1] == grid[i + 1]
+                    && same(c[2], x[i])
+                    && same(c[3], x[i + 1])
+                {
+                    self.clean.push([grid[i], grid[i + 1], x[i], x[i + 1]]);
+                    continue;
+                }
+            }
+            let delta = grid[i + 1] - grid[i];
+            let u = (x[i + 1] - x[i]) / (2.0 * delta);
+            let mut worst = REFINE_TOL;
+            for theta in REFINE_POINTS {
+                let s = grid[i] + delta * theta;
+                if !(s > grid[i] && s < grid[i + 1]) {
+                    continue;
+                }
+                let xs = (x[i] + 2.0 * u * (s - grid[i])).max(0.0);
+                if need_q {
+                    path.eval(s, 0, &mut self.q);
+                }
+                path.eval(s, 1, &mut self.dq);
+                path.eval(s, 2, &mut self.ddq);
+                let p = PathPoint {
+                    s,
+                    q: &self.q,
+                    dq: &self.dq,
+                    ddq: &self.ddq,
+                };
+                for c in cons {
+                    self.cr.clear();
+                    c.write(&p, &mut self.cr);
+                    // ṡ ≤ √x_max: the relative excess of a velocity is that of √x.
+                    let ex = if self.cr.x_max > 0.0 {
+                        (xs / self.cr.x_max).sqrt() - 1.0
+                    } else if xs > 0.0 {
+                        f64::INFINITY
+                    } else {
+                        0.0
+                    };
+                    let mut e = ex;
+                    for &[a, b, g] in &self.cr.rows {
+                        let scale = g.abs().max((a * u).abs()).max((b * xs).abs());
+                        if scale > 0.0 {
+                            e = e.max((a * u + b * xs - g) / scale);
+                        }
+                    }
+                    if e > worst {
+                        worst = e;
+                        any = true;
+                    }
+                }
+            }
+            if worst > REFINE_TOL {
+                // The excess of a smooth constraint shrinks with the square of the interval
+                // length: cut into enough parts to bring it a few times below the tolerance.
+                let parts = (worst / (0.5 * REFINE_TOL)).sqrt().ceil();
+                split[i] = if parts.is_finite() {
+                    (parts as usize).clamp(2, 64)
+                } else {
+                    64
+                };
+            } else {
+                self.clean.push([grid[i], grid[i + 1], x[i], x[i + 1]]);
+            }
+        }
+        let _ = disc;
+        let total: usize = split.iter().sum();
+        if !any || total > MAX_REFINED_INTERVALS {
+            return false;
+        }
+        let mut next = Vec::with_capacity(grid.len() * 2);
+        for i in 0..n {
+            next.push(grid[i]);
+            let m = split[i];
+            for k in 1..m {
+                let s = grid[i] + (grid[i + 1] - grid[i]) * (k as f64 / m as f64);
+                if s > next[next.len() - 1] && s < grid[i + 1] {
+                    next.push(s);
+                }
+            }
+        }
+        next.push(grid[n]);
+        let changed = next.len() != grid.len();
+        *grid = next;
+        changed
+    }
+}
+
+/// The half-planes of one stage, computed on the fly from the gridpoint rows: the rows at s_i,
+/// the rows at s_{i+1} with x_{i+1} = x + 2Δu substituted, and x_{i+1} ∈ [klo, khi].
+struct Stage<'a> {
+    here: &'a [[f64; 3]],
+    next: &'a [[f64; 3]],
+    two_delta: f64,
+    khi: f64,
+    klo: f64,
+}
+
+impl lp::HalfPlanes for Stage<'_> {
+    #[inline]
+    fn count(&self) -> usize {
+        self.here.len() + self.next.len() + 2
+    }
+    #[inline]
+    fn get(&self, k: usize) -> [f64; 3] {
+        let h = self.here.len();
+        if k < h {
+            self.here[k]
+        } else if k < h + self.next.len() {
+            let [a, b, g] = self.next[k - h];
+            [a + self.two_delta * b, b, g]
+        } else if k == h + self.next.len() {
+            [self.two_delta, 1.0, self.khi]
+        } else {
+            [-self.two_delta, -1.0, -self.klo]
+        }
+    }
+}
+
+fn check_path_values(s: f64, q: &[f64], dq: &[f64], ddq: &[f64]) -> Result<()> {
+    for (name, v) in [
+        ("position", q),
+        ("first derivative", dq),
+        ("second derivative", ddq),
+    ] {
+        if let Some(j) = v.iter().position(|x| !x.is_finite()) {
+            return Err(Error::InvalidValue {
+                field: format!("path {name} of joint {} at s = {s}", j + 1),
+                value: v[j],
+                reason: "is not a finite number",
+            });
+        }
+    }
+    Ok(())
+}

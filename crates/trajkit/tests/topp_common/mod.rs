@@ -1,0 +1,109 @@
+//! Shared helpers of the TOPP integration tests.
+#![allow(dead_code)]
+
+use serde_json::Value;
+use trajkit::spline::PiecewisePolynomial;
+use trajkit::{Order, Trajectory};
+
+/// The toppra fixture file.
+pub fn fixtures() -> Vec<Value> {
+    let p = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/topp/toppra_panda.json"
+    );
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
+    v["problems"].as_array().unwrap().clone()
+}
+
+pub fn floats(v: &Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
+/// The fixture's cubic as a trajkit piecewise polynomial (same coefficients).
+pub fn fixture_path(p: &Value) -> PiecewisePolynomial {
+    let breaks = floats(&p["breaks"]);
+    let dim = p["dof"].as_u64().unwrap() as usize;
+    let mut coeffs = Vec::new();
+    for piece in p["coefficients"].as_array().unwrap() {
+        for joint in piece.as_array().unwrap() {
+            coeffs.extend(floats(joint));
+        }
+    }
+    PiecewisePolynomial::new(breaks, dim, 3, coeffs).unwrap()
+}
+
+/// Worst use of the limits over 1 ms samples (both ends included): pointwise velocity and
+/// acceleration ratios, and finite-difference ratios of positions (velocity) and of sampled
+/// velocities (acceleration). Limits are directional: `lo[j] <= value <= hi[j]`.
+pub struct Worst {
+    pub velocity: f64,
+    pub acceleration: f64,
+    pub fd_velocity: f64,
+    pub fd_acceleration: f64,
+}
+
+fn ratio(v: f64, lo: f64, hi: f64) -> f64 {
+    if v >= 0.0 {
+        if hi.is_infinite() {
+            0.0
+        } else {
+            v / hi
+        }
+    } else if lo.is_infinite() {
+        0.0
+    } else {
+        v / lo
+    }
+}
+
+pub fn worst_ratios<T: Trajectory>(
+    traj: &T,
+    vlo: &[f64],
+    vhi: &[f64],
+    alo: &[f64],
+    ahi: &[f64],
+    dt: f64,
+) -> Worst {
+    let n = traj.dof();
+    let big_t = traj.duration();
+    let steps = (big_t / dt).ceil() as usize;
+    let times: Vec<f64> = (0..=steps).map(|k| (k as f64 * dt).min(big_t)).collect();
+    let mut q = vec![vec![0.0; n]; times.len()];
+    let mut qd = vec![vec![0.0; n]; times.len()];
+    let mut w = Worst {
+        velocity: 0.0,
+        acceleration: 0.0,
+        fd_velocity: 0.0,
+        fd_acceleration: 0.0,
+    };
+    let mut a = vec![0.0; n];
+    for (k, &t) in times.iter().enumerate() {
+        traj.eval(t, Order::Position, &mut q[k]);
+        traj.eval(t, Order::Velocity, &mut qd[k]);
+        traj.eval(t, Order::Acceleration, &mut a);
+        for j in 0..n {
+            assert!(q[k][j].is_finite() && qd[k][j].is_finite() && a[j].is_finite());
+            w.velocity = w.velocity.max(ratio(qd[k][j], vlo[j], vhi[j]));
+            w.acceleration = w.acceleration.max(ratio(a[j], alo[j], ahi[j]));
+        }
+    }
+    for k in 1..times.len() {
+        let h = times[k] - times[k - 1];
+        if h < 1e-9 {
+            continue;
+        }
+        for j in 0..n {
+            w.fd_velocity = w
+                .fd_velocity
+                .max(ratio((q[k][j] - q[k - 1][j]) / h, vlo[j], vhi[j]));
+            w.fd_acceleration =
+                w.fd_acceleration
+                    .max(ratio((qd[k][j] - qd[k - 1][j]) / h, alo[j], ahi[j]));
+        }
+    }
+    w
+}
