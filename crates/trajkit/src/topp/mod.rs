@@ -36,6 +36,7 @@
 
 pub mod constraint;
 pub mod grid;
+pub mod jerk;
 pub mod lp;
 pub mod messy;
 pub mod parametrized;
