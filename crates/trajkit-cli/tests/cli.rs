@@ -47,20 +47,16 @@ fn plan_default_passes_check_against_panda() {
     assert!(d.join("trajectory.csv").exists() && d.join("t.svg").exists());
     let text = std::fs::read_to_string(d.join("trajectory.csv")).unwrap();
     assert!(text.starts_with("t,q1,q2,q3,q4,q5,q6,q7,qd1,"));
-    // The default method (TOPP-RA) limits velocity and acceleration; jerk is not limited.
-    assert!(
-        out.contains("jerk: not limited by --method toppra"),
-        "{out}"
-    );
+    // The default method: TOPP-RA, then jerk bounded; every Panda limit holds, jerk included.
+    assert!(out.contains("jerk: bounded (TOPP-RA"), "{out}");
+    let o = trajkit(&["check", "trajectory.csv", "--limits", "panda"], &d);
+    assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    // Raw TOPP-RA on request: velocity and acceleration hold, jerk is not limited (and said so).
+    let o = trajkit(&["plan", "--no-jerk-limit", "--out", "raw.csv"], &d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("jerk: not limited"), "{}", stdout(&o));
     let o = trajkit(
-        &[
-            "check",
-            "trajectory.csv",
-            "--limits",
-            "panda",
-            "--max-jerk",
-            "inf",
-        ],
+        &["check", "raw.csv", "--limits", "panda", "--max-jerk", "inf"],
         &d,
     );
     assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));

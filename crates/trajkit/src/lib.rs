@@ -32,7 +32,8 @@
 //!
 //! - [`spline`]: splines and curves (cubic, Hermite, PCHIP, Akima, Catmull-Rom, Bézier,
 //!   B-spline, NURBS, arc length, SO(3)); every curve is a [`Path`].
-//! - [`topp`]: time-optimal path parameterization (issue in progress).
+//! - [`topp`]: time-optimal path parameterization (TOPP-RA with general constraints, bounded-jerk
+//!   output) and time rescaling of any path.
 //! - [`primitives`]: movement primitives learned from demonstrations: DMP, ProMP, KMP.
 //!
 //! See ARCHITECTURE.md in the repository for how data flows between them.

@@ -15,7 +15,8 @@ pub const DEFAULT_WAYPOINTS: &str = include_str!("../default_waypoints.csv");
 #[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {
     /// Time-optimal parameterization (TOPP-RA) of a C² spline through the waypoints, within the
-    /// velocity and acceleration limits (jerk is not limited by this method).
+    /// velocity and acceleration limits; then jerk bounded by filtering the timing law and
+    /// rescaling time (unless --no-jerk-limit or no joint has a jerk limit).
     Toppra,
     /// Synchronized polynomial segments between waypoints, each as short as the limits allow.
     Poly,
@@ -111,6 +112,10 @@ pub struct PlanArgs {
     /// chord tolerance). Limits are also checked between gridpoints and the grid refined there.
     #[arg(long, value_name = "N|auto", default_value = "1000", value_parser = parse_gridpoints)]
     pub gridpoints: trajkit::topp::Gridpoints,
+    /// With --method toppra: keep TOPP-RA's raw result (piecewise-constant path acceleration,
+    /// unbounded jerk) instead of bounding its jerk.
+    #[arg(long)]
+    pub no_jerk_limit: bool,
     /// Polynomial degree of each segment (--method poly).
     #[arg(long, value_enum, default_value = "quintic")]
     pub degree: DegreeArg,
@@ -173,6 +178,9 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
         .expect_dof(w.dof(), "the waypoints")
         .map_err(|e| CliError(format!("{src}: {e}")))?;
     check_waypoints_in_range(&w, &limits, &src)?;
+    let has_jerk = limits.joints().iter().any(|j| j.jerk.is_finite());
+    let jerk_limited = a.method == Method::Toppra && has_jerk && !a.no_jerk_limit;
+    let mut note = String::new();
     let traj: Box<dyn Trajectory> = match a.method {
         Method::Toppra => {
             use trajkit::topp::messy::{plan_waypoints, PlanOptions};
@@ -184,7 +192,23 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
                 },
                 ..Default::default()
             };
-            Box::new(plan_waypoints(w.points(), w.dof(), &limits, &opts)?)
+            let raw = plan_waypoints(w.points(), w.dof(), &limits, &opts)?;
+            if jerk_limited {
+                let jl = trajkit::topp::jerk::limit_jerk_sequence(
+                    &raw,
+                    &limits,
+                    &trajkit::topp::jerk::JerkOptions::default(),
+                )?;
+                note = format!(
+                    "jerk: bounded (TOPP-RA {:.6} s, filtered and rescaled +{:.2}%)",
+                    raw.duration(),
+                    100.0 * (jl.duration() / raw.duration() - 1.0)
+                );
+                Box::new(jl)
+            } else {
+                note = "jerk: not limited (--no-jerk-limit or no jerk limits): TOPP-RA's path acceleration is piecewise constant".into();
+                Box::new(raw)
+            }
         }
         Method::Poly => {
             let vel = match a.via_velocity {
@@ -202,13 +226,14 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
     };
     let names: Vec<String> = w.names().to_vec();
     let table = trajkit::sample::sample(&*traj, a.output.rate)?.with_names(names.clone())?;
-    // TOPP-RA is second order: it limits velocity and acceleration, not jerk (its path
-    // acceleration is piecewise constant). Its verdict leaves jerk out and says so.
-    let checked_limits = match a.method {
-        Method::Toppra => limits
+    // Raw TOPP-RA is second order (piecewise-constant path acceleration): its verdict leaves
+    // jerk out and says so. Every other result is checked against every limit.
+    let checked_limits = if a.method == Method::Toppra && !jerk_limited {
+        limits
             .clone()
-            .with_override(trajkit::Order::Jerk, &[f64::INFINITY])?,
-        Method::Poly => limits.clone(),
+            .with_override(trajkit::Order::Jerk, &[f64::INFINITY])?
+    } else {
+        limits.clone()
     };
     let report = check_samples(&table, &checked_limits)?;
     let mut outputs = Outputs::default();
@@ -236,11 +261,8 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
         table.len(),
         a.output.rate
     );
-    if a.method == Method::Toppra {
-        let _ = writeln!(
-            s,
-            "jerk: not limited by --method toppra (second order); use --method poly for jerk limits"
-        );
+    if !note.is_empty() {
+        let _ = writeln!(s, "{note}");
     }
     let _ = writeln!(s, "worst limit ratio per joint (velocity / acceleration / jerk, pointwise and finite-difference):");
     for (j, jr) in report.joints.iter().enumerate() {

@@ -242,10 +242,121 @@ pub fn limit_jerk<P: Path>(
     })?;
     let law = FilteredProfile::new(profile, w)?;
     let traj = Retimed::new(path, law)?;
-    let k = min_time_scale(&traj, limits, options.check_rate)?;
-    // Never speed up TOPP-RA's result; a hair of margin for the samples the check misses.
+    let sampled = min_time_scale(&traj, limits, options.check_rate)?;
+    let k = sampled.max(scale_needed(&traj, limits));
+    // Never speed up TOPP-RA's result; a hair of margin for rounding.
     let k = (k * (1.0 + 1e-9)).max(1.0);
     Scaled::new(traj, k)
+}
+
+/// The time-scaling factor the filtered trajectory needs, max over t of
+/// max(r_v, √r_a, ∛r_j), found piece by piece: the filtered law is smooth between its kinks
+/// (the profile's switch times t_i and t_i + w, and the times where s crosses a path
+/// breakpoint), so each piece is evaluated just inside both ends (one-sided values at the
+/// jumps of the jerk) and at interior points, and the pieces whose value comes within 1e-3 of
+/// the largest are refined by golden-section search.
+fn scale_needed<P: Path>(traj: &Retimed<P, FilteredProfile>, limits: &Limits) -> f64 {
+    use crate::Trajectory;
+    let n = traj.dof();
+    let law = traj.law();
+    let w = law.window();
+    let big_t = law.duration();
+    let mut buf = vec![0.0; n];
+    let mut kval = |t: f64| -> f64 {
+        let mut k: f64 = 0.0;
+        for (order, root) in [
+            (Order::Velocity, 1),
+            (Order::Acceleration, 2),
+            (Order::Jerk, 3),
+        ] {
+            traj.eval(t, order, &mut buf);
+            for (j, &v) in buf.iter().enumerate() {
+                let r = limits.joint(j).ratio(order, v);
+                let f = match root {
+                    1 => r,
+                    2 => r.sqrt(),
+                    _ => r.cbrt(),
+                };
+                if f > k {
+                    k = f;
+                }
+            }
+        }
+        k
+    };
+    // Kinks of the filtered law.
+    let mut kinks: Vec<f64> = Vec::with_capacity(2 * law.profile().times().len() + 16);
+    for &ti in law.profile().times() {
+        kinks.push(ti);
+        kinks.push(ti + w);
+    }
+    for sb in traj.path().breakpoints() {
+        // s_w is non-decreasing: bisection for the time it reaches sb.
+        let (mut lo, mut hi) = (0.0, big_t);
+        if law.eval(hi)[0] < sb || law.eval(lo)[0] >= sb {
+            continue;
+        }
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if law.eval(mid)[0] < sb {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        kinks.push(hi);
+    }
+    kinks.push(0.0);
+    kinks.push(big_t);
+    kinks.retain(|t| (0.0..=big_t).contains(t));
+    kinks.sort_by(f64::total_cmp);
+    kinks.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * big_t.max(1.0));
+    let mut best: f64 = 0.0;
+    let mut candidates: Vec<(f64, f64, f64)> = Vec::new(); // (value, a, b)
+    for pair in kinks.windows(2) {
+        let (a, b) = (pair[0], pair[1]);
+        let eps = 1e-9 * (b - a);
+        let mut piece_best: f64 = 0.0;
+        let mut interior_best = (0.0f64, a);
+        for (i, f) in [0.0, 0.25, 0.5, 0.75, 1.0].iter().enumerate() {
+            let t = (a + f * (b - a)).clamp(a + eps, b - eps);
+            let v = kval(t);
+            piece_best = piece_best.max(v);
+            if i > 0 && i < 4 && v > interior_best.0 {
+                interior_best = (v, t);
+            }
+        }
+        best = best.max(piece_best);
+        candidates.push((interior_best.0, a, b));
+    }
+    for &(v, a, b) in &candidates {
+        if v < best * (1.0 - 1e-3) {
+            continue;
+        }
+        // Golden-section search for the interior maximum.
+        let g = 0.5 * (5f64.sqrt() - 1.0);
+        let (mut lo, mut hi) = (a, b);
+        let mut x1 = hi - g * (hi - lo);
+        let mut x2 = lo + g * (hi - lo);
+        let (mut f1, mut f2) = (kval(x1), kval(x2));
+        for _ in 0..60 {
+            if f1 > f2 {
+                hi = x2;
+                x2 = x1;
+                f2 = f1;
+                x1 = hi - g * (hi - lo);
+                f1 = kval(x1);
+            } else {
+                lo = x1;
+                x1 = x2;
+                f1 = f2;
+                x2 = lo + g * (hi - lo);
+                f2 = kval(x2);
+            }
+        }
+        best = best.max(f1).max(f2);
+    }
+    best
 }
 
 /// [`limit_jerk`] applied to every rest-to-rest piece of a planned sequence
@@ -363,9 +474,17 @@ mod tests {
         );
         let ratio = jl.duration() / raw.duration();
         for p in jl.pieces() {
-            println!("window {:.5} s, scale {:.5}", p.inner().law().window(), p.factor());
+            println!(
+                "window {:.5} s, scale {:.5}",
+                p.inner().law().window(),
+                p.factor()
+            );
         }
-        println!("raw {:.5} s, jerk-limited {:.5} s, ratio {ratio:.4}", raw.duration(), jl.duration());
+        println!(
+            "raw {:.5} s, jerk-limited {:.5} s, ratio {ratio:.4}",
+            raw.duration(),
+            jl.duration()
+        );
         assert!(ratio > 1.0 && ratio < 1.3, "jerk limiting costs {ratio}");
     }
 
