@@ -41,6 +41,7 @@ pub mod check;
 pub mod error;
 pub mod io;
 pub mod limits;
+pub mod otg;
 pub mod path;
 pub mod plot;
 pub mod poly;

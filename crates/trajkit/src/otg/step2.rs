@@ -1,0 +1,149 @@
+//! Step 2: a profile of one degree of freedom with a prescribed duration.
+//!
+//! When several degrees of freedom must finish together, every one of them except the slowest
+//! has to be re-planned for a longer duration T. Position interface (second and third order):
+//! the profile changes velocity as fast as possible to a cruise velocity v_c (with zero
+//! acceleration), cruises for τ ≥ 0, and changes as fast as possible to the target velocity and
+//! acceleration; τ = T − t₁(v_c) − t₂(v_c) and the position equation is a scalar residual in
+//! v_c, solved by [`super::roots`]. When no cruise profile fits, the step-1 candidate profiles
+//! whose duration equals T are used (the caller tries those first). First order: the constant
+//! velocity D/T. Velocity interface: the acceleration ramps to a level α, holds it, and ramps
+//! to the target acceleration; the residual is the velocity change, free parameter α.
+//!
+//! Every profile is verified by integration exactly like step 1, plus |duration − T| ≤ 1e−12·T.
+
+use super::problem::{ControlInterface, Dof1, ProfileOrder};
+use super::profile::{Profile, State1};
+use super::roots::{find_roots, MAX_ROOTS};
+use super::step1::{for_each_piece, kink, push_change, velocity_cap, verify};
+use super::velocity_change::{fastest, VelChange};
+
+/// A verified profile for `dof` (whose start state is safe) lasting `t` seconds, if one of the
+/// step-2 families has one.
+pub(crate) fn step2(dof: &Dof1, t: f64) -> Option<Profile> {
+    if !(t >= 0.0) || !t.is_finite() {
+        return None;
+    }
+    let start = State1 { p: dof.p0, v: dof.v0, a: dof.a0 };
+    let order = dof.order();
+    let ok = |pr: &Profile| verify(dof, pr) && (pr.duration() - t).abs() <= 1e-12 * t.max(1.0);
+    match (order, dof.interface) {
+        (ProfileOrder::First, iface) => {
+            let d = if iface == ControlInterface::Position { dof.pf - dof.p0 } else { 0.0 };
+            let mut pr = Profile::new(start);
+            if t > 0.0 {
+                let v = d / t;
+                pr.push_with(t, v, 0.0, 0.0);
+            } else if d != 0.0 {
+                return None;
+            }
+            pr.set_final(dof.vf, 0.0);
+            ok(&pr).then_some(pr)
+        }
+        (ProfileOrder::Second, ControlInterface::Velocity) => {
+            let mut pr = Profile::new(start);
+            if t > 0.0 {
+                pr.push_with(t, dof.v0, (dof.vf - dof.v0) / t, 0.0);
+            }
+            pr.set_final(dof.vf, 0.0);
+            ok(&pr).then_some(pr)
+        }
+        (ProfileOrder::Third, ControlInterface::Velocity) => velocity3(dof, t, &ok),
+        (_, ControlInterface::Position) => cruise(dof, t, &ok),
+    }
+}
+
+/// Cruise family with a free cruise velocity.
+fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
+    let order = dof.order();
+    let d = dof.pf - dof.p0;
+    let start = State1 { p: dof.p0, v: dof.v0, a: dof.a0 };
+    let hi = velocity_cap(dof, start);
+    let lo = -velocity_cap(&dof.mirrored(), State1 { p: -dof.p0, v: -dof.v0, a: -dof.a0 });
+    let parts = |vc: f64| -> Option<(VelChange, VelChange, f64)> {
+        let c1 = fastest(order, dof.v0, dof.a0, vc, 0.0, dof.jmax, dof.amax, dof.amin)?;
+        let c2 = fastest(order, vc, 0.0, dof.vf, dof.af, dof.jmax, dof.amax, dof.amin)?;
+        let tau = t - c1.t - c2.t;
+        (tau >= 0.0).then_some((c1, c2, tau))
+    };
+    let build = |vc: f64| -> Option<Profile> {
+        let (c1, c2, tau) = parts(vc)?;
+        let mut pr = Profile::new(start);
+        push_change(&mut pr, order, &c1, dof.v0);
+        if order == ProfileOrder::Second {
+            pr.push_with(tau, vc, 0.0, 0.0);
+        } else {
+            pr.push(tau, 0.0);
+        }
+        push_change(&mut pr, order, &c2, vc);
+        if order == ProfileOrder::Second {
+            pr.set_final(dof.vf, 0.0);
+        }
+        Some(pr)
+    };
+    let mut f = |vc: f64| parts(vc).map(|(c1, c2, tau)| c1.dist + c2.dist + vc * tau - d);
+    let mut roots = [0.0; MAX_ROOTS];
+    let guess = if t > 0.0 { d / t } else { 0.0 };
+    let mut cuts = [
+        lo,
+        hi,
+        0.0,
+        guess,
+        kink(order, dof.v0, dof.a0, dof.jmax, 1.0),
+        kink(order, dof.vf, dof.af, dof.jmax, -1.0),
+    ];
+    let mut best: Option<Profile> = None;
+    for_each_piece(&mut cuts, |a, b| {
+        if best.is_some() {
+            return;
+        }
+        let n = find_roots(&mut f, a, b, &mut roots);
+        for &vc in &roots[..n] {
+            if let Some(pr) = build(vc) {
+                if ok(&pr) {
+                    best = Some(pr);
+                    return;
+                }
+            }
+        }
+    });
+    best
+}
+
+/// Velocity interface, third order: a₀ → α (hold) → a_f in exactly t.
+fn velocity3(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
+    let j = dof.jmax;
+    let start = State1 { p: dof.p0, v: dof.v0, a: dof.a0 };
+    let build = |al: f64| -> Option<Profile> {
+        let t1 = (al - dof.a0).abs() / j;
+        let t3 = (dof.af - al).abs() / j;
+        let tau = t - t1 - t3;
+        if tau < 0.0 {
+            return None;
+        }
+        let mut pr = Profile::new(start);
+        pr.push(t1, if al >= dof.a0 { j } else { -j });
+        pr.push(tau, 0.0);
+        pr.push(t3, if dof.af >= al { j } else { -j });
+        Some(pr)
+    };
+    let mut f = |al: f64| build(al).map(|pr| pr.end().v - dof.vf);
+    let mut roots = [0.0; MAX_ROOTS];
+    let mut cuts = [dof.amin, dof.amax, dof.a0, dof.af, 0.0];
+    let mut best = None;
+    for_each_piece(&mut cuts, |a, b| {
+        if best.is_some() {
+            return;
+        }
+        let n = find_roots(&mut f, a, b, &mut roots);
+        for &al in &roots[..n] {
+            if let Some(pr) = build(al) {
+                if ok(&pr) {
+                    best = Some(pr);
+                    return;
+                }
+            }
+        }
+    });
+    best
+}
