@@ -49,6 +49,8 @@ pub struct Profile {
     v: [f64; MAX_SEGMENTS + 1],
     a: [f64; MAX_SEGMENTS + 1],
     j: [f64; MAX_SEGMENTS],
+    /// Segment durations (kept exactly; differences of start times lose precision).
+    d: [f64; MAX_SEGMENTS],
 }
 
 impl Default for Profile {
@@ -73,6 +75,7 @@ impl Profile {
             v: [0.0; MAX_SEGMENTS + 1],
             a: [0.0; MAX_SEGMENTS + 1],
             j: [0.0; MAX_SEGMENTS],
+            d: [0.0; MAX_SEGMENTS],
         };
         pr.p[0] = s.p;
         pr.v[0] = s.v;
@@ -102,6 +105,7 @@ impl Profile {
         self.v[k] = v;
         self.a[k] = a;
         self.j[k] = jerk;
+        self.d[k] = duration;
         let (p1, v1, a1) = integrate(self.p[k], v, a, jerk, duration);
         self.t[k + 1] = self.t[k] + duration;
         self.p[k + 1] = p1;
@@ -160,7 +164,7 @@ impl Profile {
         (k < self.n).then(|| {
             (
                 self.t[k],
-                self.t[k + 1] - self.t[k],
+                self.d[k],
                 State1 { p: self.p[k], v: self.v[k], a: self.a[k] },
                 self.j[k],
             )
@@ -217,7 +221,7 @@ impl Profile {
     /// Appends all segments of `other` (which must start where `self` ends).
     pub(crate) fn append(&mut self, other: &Profile) -> bool {
         for k in 0..other.n {
-            let d = other.t[k + 1] - other.t[k];
+            let d = other.d[k];
             if !self.push_with(d, other.v[k], other.a[k], other.j[k]) {
                 return false;
             }
@@ -255,7 +259,7 @@ impl Profile {
             }
         };
         for k in 0..self.n {
-            let d = self.t[k + 1] - self.t[k];
+            let d = self.d[k];
             let mut roots = [0.0; 2];
             let m = quad_roots(self.j[k] / 2.0, self.a[k], self.v[k], 0.0, d, &mut roots);
             for &r in &roots[..m] {
@@ -273,7 +277,7 @@ impl Profile {
         let mut lo = self.v[0];
         let mut hi = self.v[0];
         for k in 0..self.n {
-            let d = self.t[k + 1] - self.t[k];
+            let d = self.d[k];
             let (_, v_end, _) = integrate(self.p[k], self.v[k], self.a[k], self.j[k], d);
             for v in [self.v[k], v_end] {
                 lo = lo.min(v);
@@ -296,7 +300,7 @@ impl Profile {
         let mut lo = self.a[0];
         let mut hi = self.a[0];
         for k in 0..self.n {
-            let d = self.t[k + 1] - self.t[k];
+            let d = self.d[k];
             for a in [self.a[k], self.a[k] + self.j[k] * d] {
                 lo = lo.min(a);
                 hi = hi.max(a);
@@ -311,7 +315,7 @@ impl Profile {
             return Some(0.0);
         }
         for k in 0..self.n {
-            let d = self.t[k + 1] - self.t[k];
+            let d = self.d[k];
             let mut roots = [0.0; 3];
             let m = cubic_roots_in(
                 [self.p[k] - p, self.v[k], self.a[k] / 2.0, self.j[k] / 6.0],

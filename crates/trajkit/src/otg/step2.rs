@@ -147,3 +147,4 @@ fn velocity3(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profi
     });
     best
 }
+

@@ -159,7 +159,9 @@ fn duration_of(out: &[DofTrajectory]) -> f64 {
 /// Re-plans one DOF for total duration `t` (brake kept); the step-1 profile when `t` is its
 /// minimum.
 fn replan(s: &Scratch, step1_profile: &Profile, t: f64) -> Option<Profile> {
-    if t == s.t_min {
+    // At (numerically) the minimum duration the step-1 profile is the answer; the residual of
+    // step 2 is at round-off level there.
+    if (t - s.t_min).abs() <= 1e-13 * t.max(1.0) {
         return Some(*step1_profile);
     }
     let mut pr = step1_profile.brake_part();
