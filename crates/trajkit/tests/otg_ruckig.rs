@@ -47,7 +47,11 @@ fn compare<const N: usize>(cat: Cat, n: usize, seed: u64, verbose: bool) -> (usi
 #[test]
 #[ignore]
 fn survey() {
+    let only = std::env::var("OTG_CAT").ok();
     for cat in ALL {
+        if only.as_ref().is_some_and(|o| *o != format!("{cat:?}")) {
+            continue;
+        }
         let s1 = compare::<1>(cat, 2000, 1, true);
         let s3 = compare::<3>(cat, 1000, 2, true);
         eprintln!("{cat:?}: 1 DOF (agree, mismatch, ours failed, ruckig failed) {s1:?}; 3 DOF {s3:?}");

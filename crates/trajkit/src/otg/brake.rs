@@ -37,15 +37,16 @@ pub(crate) fn brake(dof: &Dof1, pr: &mut Profile) {
             }
         }
         ProfileOrder::Third => {
-            side(pr, vmax, dof.amax, dof.amin, dof.jmax, 1.0);
-            side(pr, -vmin, -dof.amin, -dof.amax, dof.jmax, -1.0);
+            side(pr, vmax, vmin, dof.amax, dof.amin, dof.jmax, 1.0);
+            side(pr, -vmin, -vmax, -dof.amin, -dof.amax, dof.jmax, -1.0);
         }
     }
     pr.mark_brake();
 }
 
-/// Brakes against a violation on the positive side, in a frame multiplied by `sgn`.
-fn side(pr: &mut Profile, vmax: f64, amax: f64, amin: f64, j: f64, sgn: f64) {
+/// Brakes against a violation on the positive side, in a frame multiplied by `sgn`. The brake
+/// never goes so far that ramping the acceleration back to zero would land below `vmin`.
+fn side(pr: &mut Profile, vmax: f64, vmin: f64, amax: f64, amin: f64, j: f64, sgn: f64) {
     let e = pr.end();
     let (v0, a0) = (sgn * e.v, sgn * e.a);
     let stop = v0 + a0 * a0.abs() / (2.0 * j);
@@ -63,11 +64,19 @@ fn side(pr: &mut Profile, vmax: f64, amax: f64, amin: f64, j: f64, sgn: f64) {
         0.0
     };
     let t_full = (a0 - amin) / j;
-    let t1 = t_a.max(t_v).min(t_full).max(0.0);
+    // Time at which v − a²/(2J), the landing velocity of a reversal, reaches vmin.
+    let t_opp = if vmin.is_finite() {
+        (a0 + (a0 * a0 / 2.0 + j * (v0 - vmin)).max(0.0).sqrt()) / j
+    } else {
+        f64::INFINITY
+    };
+    let t1 = t_a.max(t_v).min(t_full).min(t_opp.max(t_a)).max(0.0);
     pr.push(t1, -sgn * j);
     let e = pr.end();
     let (v1, a1) = (sgn * e.v, sgn * e.a);
-    if over_v && v1 > vmax && a1 < 0.0 {
-        pr.push((v1 - vmax) / -a1, 0.0);
+    if over_v && v1 > vmax && a1 < 0.0 && t1 >= t_full {
+        let t_to_vmax = (v1 - vmax) / -a1;
+        let t_to_opp = (v1 - a1 * a1 / (2.0 * j) - vmin) / -a1;
+        pr.push(t_to_vmax.min(t_to_opp).max(0.0), 0.0);
     }
 }

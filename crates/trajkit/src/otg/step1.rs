@@ -105,17 +105,19 @@ pub(crate) fn verify(dof: &Dof1, pr: &Profile) -> bool {
     if !pr.duration().is_finite() {
         return false;
     }
-    // Widen each limit outwards by the relative tolerance.
+    // Widen each limit outwards by the relative tolerance. A start state that the brake left
+    // outside a limit (it is on its way back) widens that limit to the start value.
     let widen = |lim: f64| lim + TOL_LIMIT * lim;
+    let s = pr.start();
     if order != ProfileOrder::First {
         let (alo, ahi) = pr.acceleration_range();
-        if ahi > widen(dof.amax) || alo < widen(dof.amin) {
+        if ahi > widen(dof.amax).max(s.a) || alo < widen(dof.amin).min(s.a) {
             return false;
         }
     }
     if dof.interface == ControlInterface::Position {
         let (vlo, vhi) = pr.velocity_range();
-        if vhi > widen(dof.vmax) || vlo < widen(dof.vmin) {
+        if vhi > widen(dof.vmax).max(s.v) || vlo < widen(dof.vmin).min(s.v) {
             return false;
         }
     }
@@ -389,10 +391,25 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
             Some(s)
         };
         let mut f = |x: f64| none(x).map(|s| s.displacement(v0, a0) - d);
-        let n = find_roots(&mut f, a0c, amax, &mut roots);
-        for &x in &roots[..n] {
-            if let Some(s) = none(x) {
-                emit(&s, col);
+        // Valid domain: x² ∈ [l, u] (and the sign conditions), computed in closed form so that
+        // narrow windows are not missed by sampling.
+        let k = (af * af - a0 * a0) / 2.0 - j * dv;
+        let (l, u, neg_ok) = if sign > 0.0 {
+            if af < -tol || k > tol * tol {
+                (1.0, 0.0, false)
+            } else {
+                ((-k).max(0.0), af.max(0.0) * af.max(0.0) - k, false)
+            }
+        } else {
+            let l = (-k).max(0.0).max(if af < 0.0 { af * af - k } else { 0.0 });
+            (l, a2 * a2 - k, k >= -tol * tol)
+        };
+        for (lo, hi) in square_window(l, u, a0c, amax, neg_ok, tol) {
+            let n = find_roots(&mut f, lo, hi, &mut roots);
+            for &x in &roots[..n] {
+                if let Some(s) = none(x) {
+                    emit(&s, col);
+                }
             }
         }
         // acc0: parameter τ1.
@@ -414,7 +431,16 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
                 Some(s)
             };
             let mut f = |x: f64| acc0(x).map(|s| s.displacement(v0, a0) - d);
-            let n = find_roots(&mut f, 0.0, tau_hi, &mut roots);
+            // rad = c0 + j·amax·τ1 must lie in [l, u].
+            let c0 = amax * amax + (af * af - a0 * a0) / 2.0 - j * dv;
+            let (l, u) = if sign > 0.0 {
+                (0.0, if af < 0.0 { -1.0 } else { amax.min(af).powi(2) })
+            } else {
+                (if af < 0.0 { af * af } else { 0.0 }, a2 * a2)
+            };
+            let lo = ((l - c0) / (j * amax)).max(0.0);
+            let hi = ((u - c0) / (j * amax)).min(tau_hi);
+            let n = if lo <= hi { find_roots(&mut f, lo, hi, &mut roots) } else { 0 };
             for &x in &roots[..n] {
                 if let Some(s) = acc0(x) {
                     emit(&s, col);
@@ -436,10 +462,14 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
         Some(s)
     };
     let mut f = |x: f64| acc1(x).map(|s| s.displacement(v0, a0) - d);
-    let n = find_roots(&mut f, a0c, amax, &mut roots);
-    for &x in &roots[..n] {
-        if let Some(s) = acc1(x) {
-            emit(&s, col);
+    // τ2 ≥ 0 ⇔ x² ≥ l.
+    let l = (2.0 * j * dv + a0 * a0 + 2.0 * a2 * a2 - af * af) / 2.0;
+    for (lo, hi) in square_window(l.max(0.0), f64::INFINITY, a0c, amax, true, tol) {
+        let n = find_roots(&mut f, lo, hi, &mut roots);
+        for &x in &roots[..n] {
+            if let Some(s) = acc1(x) {
+                emit(&s, col);
+            }
         }
     }
     // acc0_acc1: parameter τ1.
@@ -461,7 +491,8 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
             Some(s)
         };
         let mut f = |x: f64| acc01(x).map(|s| s.displacement(v0, a0) - d);
-        let n = find_roots(&mut f, 0.0, tau_hi, &mut roots);
+        let lo = ((dv - (2.0 * amax * amax - a0 * a0 - 2.0 * a2 * a2 + af * af) / (2.0 * j)) / amax).max(0.0);
+        let n = if lo <= tau_hi { find_roots(&mut f, lo, tau_hi, &mut roots) } else { 0 };
         for &x in &roots[..n] {
             if let Some(s) = acc01(x) {
                 emit(&s, col);
@@ -487,6 +518,26 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
             }
         }
     }
+}
+
+/// The parts of `[lo, hi]` where x² ∈ [l, u]: up to two intervals (the negative one only
+/// when `neg_ok`). Bounds are widened by `tol` so that edge roots survive round-off.
+fn square_window(l: f64, u: f64, lo: f64, hi: f64, neg_ok: bool, tol: f64) -> impl Iterator<Item = (f64, f64)> {
+    let mut out = [(1.0, 0.0); 2];
+    if l <= u && u >= 0.0 {
+        let (r0, r1) = (l.max(0.0).sqrt(), u.sqrt());
+        let (a, b) = ((r0 - tol).max(lo), (r1 + tol).min(hi));
+        if a <= b {
+            out[0] = (a, b);
+        }
+        if neg_ok {
+            let (a, b) = ((-r1 - tol).max(lo), (-r0 + tol).min(hi));
+            if a <= b {
+                out[1] = (a, b);
+            }
+        }
+    }
+    out.into_iter().filter(|(a, b)| a <= b)
 }
 
 #[cfg(test)]

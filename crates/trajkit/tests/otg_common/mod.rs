@@ -203,6 +203,10 @@ pub fn check<const N: usize>(inp: &InputParameter<N>, tr: &FixedTrajectory<N>) -
         let amax = inp.max_acceleration[i];
         let amin = inp.min_acceleration.map_or(-amax, |m| m[i]);
         let tb = prof.brake_duration();
+        // The state where the brake ended may still be outside a limit (on its way back).
+        let (_, vb, ab, _) = prof.state_at(tb);
+        let (vmax, vmin) = if tb > 0.0 { (vmax.max(vb), vmin.min(vb)) } else { (vmax, vmin) };
+        let (amax, amin) = if tb > 0.0 { (amax.max(ab), amin.min(ab)) } else { (amax, amin) };
         for k in 0..prof.segments() {
             let (t0, d, s, j) = prof.segment(k).unwrap();
             if t0 + d <= tb + 1e-15 {
