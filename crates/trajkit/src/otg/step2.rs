@@ -49,7 +49,12 @@ pub(crate) fn step2(dof: &Dof1, t: f64) -> Option<Profile> {
             ok(&pr).then_some(pr)
         }
         (ProfileOrder::Third, ControlInterface::Velocity) => velocity3(dof, t, &ok),
-        (_, ControlInterface::Position) => cruise(dof, t, &ok),
+        (ProfileOrder::Second, ControlInterface::Position) => cruise(dof, t, &ok),
+        (ProfileOrder::Third, ControlInterface::Position) => cruise(dof, t, &ok)
+            .or_else(|| hold(dof, t, false, false, &ok))
+            .or_else(|| hold(dof, t, false, true, &ok))
+            .or_else(|| hold(dof, t, true, false, &ok))
+            .or_else(|| hold(dof, t, true, true, &ok)),
     }
 }
 
@@ -110,6 +115,85 @@ fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile>
     best
 }
 
+/// Hold families (third order): a₀ ↗ α₁ ↘ α₂ ↗ a_f with a zero-jerk hold at the peak α₁
+/// (`at_valley` false) or at the valley α₂ (true); the negative direction by mirroring. The
+/// duration and velocity equations give the other level in closed form; free parameter: the
+/// level that holds.
+fn hold(dof: &Dof1, t: f64, mirror: bool, at_valley: bool, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
+    let q = if mirror { dof.mirrored() } else { *dof };
+    let (j, a0, af, v0) = (q.jmax, q.a0, q.af, q.v0);
+    let dv = q.vf - q.v0;
+    let (amax, a2) = (q.amax, -q.amin);
+    let tol = 1e-12 * (amax + a2);
+    let levels = |x: f64| -> Option<(f64, f64, f64)> {
+        // Returns (α1, α2, hold).
+        let (al1, al2) = if !at_valley {
+            let al1 = x;
+            let c = al1 * (t - (2.0 * al1 - a0 + af) / j) + (2.0 * al1 * al1 - a0 * a0 + af * af) / (2.0 * j) - dv;
+            let rad = al1 * al1 + j * c;
+            if rad < 0.0 {
+                return None;
+            }
+            (al1, al1 - rad.sqrt())
+        } else {
+            let al2 = x;
+            let c = al2 * (t + (a0 + 2.0 * al2 - af) / j) + (af * af - a0 * a0 - 2.0 * al2 * al2) / (2.0 * j) - dv;
+            let rad = al2 * al2 - j * c;
+            if rad < 0.0 {
+                return None;
+            }
+            (al2 + rad.sqrt(), al2)
+        };
+        let h = t - (2.0 * al1 - a0 - 2.0 * al2 + af) / j;
+        let valid = h >= 0.0
+            && al1 >= a0 - tol
+            && al1 >= al2 - tol
+            && al2 <= af + tol
+            && al1 <= amax + tol
+            && al2 >= -a2 - tol;
+        valid.then_some((al1, al2, h))
+    };
+    let build = |x: f64| -> Option<Profile> {
+        let (al1, al2, h) = levels(x)?;
+        let mut pr = Profile::new(State1 { p: q.p0, v: v0, a: a0 });
+        pr.push(((al1 - a0) / j).max(0.0), j);
+        if !at_valley {
+            pr.push(h, 0.0);
+        }
+        pr.push(((al1 - al2) / j).max(0.0), -j);
+        if at_valley {
+            pr.push(h, 0.0);
+        }
+        pr.push(((af - al2) / j).max(0.0), j);
+        if mirror {
+            pr.mirror();
+        }
+        Some(pr)
+    };
+    let d = dof.pf - dof.p0;
+    let sgn = if mirror { -1.0 } else { 1.0 };
+    let mut f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf) + 0.0 * d);
+    let (lo, hi) = if at_valley { (-a2, af) } else { (a0, amax) };
+    let mut roots = [0.0; MAX_ROOTS];
+    let mut cuts = [lo, hi, 0.0, if at_valley { a0.min(af) } else { af.max(a0) }];
+    let mut best = None;
+    for_each_piece(&mut cuts, |a, b| {
+        if best.is_some() {
+            return;
+        }
+        let n = find_roots(&mut f, a, b, &mut roots);
+        for &x in &roots[..n] {
+            if let Some(pr) = build(x) {
+                if ok(&pr) {
+                    best = Some(pr);
+                    return;
+                }
+            }
+        }
+    });
+    best
+}
+
 /// Velocity interface, third order: a₀ → α (hold) → a_f in exactly t.
 fn velocity3(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
     let j = dof.jmax;
@@ -129,7 +213,10 @@ fn velocity3(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profi
     };
     let mut f = |al: f64| build(al).map(|pr| pr.end().v - dof.vf);
     let mut roots = [0.0; MAX_ROOTS];
-    let mut cuts = [dof.amin, dof.amax, dof.a0, dof.af, 0.0];
+    // τ ≥ 0 ⇔ |α − a₀| + |a_f − α| ≤ j·t: an explicit window around [a₀, a_f].
+    let w_lo = ((dof.a0 + dof.af - j * t) / 2.0).max(dof.amin);
+    let w_hi = ((dof.a0 + dof.af + j * t) / 2.0).min(dof.amax);
+    let mut cuts = [w_lo, w_hi, dof.a0, dof.af, 0.0];
     let mut best = None;
     for_each_piece(&mut cuts, |a, b| {
         if best.is_some() {

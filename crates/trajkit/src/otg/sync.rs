@@ -123,10 +123,38 @@ pub(crate) fn calculate(
         let mut t = disc(t_lead.max(min_dur));
         let mut failed = 0;
         let mut grow = 0;
+        let mut last_fail: Option<f64> = None;
         for _attempt in 0..200 {
             match try_all(scratch, out, n, t) {
-                Ok(()) => return Ok(duration_of(&out[..n])),
-                Err(i) => failed = i,
+                Ok(()) => {
+                    // A missing candidate could hide a shorter feasible duration between the
+                    // last failure and t: bisect for the edge of the feasible range.
+                    if let Some(mut lo) = last_fail {
+                        let mut hi = t;
+                        for _ in 0..64 {
+                            let mid = disc(0.5 * (lo + hi));
+                            if mid <= lo || mid >= hi {
+                                break;
+                            }
+                            if try_all(scratch, out, n, mid).is_ok() {
+                                hi = mid;
+                            } else {
+                                lo = mid;
+                            }
+                        }
+                        if hi != t {
+                            // Leave `out` holding the profiles of `hi`.
+                            let _ = try_all(scratch, out, n, hi);
+                        } else {
+                            let _ = try_all(scratch, out, n, t);
+                        }
+                    }
+                    return Ok(duration_of(&out[..n]));
+                }
+                Err(i) => {
+                    failed = i;
+                    last_fail = Some(t);
+                }
             }
             // Next candidate duration above t.
             let mut next = f64::INFINITY;
@@ -140,9 +168,9 @@ pub(crate) fn calculate(
             }
             if next.is_infinite() {
                 grow += 1;
-                next = disc(t * (1.0 + 1e-9 * 4f64.powi(grow)));
+                next = disc(t * (1.0 + 1e-6 * 4f64.powi(grow)));
                 if next <= t {
-                    next = t + if discrete { delta_time } else { t.max(1e-9) * 1e-9 };
+                    next = t + if discrete { delta_time } else { t.max(1e-9) * 1e-6 };
                 }
             }
             t = next;

@@ -64,21 +64,24 @@ pub(crate) fn fastest3(
     let dv = vb - va;
     let base = (aa * aa + ab * ab) / 2.0;
     let tol = 1e-12 * (aa.abs() + ab.abs() + (j * dv.abs()).sqrt()) + 1e-300;
-    // Ramp up to a peak, then down.
+    // Both shapes (ramp up then down, or down then up) can be valid; the faster one wins.
+    let mut best: Option<VelChange> = None;
+    let mut take = |c: VelChange| {
+        if best.is_none_or(|b| c.t < b.t) {
+            best = Some(c);
+        }
+    };
     let ru = j * dv + base;
     if ru >= -tol * tol {
         let alpha = ru.max(0.0).sqrt();
         if alpha >= aa.max(ab) - tol {
             let alpha = alpha.max(aa.max(ab));
-            return Some(if alpha <= amax {
-                build(va, aa, [(alpha - aa) / j, 0.0, (alpha - ab) / j], [j, 0.0, -j])
-            } else {
-                if aa > amax * (1.0 + 1e-12) || ab > amax * (1.0 + 1e-12) {
-                    return None;
-                }
+            if alpha <= amax {
+                take(build(va, aa, [(alpha - aa) / j, 0.0, (alpha - ab) / j], [j, 0.0, -j]));
+            } else if aa <= amax * (1.0 + 1e-12) && ab <= amax * (1.0 + 1e-12) {
                 let tau = (dv - (2.0 * amax * amax - aa * aa - ab * ab) / (2.0 * j)) / amax;
-                build(va, aa, [(amax - aa) / j, tau, (amax - ab) / j], [j, 0.0, -j])
-            });
+                take(build(va, aa, [(amax - aa) / j, tau, (amax - ab) / j], [j, 0.0, -j]));
+            }
         }
     }
     let rd = -j * dv + base;
@@ -86,18 +89,15 @@ pub(crate) fn fastest3(
         let alpha = -rd.max(0.0).sqrt();
         if alpha <= aa.min(ab) + tol {
             let alpha = alpha.min(aa.min(ab));
-            return Some(if alpha >= amin {
-                build(va, aa, [(aa - alpha) / j, 0.0, (ab - alpha) / j], [-j, 0.0, j])
-            } else {
-                if aa < amin * (1.0 + 1e-12) || ab < amin * (1.0 + 1e-12) {
-                    return None;
-                }
+            if alpha >= amin {
+                take(build(va, aa, [(aa - alpha) / j, 0.0, (ab - alpha) / j], [-j, 0.0, j]));
+            } else if aa >= amin * (1.0 + 1e-12) && ab >= amin * (1.0 + 1e-12) {
                 let tau = (-dv - (2.0 * amin * amin - aa * aa - ab * ab) / (2.0 * j)) / -amin;
-                build(va, aa, [(aa - amin) / j, tau, (ab - amin) / j], [-j, 0.0, j])
-            });
+                take(build(va, aa, [(aa - amin) / j, tau, (ab - amin) / j], [-j, 0.0, j]));
+            }
         }
     }
-    None
+    best
 }
 
 #[inline]
