@@ -65,8 +65,11 @@ fn side(pr: &mut Profile, vmax: f64, vmin: f64, amax: f64, amin: f64, j: f64, sg
     };
     let t_full = (a0 - amin) / j;
     // Time at which v − a²/(2J), the landing velocity of a reversal, reaches vmin.
+    // Stopped a little early (1e-12 relative) so that round-off cannot put the landing
+    // velocity past the opposite limit.
     let t_opp = if vmin.is_finite() {
-        (a0 + (a0 * a0 / 2.0 + j * (v0 - vmin)).max(0.0).sqrt()) / j
+        let t = (a0 + (a0 * a0 / 2.0 + j * (v0 - vmin)).max(0.0).sqrt()) / j;
+        t - 1e-12 * t.abs().max(1.0)
     } else {
         f64::INFINITY
     };

@@ -61,3 +61,18 @@ pub use trajectory::{DofTrajectory, DynTrajectory, FixedTrajectory, OtgTrajector
 pub fn time_optimal(dof: &Dof1) -> Option<Profile> {
     step1::step1(dof).map(|s| s.profile)
 }
+
+/// A profile of one degree of freedom lasting exactly `duration` seconds (brake pre-profile
+/// included), or `None` when `duration` is shorter than the minimum, inside a blocked interval,
+/// or not found by the step-2 families.
+pub fn with_duration(dof: &Dof1, duration: f64) -> Option<Profile> {
+    let mut pr = Profile::new(State1 { p: dof.p0, v: dof.v0, a: dof.a0 });
+    brake::brake(dof, &mut pr);
+    let e = pr.end();
+    let mut d = *dof;
+    d.p0 = e.p;
+    d.v0 = e.v;
+    d.a0 = e.a;
+    let main = step2::step2(&d, duration - pr.duration())?;
+    pr.append(&main).then_some(pr)
+}

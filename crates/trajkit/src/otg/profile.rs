@@ -122,6 +122,16 @@ impl Profile {
         self.a[self.n] = a;
     }
 
+    /// Replaces the end velocity and acceleration by the exact values a closed-form step was
+    /// aiming at (removing round-off of order 1e-16 that a long following segment would
+    /// otherwise integrate). Only for corrections far below the precision contract.
+    pub(crate) fn snap(&mut self, v: f64, a: f64) {
+        if self.n > 0 {
+            self.v[self.n] = v;
+            self.a[self.n] = a;
+        }
+    }
+
     /// Marks the segments pushed so far as the brake pre-profile.
     pub(crate) fn mark_brake(&mut self) {
         self.brake = self.n;

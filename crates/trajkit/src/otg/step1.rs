@@ -107,7 +107,9 @@ pub(crate) fn verify(dof: &Dof1, pr: &Profile) -> bool {
     }
     // Widen each limit outwards by the relative tolerance. A start state that the brake left
     // outside a limit (it is on its way back) widens that limit to the start value.
-    let widen = |lim: f64| lim + TOL_LIMIT * lim;
+    // Half the contract's tolerance, so that an independent re-evaluation (with its own
+    // round-off) still finds the limits within TOL_LIMIT.
+    let widen = |lim: f64| lim + 0.5 * TOL_LIMIT * lim;
     let s = pr.start();
     if order != ProfileOrder::First {
         let (alo, ahi) = pr.acceleration_range();
@@ -245,6 +247,7 @@ fn peak_family(dof: &Dof1, col: &mut Collector<'_>) {
             if let Some((c1, c2)) = parts(vc) {
                 let mut pr = Profile::new(State1 { p: dof.p0, v: dof.v0, a: dof.a0 });
                 push_change(&mut pr, order, &c1, dof.v0);
+                pr.snap(vc, 0.0);
                 push_change(&mut pr, order, &c2, vc);
                 if order == ProfileOrder::Second {
                     pr.set_final(dof.vf, 0.0);
@@ -302,11 +305,8 @@ fn cruise_family(dof: &Dof1, col: &mut Collector<'_>) {
         }
         let mut pr = Profile::new(State1 { p: dof.p0, v: dof.v0, a: dof.a0 });
         push_change(&mut pr, order, &c1, dof.v0);
-        if order == ProfileOrder::Second {
-            pr.push_with(tau, vc, 0.0, 0.0);
-        } else {
-            pr.push(tau, 0.0);
-        }
+        pr.snap(vc, 0.0);
+        pr.push_with(tau, vc, 0.0, 0.0);
         push_change(&mut pr, order, &c2, vc);
         if order == ProfileOrder::Second {
             pr.set_final(dof.vf, 0.0);
@@ -506,15 +506,15 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
         if let (Some(c1), Some(c2)) = (c1, c2) {
             let tau = (d - c1.dist - c2.dist) / q.vmax;
             if tau >= 0.0 {
-                let mut s = Seq::new();
-                for k in 0..3 {
-                    s.add(c1.d[k], c1.j[k]);
+                let mut pr = Profile::new(State1 { p: q.p0, v: v0, a: a0 });
+                push_change(&mut pr, ProfileOrder::Third, &c1, v0);
+                pr.snap(q.vmax, 0.0);
+                pr.push_with(tau, q.vmax, 0.0, 0.0);
+                push_change(&mut pr, ProfileOrder::Third, &c2, q.vmax);
+                if mirror {
+                    pr.mirror();
                 }
-                s.add(tau, 0.0);
-                for k in 0..3 {
-                    s.add(c2.d[k], c2.j[k]);
-                }
-                emit(&s, col);
+                col.offer(&pr);
             }
         }
     }

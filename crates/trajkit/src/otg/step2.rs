@@ -75,11 +75,8 @@ fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile>
         let (c1, c2, tau) = parts(vc)?;
         let mut pr = Profile::new(start);
         push_change(&mut pr, order, &c1, dof.v0);
-        if order == ProfileOrder::Second {
-            pr.push_with(tau, vc, 0.0, 0.0);
-        } else {
-            pr.push(tau, 0.0);
-        }
+        pr.snap(vc, 0.0);
+        pr.push_with(tau, vc, 0.0, 0.0);
         push_change(&mut pr, order, &c2, vc);
         if order == ProfileOrder::Second {
             pr.set_final(dof.vf, 0.0);

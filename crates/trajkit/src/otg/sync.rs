@@ -34,6 +34,10 @@ pub struct Scratch {
     pub(crate) ncand: usize,
     pub(crate) t_min: f64,
     pub(crate) sync: bool,
+    /// The time-optimal profile of step 1.
+    pub(crate) step1: Profile,
+    /// The profile of the duration being tried.
+    pub(crate) trial: Profile,
 }
 
 impl Default for Scratch {
@@ -44,6 +48,8 @@ impl Default for Scratch {
             ncand: 0,
             t_min: 0.0,
             sync: false,
+            step1: Profile::default(),
+            trial: Profile::default(),
         }
     }
 }
@@ -90,6 +96,7 @@ pub(crate) fn calculate(
         scratch[i].cand = s1.cand;
         scratch[i].ncand = s1.ncand;
         scratch[i].t_min = s1.t_min();
+        scratch[i].step1 = s1.profile;
         t_lead = t_lead.max(s1.t_min());
         scratch[i].sync = match opts.synchronization {
             Synchronization::Time | Synchronization::Phase => true,
@@ -108,7 +115,7 @@ pub(crate) fn calculate(
         if view.enabled[i] && !scratch[i].sync {
             let t = disc(scratch[i].t_min.max(min_dur));
             if t > scratch[i].t_min {
-                out[i].profile = replan(&scratch[i], &out[i].profile, t)
+                out[i].profile = replan(&scratch[i], t)
                     .ok_or(OtgResult::SynchronizationFailed { dof: i, duration: t })?;
             }
         }
@@ -125,6 +132,9 @@ pub(crate) fn calculate(
         let mut grow = 0;
         let mut last_fail: Option<f64> = None;
         for _attempt in 0..200 {
+            if !(t.is_finite() && t < 1e300) {
+                break;
+            }
             match try_all(scratch, out, n, t) {
                 Ok(()) => {
                     // A missing candidate could hide a shorter feasible duration between the
@@ -142,12 +152,8 @@ pub(crate) fn calculate(
                                 lo = mid;
                             }
                         }
-                        if hi != t {
-                            // Leave `out` holding the profiles of `hi`.
-                            let _ = try_all(scratch, out, n, hi);
-                        } else {
-                            let _ = try_all(scratch, out, n, t);
-                        }
+                        // `out` holds the profiles of the last success, which is `hi`.
+                        let _ = hi;
                     }
                     return Ok(duration_of(&out[..n]));
                 }
@@ -168,7 +174,7 @@ pub(crate) fn calculate(
             }
             if next.is_infinite() {
                 grow += 1;
-                next = disc(t * (1.0 + 1e-6 * 4f64.powi(grow)));
+                next = disc(t * (1.0 + 1e-6 * 4f64.powi(grow.min(20))));
                 if next <= t {
                     next = t + if discrete { delta_time } else { t.max(1e-9) * 1e-6 };
                 }
@@ -186,13 +192,13 @@ fn duration_of(out: &[DofTrajectory]) -> f64 {
 
 /// Re-plans one DOF for total duration `t` (brake kept); the step-1 profile when `t` is its
 /// minimum.
-fn replan(s: &Scratch, step1_profile: &Profile, t: f64) -> Option<Profile> {
+fn replan(s: &Scratch, t: f64) -> Option<Profile> {
     // At (numerically) the minimum duration the step-1 profile is the answer; the residual of
     // step 2 is at round-off level there.
     if (t - s.t_min).abs() <= 1e-13 * t.max(1.0) {
-        return Some(*step1_profile);
+        return Some(s.step1);
     }
-    let mut pr = step1_profile.brake_part();
+    let mut pr = s.step1.brake_part();
     let e = pr.end();
     let mut d = s.dof;
     d.p0 = e.p;
@@ -202,8 +208,9 @@ fn replan(s: &Scratch, step1_profile: &Profile, t: f64) -> Option<Profile> {
     pr.append(&main).then_some(pr)
 }
 
-/// Step 2 for every synchronized DOF at duration `t`; the failing DOF on error.
-fn try_all(scratch: &[Scratch], out: &mut [DofTrajectory], n: usize, t: f64) -> Result<(), usize> {
+/// Step 2 for every synchronized DOF at duration `t`; the failing DOF on error. `out` is
+/// written only when every DOF succeeded.
+fn try_all(scratch: &mut [Scratch], out: &mut [DofTrajectory], n: usize, t: f64) -> Result<(), usize> {
     for i in 0..n {
         if !scratch[i].sync {
             continue;
@@ -211,12 +218,14 @@ fn try_all(scratch: &[Scratch], out: &mut [DofTrajectory], n: usize, t: f64) -> 
         if t < scratch[i].t_min {
             return Err(i);
         }
-        // Rebuild from the brake part of the independent profile (kept in `out` until
-        // success would overwrite it, so work on a copy).
-        let base = out[i].profile;
-        match replan(&scratch[i], &base, t) {
-            Some(p) => out[i].profile = p,
+        match replan(&scratch[i], t) {
+            Some(p) => scratch[i].trial = p,
             None => return Err(i),
+        }
+    }
+    for i in 0..n {
+        if scratch[i].sync {
+            out[i].profile = scratch[i].trial;
         }
     }
     Ok(())
@@ -316,8 +325,16 @@ fn phase(
     if discrete {
         t = (t / delta_time - 1e-9).ceil().max(0.0) * delta_time;
     }
-    let sc = Scratch { dof: s, cand: s1.cand, ncand: s1.ncand, t_min: s1.t_min(), sync: true };
-    let Some(sp) = replan(&sc, &s1.profile, t) else { return Ok(false) };
+    let sc = Scratch {
+        dof: s,
+        cand: s1.cand,
+        ncand: s1.ncand,
+        t_min: s1.t_min(),
+        sync: true,
+        step1: s1.profile,
+        trial: s1.profile,
+    };
+    let Some(sp) = replan(&sc, t) else { return Ok(false) };
     if sp.brake_duration() > 0.0 {
         return Ok(false);
     }

@@ -93,6 +93,15 @@ pub fn problem<const N: usize>(r: &mut SplitMix64, cat: Cat) -> InputParameter<N
             Cat::RestToRest | Cat::BigLimits | Cat::Directional if r.next_f64() < 0.5 => {}
             Cat::RestToRest => {}
             Cat::General | Cat::BigLimits | Cat::Directional | Cat::Discrete | Cat::VelocityInterface => {
+                // Large limits: keep the states where stopping takes at most ~1e3 units of
+                // distance, so that 1e-8 absolute position accuracy stays representable in f64
+                // (a 1e9-unit detour cannot end within 1e-8 of its target).
+                let (vmax, vmin) = if big {
+                    let cap = (2.0 * amax * 1e3).sqrt().min((jmax * 1e6).cbrt());
+                    (vmax.min(cap), vmin.max(-cap))
+                } else {
+                    (vmax, vmin)
+                };
                 let (v, a) = inside(r, vmax, vmin, amax, amin, jmax);
                 inp.current_velocity[i] = v;
                 inp.current_acceleration[i] = a;
