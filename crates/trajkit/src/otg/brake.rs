@@ -6,7 +6,8 @@
 //! to zero with full jerk, v + a·|a|/(2J), within the velocity limits too (otherwise a
 //! violation is unavoidable later). The brake applies full jerk against the violation until the
 //! state is safe or the acceleration reaches its opposite limit, then (if still needed) holds
-//! that acceleration until the velocity is back at its limit: at most two segments per side.
+//! that acceleration until the velocity is back at its limit: at most two segments per side (the positive side may run twice: before and after the
+//! negative side has ramped back an acceleration beyond its limit).
 //! Second order: the opposite acceleration limit until the velocity is back inside. First
 //! order: nothing (velocity jumps).
 //!
@@ -37,8 +38,11 @@ pub(crate) fn brake(dof: &Dof1, pr: &mut Profile) {
             }
         }
         ProfileOrder::Third => {
+            // An acceleration beyond its limit is ramped back first (the side that owns it),
+            // then the velocity of either side is braked.
             side(pr, vmax, vmin, dof.amax, dof.amin, dof.jmax, 1.0);
             side(pr, -vmin, -vmax, -dof.amin, -dof.amax, dof.jmax, -1.0);
+            side(pr, vmax, vmin, dof.amax, dof.amin, dof.jmax, 1.0);
         }
     }
     pr.mark_brake();
@@ -49,6 +53,10 @@ pub(crate) fn brake(dof: &Dof1, pr: &mut Profile) {
 fn side(pr: &mut Profile, vmax: f64, vmin: f64, amax: f64, amin: f64, j: f64, sgn: f64) {
     let e = pr.end();
     let (v0, a0) = (sgn * e.v, sgn * e.a);
+    if a0 < amin {
+        // The acceleration violates the other side's limit: that side ramps it back first.
+        return;
+    }
     let stop = v0 + a0 * a0.abs() / (2.0 * j);
     let over_a = a0 > amax;
     let over_v = v0 > vmax || (a0 > 0.0 && stop > vmax);

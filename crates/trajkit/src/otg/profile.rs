@@ -12,9 +12,9 @@
 //! start, whose state was obtained by integrating the previous segments in f64. The round-off
 //! accumulated over ten segments is a few ulp of the largest |p|, |v|·T, |a|·T², |j|·T³.
 
-/// Largest number of segments in a profile: up to 4 brake segments and 7 main segments, plus
+/// Largest number of segments in a profile: up to 6 brake segments and 7 main segments, plus
 /// one spare.
-pub const MAX_SEGMENTS: usize = 12;
+pub const MAX_SEGMENTS: usize = 14;
 
 /// A kinematic state of one degree of freedom.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]

@@ -105,22 +105,56 @@ pub(crate) fn verify(dof: &Dof1, pr: &Profile) -> bool {
     if !pr.duration().is_finite() {
         return false;
     }
-    // Widen each limit outwards by the relative tolerance. A start state that the brake left
-    // outside a limit (it is on its way back) widens that limit to the start value.
     // Half the contract's tolerance, so that an independent re-evaluation (with its own
     // round-off) still finds the limits within TOL_LIMIT.
     let widen = |lim: f64| lim + 0.5 * TOL_LIMIT * lim;
+    let (vmax, vmin) = (widen(dof.vmax), widen(dof.vmin));
+    let (amax, amin) = (widen(dof.amax), widen(dof.amin));
+    let check_v = dof.interface == ControlInterface::Position;
+    let check_a = order != ProfileOrder::First;
+    // A start state that the brake left outside a limit (on its way back) may stay outside
+    // only until it first comes inside, and never go further out than it started.
     let s = pr.start();
-    if order != ProfileOrder::First {
-        let (alo, ahi) = pr.acceleration_range();
-        if ahi > widen(dof.amax).max(s.a) || alo < widen(dof.amin).min(s.a) {
-            return false;
+    let mut v_in = !check_v || (s.v <= vmax && s.v >= vmin);
+    let mut a_in = !check_a || (s.a <= amax && s.a >= amin);
+    let (v_hi, v_lo) = (vmax.max(s.v), vmin.min(s.v));
+    let (a_hi, a_lo) = (amax.max(s.a), amin.min(s.a));
+    for k in 0..pr.segments() {
+        let Some((_, d, st, j)) = pr.segment(k) else { break };
+        let vend = st.v + d * (st.a + d * j / 2.0);
+        let aend = st.a + d * j;
+        let mut vs = [st.v, st.v, vend];
+        if j != 0.0 {
+            let r = -st.a / j;
+            if r > 0.0 && r < d {
+                vs[1] = st.v + r * (st.a + r * j / 2.0);
+            }
         }
-    }
-    if dof.interface == ControlInterface::Position {
-        let (vlo, vhi) = pr.velocity_range();
-        if vhi > widen(dof.vmax).max(s.v) || vlo < widen(dof.vmin).min(s.v) {
-            return false;
+        if check_v {
+            for v in vs {
+                if v_in {
+                    if v > vmax || v < vmin {
+                        return false;
+                    }
+                } else if v > v_hi || v < v_lo {
+                    return false;
+                } else if v <= vmax && v >= vmin {
+                    v_in = true;
+                }
+            }
+        }
+        if check_a {
+            for a in [st.a, aend] {
+                if a_in {
+                    if a > amax || a < amin {
+                        return false;
+                    }
+                } else if a > a_hi || a < a_lo {
+                    return false;
+                } else if a <= amax && a >= amin {
+                    a_in = true;
+                }
+            }
         }
     }
     true
