@@ -16,7 +16,7 @@ use std::process::ExitCode;
     name = "trajkit",
     version,
     about = "Robot paths in, trajectories out: time-parameterize waypoints within joint limits, check and plot trajectories.",
-    after_help = "Examples:\n  trajkit plan                       # embedded 7-joint Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits ur5e --plot traj.svg\n  trajkit poly --table               # peak coefficients of cubic/quintic/septic moves\n  trajkit check trajectory.csv --limits panda"
+    after_help = "Examples:\n  trajkit plan                       # embedded 7-joint Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits ur5e --plot traj.svg\n  trajkit poly --table               # peak coefficients of cubic/quintic/septic moves\n  trajkit check trajectory.csv --limits panda\n  trajkit otg problem.json --plot otg.svg   # Ruckig-style state-to-state problem"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -31,6 +31,8 @@ enum Command {
     Poly(cmd::poly::PolyArgs),
     /// Check a sampled trajectory (from any tool) against joint limits.
     Check(cmd::check::CheckArgs),
+    /// Online generation: time-optimal jerk-limited motion from any state to a target state.
+    Otg(cmd::otg::OtgArgs),
 }
 
 fn main() -> ExitCode {
@@ -59,6 +61,7 @@ fn main() -> ExitCode {
         Command::Plan(a) => cmd::plan::run(a),
         Command::Poly(a) => cmd::poly::run(a),
         Command::Check(a) => cmd::check::run(a),
+        Command::Otg(a) => cmd::otg::run(a),
     };
     match result {
         Ok(code) => ExitCode::from(code),

@@ -32,8 +32,14 @@ fn problems<const N: usize>(general: bool, seed: u64) -> Vec<InputParameter<N>> 
                 if general {
                     // Inside the limits, with v ± a|a|/(2j) inside too.
                     loop {
-                        let (v0, a0) = (r.uniform(-0.8, 0.8) * j.velocity, r.uniform(-0.8, 0.8) * j.acceleration);
-                        let (vf, af) = (r.uniform(-0.8, 0.8) * j.velocity, r.uniform(-0.8, 0.8) * j.acceleration);
+                        let (v0, a0) = (
+                            r.uniform(-0.8, 0.8) * j.velocity,
+                            r.uniform(-0.8, 0.8) * j.acceleration,
+                        );
+                        let (vf, af) = (
+                            r.uniform(-0.8, 0.8) * j.velocity,
+                            r.uniform(-0.8, 0.8) * j.acceleration,
+                        );
                         let ok = |v: f64, a: f64| (v.abs() + a * a / (2.0 * j.jerk)) <= j.velocity;
                         if ok(v0, a0) && ok(vf, af) {
                             p.current_velocity[i] = v0;
@@ -66,7 +72,8 @@ fn to_ruckig<const N: usize>(p: &InputParameter<N>) -> rsruckig::prelude::InputP
     q
 }
 
-type RuckigOtg<const N: usize> = rsruckig::prelude::Ruckig<N, rsruckig::prelude::IgnoreErrorHandler>;
+type RuckigOtg<const N: usize> =
+    rsruckig::prelude::Ruckig<N, rsruckig::prelude::IgnoreErrorHandler>;
 
 fn group<const N: usize>(c: &mut Criterion, general: bool) {
     let name = format!("otg/{}dof_{}", N, if general { "general" } else { "rest" });
@@ -78,7 +85,11 @@ fn group<const N: usize>(c: &mut Criterion, general: bool) {
         let mut k = 0;
         b.iter(|| {
             k = (k + 1) % PROBLEMS;
-            black_box(otg.calculate(black_box(&ours[k])).map(|t| t.duration()).unwrap_or(0.0))
+            black_box(
+                otg.calculate(black_box(&ours[k]))
+                    .map(|t| t.duration())
+                    .unwrap_or(0.0),
+            )
         })
     });
     let mut rk = RuckigOtg::<N>::new(None, 0.001);
@@ -120,7 +131,11 @@ fn p99<const N: usize>(general: bool) {
     for _round in 0..40 {
         for k in 0..PROBLEMS {
             let t0 = Instant::now();
-            black_box(otg.calculate(black_box(&ours[k])).map(|t| t.duration()).unwrap_or(0.0));
+            black_box(
+                otg.calculate(black_box(&ours[k]))
+                    .map(|t| t.duration())
+                    .unwrap_or(0.0),
+            );
             a.push(t0.elapsed().as_nanos() as f64);
             let t0 = Instant::now();
             let _ = rk.calculate(black_box(&theirs[k]), &mut tr);

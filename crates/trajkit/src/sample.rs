@@ -231,7 +231,10 @@ mod tests {
 
     #[test]
     fn times_include_both_ends() {
-        assert_eq!(sample_times(1.0, 4.0).unwrap(), vec![0.0, 0.25, 0.5, 0.75, 1.0]);
+        assert_eq!(
+            sample_times(1.0, 4.0).unwrap(),
+            vec![0.0, 0.25, 0.5, 0.75, 1.0]
+        );
         let t = sample_times(1.1, 4.0).unwrap();
         assert_eq!(t.len(), 6);
         assert_eq!(*t.last().unwrap(), 1.1);

@@ -6,7 +6,12 @@ use otg_common::*;
 use trajkit::otg::Otg;
 use trajkit::rng::SplitMix64;
 
-fn compare<const N: usize>(cat: Cat, n: usize, seed: u64, verbose: bool) -> (usize, usize, usize, usize) {
+fn compare<const N: usize>(
+    cat: Cat,
+    n: usize,
+    seed: u64,
+    verbose: bool,
+) -> (usize, usize, usize, usize) {
     let mut r = SplitMix64::new(seed);
     let otg = Otg::<N>::new(0.001);
     let (mut agree, mut ruckig_failed, mut mismatch, mut ours_failed) = (0, 0, 0, 0);
@@ -23,7 +28,10 @@ fn compare<const N: usize>(cat: Cat, n: usize, seed: u64, verbose: bool) -> (usi
                 } else {
                     mismatch += 1;
                     if verbose && mismatch < 4 {
-                        eprintln!("{cat:?} case {k}: ours {} ruckig {t}\n{inp:?}", tr.duration());
+                        eprintln!(
+                            "{cat:?} case {k}: ours {} ruckig {t}\n{inp:?}",
+                            tr.duration()
+                        );
                     }
                 }
             }
@@ -32,7 +40,10 @@ fn compare<const N: usize>(cat: Cat, n: usize, seed: u64, verbose: bool) -> (usi
                 assert!(within_contract(&w), "{cat:?} case {k}: {w:?}\n{inp:?}");
                 ruckig_failed += 1;
                 if verbose && ruckig_failed < 3 {
-                    eprintln!("{cat:?} case {k}: rsruckig failed, trajkit {}\n{inp:?}", tr.duration());
+                    eprintln!(
+                        "{cat:?} case {k}: rsruckig failed, trajkit {}\n{inp:?}",
+                        tr.duration()
+                    );
                 }
             }
             (Err(e), Some(t)) => {
@@ -92,12 +103,16 @@ fn survey() {
         }
         let s1 = compare::<1>(cat, 2000, 1, true);
         let s3 = compare::<3>(cat, 1000, 2, true);
-        eprintln!("{cat:?}: 1 DOF (agree, mismatch, ours failed, ruckig failed) {s1:?}; 3 DOF {s3:?}");
+        eprintln!(
+            "{cat:?}: 1 DOF (agree, mismatch, ours failed, ruckig failed) {s1:?}; 3 DOF {s3:?}"
+        );
     }
 }
 
 fn solve_checked<const N: usize>(inp: &trajkit::otg::InputParameter<N>) -> f64 {
-    let tr = Otg::<N>::new(0.001).calculate(inp).unwrap_or_else(|e| panic!("{e}\n{inp:?}"));
+    let tr = Otg::<N>::new(0.001)
+        .calculate(inp)
+        .unwrap_or_else(|e| panic!("{e}\n{inp:?}"));
     let w = check(inp, &tr);
     assert!(within_contract(&w), "{w:?}\n{inp:?}");
     tr.duration()
@@ -120,7 +135,10 @@ fn beyond_ruckig_long_synchronized_moves() {
     inp.max_velocity = [0.43844417744651876, 3.6023624598858244, 2.9733350161901617];
     inp.max_acceleration = [0.26325549993391395, 3.0233630586325533, 1.610156425010436];
     inp.max_jerk = [0.13950780994958126, 3.7644983002408168, 0.6314580119675314];
-    assert!(ruckig_duration(&inp, 0.001).is_none(), "rsruckig solved it after all");
+    assert!(
+        ruckig_duration(&inp, 0.001).is_none(),
+        "rsruckig solved it after all"
+    );
     let t = solve_checked(&inp);
     assert!(t > 7.6e3, "{t}");
     // The whole category: every problem rsruckig refuses is solved within the contract.
@@ -140,7 +158,10 @@ fn beyond_ruckig_long_synchronized_moves() {
     inp.current_velocity = [0.9];
     inp.current_acceleration = [0.9];
     let t = solve_checked(&inp);
-    eprintln!("long brake: trajkit {t}, rsruckig {:?}", ruckig_duration(&inp, 0.001));
+    eprintln!(
+        "long brake: trajkit {t}, rsruckig {:?}",
+        ruckig_duration(&inp, 0.001)
+    );
 }
 
 /// Start equal to target with a non-zero acceleration, synchronized with a longer move.
@@ -165,7 +186,8 @@ fn noise_level_velocities() {
     let mut r = SplitMix64::new(5);
     for _ in 0..200 {
         let mut inp = limits::<2>(1.0, 2.0, 5.0);
-        let noise = |r: &mut SplitMix64| (r.next_f64() - 0.5) * 10f64.powf(-14.0 - 6.0 * r.next_f64());
+        let noise =
+            |r: &mut SplitMix64| (r.next_f64() - 0.5) * 10f64.powf(-14.0 - 6.0 * r.next_f64());
         inp.current_position = [0.3, 0.0];
         inp.target_position = [0.3 + noise(&mut r) * 10.0, 2.0];
         inp.current_velocity = [noise(&mut r), 0.0];
@@ -184,7 +206,11 @@ fn jerk_near_1e7() {
     let mut failed_theirs = 0;
     let mut r = SplitMix64::new(6);
     for _ in 0..300 {
-        let mut inp = limits::<1>(uni(&mut r, 0.5, 3.0), uni(&mut r, 1.0, 20.0), uni(&mut r, 5e6, 2e7));
+        let mut inp = limits::<1>(
+            uni(&mut r, 0.5, 3.0),
+            uni(&mut r, 1.0, 20.0),
+            uni(&mut r, 5e6, 2e7),
+        );
         inp.current_position = [uni(&mut r, -3.0, 3.0)];
         inp.target_position = [uni(&mut r, -3.0, 3.0)];
         inp.current_velocity = [uni(&mut r, -0.4, 0.4)];

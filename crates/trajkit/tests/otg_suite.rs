@@ -26,7 +26,10 @@ fn one(d: f64, v: f64, a: f64, j: f64) -> InputParameter<1> {
 fn seed_example_exact() {
     let otg = Otg::<1>::new(0.001);
     // Trapezoid: T = D/v + v/a.
-    let t = otg.calculate(&one(1.0, 0.6, 1.0, f64::INFINITY)).unwrap().duration();
+    let t = otg
+        .calculate(&one(1.0, 0.6, 1.0, f64::INFINITY))
+        .unwrap()
+        .duration();
     assert!((t - (1.0 / 0.6 + 0.6)).abs() < 1e-12, "{t}");
     assert!((t - 2.2667).abs() < 1e-4);
     // S-curve: T = D/v + v/a + a/j.
@@ -34,7 +37,10 @@ fn seed_example_exact() {
     assert!((t - (1.0 / 0.6 + 0.6 + 0.25)).abs() < 1e-12, "{t}");
     assert!((t - 2.5167).abs() < 1e-4);
     // First order: T = D/v.
-    let t = otg.calculate(&one(1.0, 0.6, f64::INFINITY, 4.0)).unwrap().duration();
+    let t = otg
+        .calculate(&one(1.0, 0.6, f64::INFINITY, 4.0))
+        .unwrap()
+        .duration();
     assert!((t - 1.0 / 0.6).abs() < 1e-12);
 }
 
@@ -49,8 +55,14 @@ fn analytic_short_moves() {
     assert!((t - 4.0 * tj).abs() < 1e-12, "{t} {}", 4.0 * tj);
     // Acceleration limit reached, no cruise: D = a·T_a·(T_a + t_j)... checked by symmetry:
     // a mirrored move takes the same time.
-    let t1 = otg.calculate(&one(3.0, 100.0, 1.0, 5.0)).unwrap().duration();
-    let t2 = otg.calculate(&one(-3.0, 100.0, 1.0, 5.0)).unwrap().duration();
+    let t1 = otg
+        .calculate(&one(3.0, 100.0, 1.0, 5.0))
+        .unwrap()
+        .duration();
+    let t2 = otg
+        .calculate(&one(-3.0, 100.0, 1.0, 5.0))
+        .unwrap()
+        .duration();
     assert!((t1 - t2).abs() < 1e-12);
     // Identical start and target: nothing to do.
     let mut inp = one(0.0, 1.0, 1.0, 1.0);
@@ -67,7 +79,8 @@ fn finite_differences_match_derivatives() {
         let inp = problem::<3>(&mut r, Cat::General);
         let tr = otg.calculate(&inp).unwrap();
         let h = 1e-6;
-        let (mut p0, mut p1, mut v, mut v0, mut v1, mut a) = ([0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]);
+        let (mut p0, mut p1, mut v, mut v0, mut v1, mut a) =
+            ([0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]);
         for k in 1..20 {
             let t = tr.duration() * k as f64 / 20.0 + 1e-4;
             tr.eval(t - h, Order::Position, &mut p0);
@@ -125,8 +138,18 @@ fn invalid_input_names_field_dof_and_value() {
     inp.max_jerk = [1.0; 3];
     inp.target_position[2] = f64::NAN;
     let e = otg.calculate(&inp).unwrap_err();
-    assert!(matches!(e, OtgResult::InvalidInput { dof: 2, field: "target_position", .. }));
-    assert_eq!(e.to_string(), "invalid input: target_position[2] = NaN is not a finite number");
+    assert!(matches!(
+        e,
+        OtgResult::InvalidInput {
+            dof: 2,
+            field: "target_position",
+            ..
+        }
+    ));
+    assert_eq!(
+        e.to_string(),
+        "invalid input: target_position[2] = NaN is not a finite number"
+    );
     inp.target_position[2] = 0.0;
     inp.max_jerk[1] = -3.0;
     let e = otg.calculate(&inp).unwrap_err();
@@ -140,7 +163,18 @@ fn invalid_input_names_field_dof_and_value() {
 #[test]
 fn garbage_never_panics() {
     let mut r = SplitMix64::new(99);
-    let specials = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 0.0, -0.0, 1e308, -1e308, 1e-308, -1.0, 1.0];
+    let specials = [
+        f64::NAN,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        0.0,
+        -0.0,
+        1e308,
+        -1e308,
+        1e-308,
+        -1.0,
+        1.0,
+    ];
     let otg = Otg::<2>::new(0.001);
     for _ in 0..3000 {
         let cat = ALL[r.below(ALL.len() as u64) as usize];
@@ -186,8 +220,15 @@ fn suite<const N: usize>(n: usize, seed: u64) -> (usize, usize) {
                     for i in 0..N {
                         assert!(tr.duration() >= mins[i] * (1.0 - 1e-12));
                         let end = tr.dofs()[i].profile.duration();
-                        if matches!(inp.options.synchronization, Synchronization::Time | Synchronization::Phase) {
-                            assert!((end - tr.duration()).abs() <= 1e-9 * tr.duration().max(1.0), "{cat:?} {k}: DOF {i} ends at {end}, not {}\n{inp:?}", tr.duration());
+                        if matches!(
+                            inp.options.synchronization,
+                            Synchronization::Time | Synchronization::Phase
+                        ) {
+                            assert!(
+                                (end - tr.duration()).abs() <= 1e-9 * tr.duration().max(1.0),
+                                "{cat:?} {k}: DOF {i} ends at {end}, not {}\n{inp:?}",
+                                tr.duration()
+                            );
                         }
                     }
                     if inp.options.duration_discretization == DurationDiscretization::Discrete {
@@ -197,7 +238,10 @@ fn suite<const N: usize>(n: usize, seed: u64) -> (usize, usize) {
                     solved += 1;
                 }
                 Err(e) => {
-                    assert!(!matches!(e, OtgResult::InvalidInput { .. }), "{cat:?} {k}: {e}\n{inp:?}");
+                    assert!(
+                        !matches!(e, OtgResult::InvalidInput { .. }),
+                        "{cat:?} {k}: {e}\n{inp:?}"
+                    );
                     failed += 1;
                     if std::env::var("OTG_VERBOSE").is_ok() && failed - before <= 2 {
                         eprintln!("{cat:?} {k}: {e}\n{inp:?}");
@@ -221,13 +265,18 @@ fn random_suite_debug() {
 }
 
 #[test]
-#[cfg_attr(debug_assertions, ignore = "100 000 problems: run with cargo test --release")]
+#[cfg_attr(
+    debug_assertions,
+    ignore = "100 000 problems: run with cargo test --release"
+)]
 fn random_suite_100k() {
     let (s1, f1) = suite::<1>(4000, 21);
     let (s3, f3) = suite::<3>(2000, 22);
     let (s7, f7) = suite::<7>(1200, 23);
     let total = s1 + f1 + s3 + f3 + s7 + f7;
-    eprintln!("1 DOF {s1}/{f1}, 3 DOF {s3}/{f3}, 7 DOF {s7}/{f7} (solved/failed), {total} problems");
+    eprintln!(
+        "1 DOF {s1}/{f1}, 3 DOF {s3}/{f3}, 7 DOF {s7}/{f7} (solved/failed), {total} problems"
+    );
     assert!(total >= 100_000);
     assert!(f1 + f3 + f7 <= total / 200, "too many failures");
 }
@@ -239,7 +288,9 @@ fn random_suite_10m() {
     let (s3, f3) = suite::<3>(150_000, 32);
     let (s7, f7) = suite::<7>(115_000, 33);
     let total = s1 + f1 + s3 + f3 + s7 + f7;
-    eprintln!("1 DOF {s1}/{f1}, 3 DOF {s3}/{f3}, 7 DOF {s7}/{f7} (solved/failed), {total} problems");
+    eprintln!(
+        "1 DOF {s1}/{f1}, 3 DOF {s3}/{f3}, 7 DOF {s7}/{f7} (solved/failed), {total} problems"
+    );
     assert!(total >= 10_000_000);
 }
 

@@ -8,6 +8,6 @@
 
 pub mod check;
 pub mod common;
+pub mod otg;
 pub mod plan;
 pub mod poly;
-

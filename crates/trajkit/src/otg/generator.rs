@@ -99,7 +99,10 @@ impl<const DOF: usize> Otg<DOF> {
     }
 
     /// Calculates the trajectory for `input` (no allocation).
-    pub fn calculate(&self, input: &InputParameter<DOF>) -> Result<FixedTrajectory<DOF>, OtgResult> {
+    pub fn calculate(
+        &self,
+        input: &InputParameter<DOF>,
+    ) -> Result<FixedTrajectory<DOF>, OtgResult> {
         let mut traj = FixedTrajectory::<DOF>::default();
         let mut scratch = [Scratch::default(); DOF];
         self.calculate_into(input, &mut traj, &mut scratch)?;
@@ -120,12 +123,21 @@ impl<const DOF: usize> Otg<DOF> {
 
     /// One control cycle: re-plan if the input changed, advance by `delta_time`, write the new
     /// state. Returns `Working`, `Finished` (the new time is at or past the end) or an error.
-    pub fn update(&mut self, input: &InputParameter<DOF>, out: &mut OutputParameter<DOF>) -> OtgResult {
+    pub fn update(
+        &mut self,
+        input: &InputParameter<DOF>,
+        out: &mut OutputParameter<DOF>,
+    ) -> OtgResult {
         out.new_calculation = false;
         out.calculation_duration_us = 0.0;
         if self.last.as_ref() != Some(input) {
             let start = Instant::now();
-            let r = calculate(&input.view(), self.delta_time, &mut self.traj.dofs, &mut self.scratch);
+            let r = calculate(
+                &input.view(),
+                self.delta_time,
+                &mut self.traj.dofs,
+                &mut self.scratch,
+            );
             out.calculation_duration_us = start.elapsed().as_secs_f64() * 1e6;
             match r {
                 Ok(d) => self.traj.duration = d,
@@ -165,7 +177,10 @@ impl<const DOF: usize> Otg<DOF> {
 }
 
 /// Calculates the trajectory of a run-time-sized input (allocates its result).
-pub fn calculate_dyn(input: &DynInputParameter, delta_time: f64) -> Result<DynTrajectory, OtgResult> {
+pub fn calculate_dyn(
+    input: &DynInputParameter,
+    delta_time: f64,
+) -> Result<DynTrajectory, OtgResult> {
     let n = input.dof();
     let mut dofs = vec![DofTrajectory::default(); n];
     let mut scratch = vec![Scratch::default(); n];

@@ -240,7 +240,12 @@ const NOT_NEGATIVE: &str = "is not a negative number (or -infinity)";
 const WRONG_LEN: &str = "is the length of this vector, which differs from the number of DOFs";
 
 fn bad(dof: usize, field: &'static str, value: f64, reason: &'static str) -> OtgResult {
-    OtgResult::InvalidInput { dof, field, value, reason }
+    OtgResult::InvalidInput {
+        dof,
+        field,
+        value,
+        reason,
+    }
 }
 
 impl InputView<'_> {
@@ -271,18 +276,33 @@ impl InputView<'_> {
         }
         if let Some(a) = self.amin {
             if a.len() != n {
-                return Err(bad(usize::MAX, "min_acceleration", a.len() as f64, WRONG_LEN));
+                return Err(bad(
+                    usize::MAX,
+                    "min_acceleration",
+                    a.len() as f64,
+                    WRONG_LEN,
+                ));
             }
         }
         if let Some(m) = self.options.minimum_duration {
             if !(m.is_finite() && m >= 0.0) {
-                return Err(bad(usize::MAX, "minimum_duration", m, "is not a finite number ≥ 0"));
+                return Err(bad(
+                    usize::MAX,
+                    "minimum_duration",
+                    m,
+                    "is not a finite number ≥ 0",
+                ));
             }
         }
         if self.options.duration_discretization == DurationDiscretization::Discrete
             && !(delta_time.is_finite() && delta_time > 0.0)
         {
-            return Err(bad(usize::MAX, "delta_time", delta_time, "is not a positive finite number"));
+            return Err(bad(
+                usize::MAX,
+                "delta_time",
+                delta_time,
+                "is not a positive finite number",
+            ));
         }
         Ok(())
     }
@@ -352,12 +372,22 @@ impl InputView<'_> {
                 ));
             }
             if d.vf > d.vmax || d.vf < d.vmin {
-                return Err(bad(i, "target_velocity", d.vf, "is outside the velocity limits"));
+                return Err(bad(
+                    i,
+                    "target_velocity",
+                    d.vf,
+                    "is outside the velocity limits",
+                ));
             }
         }
         if order == ProfileOrder::Third {
             if d.af > d.amax || d.af < d.amin {
-                return Err(bad(i, "target_acceleration", d.af, "is outside the acceleration limits"));
+                return Err(bad(
+                    i,
+                    "target_acceleration",
+                    d.af,
+                    "is outside the acceleration limits",
+                ));
             }
             let before = d.vf - d.af * d.af.abs() / (2.0 * d.jmax);
             if d.interface == ControlInterface::Position && (before > d.vmax || before < d.vmin) {

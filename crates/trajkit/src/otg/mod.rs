@@ -50,7 +50,10 @@ pub mod trajectory;
 pub mod velocity_change;
 
 pub use generator::{calculate_dyn, Otg, OutputParameter};
-pub use input::{ControlInterface, DurationDiscretization, DynInputParameter, InputParameter, Options, Synchronization};
+pub use input::{
+    ControlInterface, DurationDiscretization, DynInputParameter, InputParameter, Options,
+    Synchronization,
+};
 pub use problem::{Dof1, ProfileOrder};
 pub use profile::{Profile, State1};
 pub use result::OtgResult;
@@ -66,7 +69,11 @@ pub fn time_optimal(dof: &Dof1) -> Option<Profile> {
 /// included), or `None` when `duration` is shorter than the minimum, inside a blocked interval,
 /// or not found by the step-2 families.
 pub fn with_duration(dof: &Dof1, duration: f64) -> Option<Profile> {
-    let mut pr = Profile::new(State1 { p: dof.p0, v: dof.v0, a: dof.a0 });
+    let mut pr = Profile::new(State1 {
+        p: dof.p0,
+        v: dof.v0,
+        a: dof.a0,
+    });
     brake::brake(dof, &mut pr);
     let e = pr.end();
     let mut d = *dof;

@@ -154,12 +154,20 @@ impl Profile {
 
     /// The start state.
     pub fn start(&self) -> State1 {
-        State1 { p: self.p[0], v: self.v[0], a: self.a[0] }
+        State1 {
+            p: self.p[0],
+            v: self.v[0],
+            a: self.a[0],
+        }
     }
 
     /// The state at the end of the last segment.
     pub fn end(&self) -> State1 {
-        State1 { p: self.p[self.n], v: self.v[self.n], a: self.a[self.n] }
+        State1 {
+            p: self.p[self.n],
+            v: self.v[self.n],
+            a: self.a[self.n],
+        }
     }
 
     /// The brake pre-profile alone (its end state is where the main profile starts).
@@ -175,7 +183,11 @@ impl Profile {
             (
                 self.t[k],
                 self.d[k],
-                State1 { p: self.p[k], v: self.v[k], a: self.a[k] },
+                State1 {
+                    p: self.p[k],
+                    v: self.v[k],
+                    a: self.a[k],
+                },
                 self.j[k],
             )
         })
@@ -207,13 +219,6 @@ impl Profile {
         let dt = t - self.t[k];
         let (p, v, a) = integrate(self.p[k], self.v[k], self.a[k], self.j[k], dt);
         (p, v, a, self.j[k])
-    }
-
-    /// Shifts positions by `dp` (used to solve relative to the start position).
-    pub(crate) fn shift(&mut self, dp: f64) {
-        for p in self.p.iter_mut().take(self.n + 1) {
-            *p += dp;
-        }
     }
 
     /// Mirrors the profile (p, v, a, j → −p, −v, −a, −j).
@@ -384,7 +389,11 @@ mod tests {
 
     #[test]
     fn integrate_matches_finite_differences() {
-        let mut pr = Profile::new(State1 { p: 0.5, v: -0.2, a: 0.3 });
+        let mut pr = Profile::new(State1 {
+            p: 0.5,
+            v: -0.2,
+            a: 0.3,
+        });
         assert!(pr.push(0.4, 2.0));
         assert!(pr.push(0.3, 0.0));
         assert!(pr.push(0.5, -1.5));
@@ -406,7 +415,11 @@ mod tests {
     #[test]
     fn extrema_and_first_time() {
         // v = 1 - t for 2 s: position peaks at t = 1 with 0.5.
-        let mut pr = Profile::new(State1 { p: 0.0, v: 1.0, a: -1.0 });
+        let mut pr = Profile::new(State1 {
+            p: 0.0,
+            v: 1.0,
+            a: -1.0,
+        });
         pr.push(2.0, 0.0);
         let (lo, tlo, hi, thi) = pr.position_extrema();
         assert!((hi - 0.5).abs() < 1e-15 && (thi - 1.0).abs() < 1e-15);

@@ -65,7 +65,12 @@ impl fmt::Display for OtgResult {
         match *self {
             OtgResult::Working => write!(f, "working"),
             OtgResult::Finished => write!(f, "finished"),
-            OtgResult::InvalidInput { dof, field, value, reason } => {
+            OtgResult::InvalidInput {
+                dof,
+                field,
+                value,
+                reason,
+            } => {
                 if dof == usize::MAX {
                     write!(f, "invalid input: {field} = {value} {reason}")
                 } else {
@@ -73,7 +78,10 @@ impl fmt::Display for OtgResult {
                 }
             }
             OtgResult::CalculationFailed { dof } => {
-                write!(f, "calculation failed: no valid time-optimal profile for DOF {dof}")
+                write!(
+                    f,
+                    "calculation failed: no valid time-optimal profile for DOF {dof}"
+                )
             }
             OtgResult::SynchronizationFailed { dof, duration } => write!(
                 f,

@@ -17,8 +17,8 @@ pub const MAX_ROOTS: usize = 8;
 
 /// Relative sample positions in [0, 1]: geometric near both ends, uniform in between.
 const GRID: [f64; 23] = [
-    0.0, 1e-12, 1e-9, 1e-6, 1e-4, 1e-3, 0.01, 0.03, 0.07, 0.13, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7,
-    0.8, 0.87, 0.93, 0.97, 0.99, 0.999, 1.0,
+    0.0, 1e-12, 1e-9, 1e-6, 1e-4, 1e-3, 0.01, 0.03, 0.07, 0.13, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8,
+    0.87, 0.93, 0.97, 0.99, 0.999, 1.0,
 ];
 
 /// Roots of `f` in `[lo, hi]`. `f` returns `None` where the parameter is outside its family's
@@ -33,7 +33,7 @@ pub fn find_roots(
     if !(lo.is_finite() && hi.is_finite()) || hi < lo {
         return 0;
     }
-    let mut push = |x: f64, out: &mut [f64; MAX_ROOTS], n: &mut usize| {
+    let push = |x: f64, out: &mut [f64; MAX_ROOTS], n: &mut usize| {
         if *n > 0 && out[*n - 1] == x {
             return;
         }
@@ -106,12 +106,7 @@ fn is_tiny(v: f64, scale: f64) -> bool {
 
 /// Bisects for the edge of the valid domain between a valid and an invalid point; returns the
 /// last valid point and its residual.
-fn edge(
-    f: &mut impl FnMut(f64) -> Option<f64>,
-    a: f64,
-    b: f64,
-    valid_left: bool,
-) -> (f64, f64) {
+fn edge(f: &mut impl FnMut(f64) -> Option<f64>, a: f64, b: f64, valid_left: bool) -> (f64, f64) {
     let (mut good, mut bad) = if valid_left { (a, b) } else { (b, a) };
     let mut fg = f(good).unwrap_or(f64::NAN);
     for _ in 0..80 {
@@ -132,7 +127,13 @@ fn edge(
 
 /// Illinois regula falsi on a bracket with f(a)·f(b) < 0; falls back to bisection when a
 /// trial point is invalid.
-fn refine(f: &mut impl FnMut(f64) -> Option<f64>, mut a: f64, mut b: f64, mut fa: f64, mut fb: f64) -> f64 {
+fn refine(
+    f: &mut impl FnMut(f64) -> Option<f64>,
+    mut a: f64,
+    mut b: f64,
+    mut fa: f64,
+    mut fb: f64,
+) -> f64 {
     let mut side = 0i8;
     for _ in 0..200 {
         let mut m = (a * fb - b * fa) / (fb - fa);

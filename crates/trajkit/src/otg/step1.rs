@@ -69,7 +69,12 @@ pub(crate) struct Collector<'a> {
 
 impl<'a> Collector<'a> {
     pub fn new(dof: &'a Dof1) -> Self {
-        Collector { dof, best: None, cand: [0.0; MAX_CANDIDATES], ncand: 0 }
+        Collector {
+            dof,
+            best: None,
+            cand: [0.0; MAX_CANDIDATES],
+            ncand: 0,
+        }
     }
 
     /// Offers a main profile (starting after the brake); returns whether it was valid.
@@ -120,7 +125,9 @@ pub(crate) fn verify(dof: &Dof1, pr: &Profile) -> bool {
     let (v_hi, v_lo) = (vmax.max(s.v), vmin.min(s.v));
     let (a_hi, a_lo) = (amax.max(s.a), amin.min(s.a));
     for k in 0..pr.segments() {
-        let Some((_, d, st, j)) = pr.segment(k) else { break };
+        let Some((_, d, st, j)) = pr.segment(k) else {
+            break;
+        };
         let vend = st.v + d * (st.a + d * j / 2.0);
         let aend = st.a + d * j;
         let mut vs = [st.v, st.v, vend];
@@ -178,7 +185,11 @@ pub(crate) fn velocity_cap(dof: &Dof1, s: State1) -> f64 {
 
 /// Step 1 for one degree of freedom. `None` when no valid profile was found.
 pub(crate) fn step1(dof: &Dof1) -> Option<Step1> {
-    let mut pr = Profile::new(State1 { p: dof.p0, v: dof.v0, a: dof.a0 });
+    let mut pr = Profile::new(State1 {
+        p: dof.p0,
+        v: dof.v0,
+        a: dof.a0,
+    });
     brake(dof, &mut pr);
     let s = pr.end();
     let mut main_dof = *dof;
@@ -196,12 +207,20 @@ pub(crate) fn step1(dof: &Dof1) -> Option<Step1> {
     for c in cand[..col.ncand].iter_mut() {
         *c += tb;
     }
-    Some(Step1 { profile: pr, cand, ncand: col.ncand })
+    Some(Step1 {
+        profile: pr,
+        cand,
+        ncand: col.ncand,
+    })
 }
 
 /// Enumerates the main-profile candidates of a problem whose start state is safe.
 fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
-    let start = State1 { p: dof.p0, v: dof.v0, a: dof.a0 };
+    let start = State1 {
+        p: dof.p0,
+        v: dof.v0,
+        a: dof.a0,
+    };
     match (dof.order(), dof.interface) {
         (ProfileOrder::First, ControlInterface::Position) => {
             let d = dof.pf - dof.p0;
@@ -219,7 +238,9 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
             col.offer(&pr);
         }
         (order, ControlInterface::Velocity) => {
-            if let Some(c) = fastest(order, dof.v0, dof.a0, dof.vf, dof.af, dof.jmax, dof.amax, dof.amin) {
+            if let Some(c) = fastest(
+                order, dof.v0, dof.a0, dof.vf, dof.af, dof.jmax, dof.amax, dof.amin,
+            ) {
                 let mut pr = Profile::new(start);
                 push_change(&mut pr, order, &c, dof.v0);
                 if order == ProfileOrder::Second {
@@ -264,8 +285,22 @@ pub(crate) fn push_change(pr: &mut Profile, order: ProfileOrder, c: &VelChange, 
 fn peak_family(dof: &Dof1, col: &mut Collector<'_>) {
     let order = dof.order();
     let d = dof.pf - dof.p0;
-    let vcap = velocity_cap(dof, State1 { p: dof.p0, v: dof.v0, a: dof.a0 });
-    let vcap_neg = velocity_cap(&dof.mirrored(), State1 { p: -dof.p0, v: -dof.v0, a: -dof.a0 });
+    let vcap = velocity_cap(
+        dof,
+        State1 {
+            p: dof.p0,
+            v: dof.v0,
+            a: dof.a0,
+        },
+    );
+    let vcap_neg = velocity_cap(
+        &dof.mirrored(),
+        State1 {
+            p: -dof.p0,
+            v: -dof.v0,
+            a: -dof.a0,
+        },
+    );
     let (lo, hi) = (-vcap_neg, vcap);
     let parts = |vc: f64| -> Option<(VelChange, VelChange)> {
         let c1 = fastest(order, dof.v0, dof.a0, vc, 0.0, dof.jmax, dof.amax, dof.amin)?;
@@ -274,12 +309,22 @@ fn peak_family(dof: &Dof1, col: &mut Collector<'_>) {
     };
     let mut f = |vc: f64| parts(vc).map(|(c1, c2)| c1.dist + c2.dist - d);
     let mut roots = [0.0; MAX_ROOTS];
-    let mut cuts = [lo, hi, 0.0, kink(order, dof.v0, dof.a0, dof.jmax, 1.0), kink(order, dof.vf, dof.af, dof.jmax, -1.0)];
+    let mut cuts = [
+        lo,
+        hi,
+        0.0,
+        kink(order, dof.v0, dof.a0, dof.jmax, 1.0),
+        kink(order, dof.vf, dof.af, dof.jmax, -1.0),
+    ];
     for_each_piece(&mut cuts, |a, b| {
         let n = find_roots(&mut f, a, b, &mut roots);
         for &vc in &roots[..n] {
             if let Some((c1, c2)) = parts(vc) {
-                let mut pr = Profile::new(State1 { p: dof.p0, v: dof.v0, a: dof.a0 });
+                let mut pr = Profile::new(State1 {
+                    p: dof.p0,
+                    v: dof.v0,
+                    a: dof.a0,
+                });
                 push_change(&mut pr, order, &c1, dof.v0);
                 pr.snap(vc, 0.0);
                 push_change(&mut pr, order, &c2, vc);
@@ -337,7 +382,11 @@ fn cruise_family(dof: &Dof1, col: &mut Collector<'_>) {
         if !(tau >= 0.0) {
             continue;
         }
-        let mut pr = Profile::new(State1 { p: dof.p0, v: dof.v0, a: dof.a0 });
+        let mut pr = Profile::new(State1 {
+            p: dof.p0,
+            v: dof.v0,
+            a: dof.a0,
+        });
         push_change(&mut pr, order, &c1, dof.v0);
         pr.snap(vc, 0.0);
         pr.push_with(tau, vc, 0.0, 0.0);
@@ -359,7 +408,11 @@ struct Seq {
 
 impl Seq {
     fn new() -> Seq {
-        Seq { n: 0, d: [0.0; 7], j: [0.0; 7] }
+        Seq {
+            n: 0,
+            d: [0.0; 7],
+            j: [0.0; 7],
+        }
     }
     #[inline]
     fn add(&mut self, d: f64, j: f64) {
@@ -388,11 +441,22 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     let vlim = if q.vmax.is_finite() {
         q.vmax
     } else {
-        velocity_cap(q, State1 { p: q.p0, v: v0, a: a0 })
+        velocity_cap(
+            q,
+            State1 {
+                p: q.p0,
+                v: v0,
+                a: a0,
+            },
+        )
     };
     let tol = 1e-12 * (amax + a2);
     let emit = |seq: &Seq, col: &mut Collector<'_>| {
-        let mut pr = Profile::new(State1 { p: q.p0, v: v0, a: a0 });
+        let mut pr = Profile::new(State1 {
+            p: q.p0,
+            v: v0,
+            a: a0,
+        });
         for k in 0..seq.n {
             pr.push(seq.d[k], seq.j[k]);
         }
@@ -474,7 +538,11 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
             };
             let lo = ((l - c0) / (j * amax)).max(0.0);
             let hi = ((u - c0) / (j * amax)).min(tau_hi);
-            let n = if lo <= hi { find_roots(&mut f, lo, hi, &mut roots) } else { 0 };
+            let n = if lo <= hi {
+                find_roots(&mut f, lo, hi, &mut roots)
+            } else {
+                0
+            };
             for &x in &roots[..n] {
                 if let Some(s) = acc0(x) {
                     emit(&s, col);
@@ -525,8 +593,14 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
             Some(s)
         };
         let mut f = |x: f64| acc01(x).map(|s| s.displacement(v0, a0) - d);
-        let lo = ((dv - (2.0 * amax * amax - a0 * a0 - 2.0 * a2 * a2 + af * af) / (2.0 * j)) / amax).max(0.0);
-        let n = if lo <= tau_hi { find_roots(&mut f, lo, tau_hi, &mut roots) } else { 0 };
+        let lo = ((dv - (2.0 * amax * amax - a0 * a0 - 2.0 * a2 * a2 + af * af) / (2.0 * j))
+            / amax)
+            .max(0.0);
+        let n = if lo <= tau_hi {
+            find_roots(&mut f, lo, tau_hi, &mut roots)
+        } else {
+            0
+        };
         for &x in &roots[..n] {
             if let Some(s) = acc01(x) {
                 emit(&s, col);
@@ -540,7 +614,11 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
         if let (Some(c1), Some(c2)) = (c1, c2) {
             let tau = (d - c1.dist - c2.dist) / q.vmax;
             if tau >= 0.0 {
-                let mut pr = Profile::new(State1 { p: q.p0, v: v0, a: a0 });
+                let mut pr = Profile::new(State1 {
+                    p: q.p0,
+                    v: v0,
+                    a: a0,
+                });
                 push_change(&mut pr, ProfileOrder::Third, &c1, v0);
                 pr.snap(q.vmax, 0.0);
                 pr.push_with(tau, q.vmax, 0.0, 0.0);
@@ -556,7 +634,14 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
 
 /// The parts of `[lo, hi]` where x² ∈ [l, u]: up to two intervals (the negative one only
 /// when `neg_ok`). Bounds are widened by `tol` so that edge roots survive round-off.
-fn square_window(l: f64, u: f64, lo: f64, hi: f64, neg_ok: bool, tol: f64) -> impl Iterator<Item = (f64, f64)> {
+fn square_window(
+    l: f64,
+    u: f64,
+    lo: f64,
+    hi: f64,
+    neg_ok: bool,
+    tol: f64,
+) -> impl Iterator<Item = (f64, f64)> {
     let mut out = [(1.0, 0.0); 2];
     if l <= u && u >= 0.0 {
         let (r0, r1) = (l.max(0.0).sqrt(), u.sqrt());
@@ -581,9 +666,17 @@ mod tests {
     #[test]
     fn seed_example_trapezoid_and_scurve() {
         let tr = step1(&Dof1::rest_to_rest(0.0, 1.0, 0.6, 1.0, f64::INFINITY)).unwrap();
-        assert!((tr.t_min() - (1.0 / 0.6 + 0.6)).abs() < 1e-12, "{}", tr.t_min());
+        assert!(
+            (tr.t_min() - (1.0 / 0.6 + 0.6)).abs() < 1e-12,
+            "{}",
+            tr.t_min()
+        );
         let sc = step1(&Dof1::rest_to_rest(0.0, 1.0, 0.6, 1.0, 4.0)).unwrap();
-        assert!((sc.t_min() - (1.0 / 0.6 + 0.6 + 0.25)).abs() < 1e-12, "{}", sc.t_min());
+        assert!(
+            (sc.t_min() - (1.0 / 0.6 + 0.6 + 0.25)).abs() < 1e-12,
+            "{}",
+            sc.t_min()
+        );
         let fo = step1(&Dof1::rest_to_rest(0.0, 1.0, 0.6, f64::INFINITY, 4.0)).unwrap();
         assert!((fo.t_min() - 1.0 / 0.6).abs() < 1e-12);
     }

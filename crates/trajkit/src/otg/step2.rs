@@ -24,12 +24,20 @@ pub(crate) fn step2(dof: &Dof1, t: f64) -> Option<Profile> {
     if !(t >= 0.0) || !t.is_finite() {
         return None;
     }
-    let start = State1 { p: dof.p0, v: dof.v0, a: dof.a0 };
+    let start = State1 {
+        p: dof.p0,
+        v: dof.v0,
+        a: dof.a0,
+    };
     let order = dof.order();
     let ok = |pr: &Profile| verify(dof, pr) && (pr.duration() - t).abs() <= 1e-12 * t.max(1.0);
     match (order, dof.interface) {
         (ProfileOrder::First, iface) => {
-            let d = if iface == ControlInterface::Position { dof.pf - dof.p0 } else { 0.0 };
+            let d = if iface == ControlInterface::Position {
+                dof.pf - dof.p0
+            } else {
+                0.0
+            };
             let mut pr = Profile::new(start);
             if t > 0.0 {
                 let v = d / t;
@@ -62,9 +70,20 @@ pub(crate) fn step2(dof: &Dof1, t: f64) -> Option<Profile> {
 fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
     let order = dof.order();
     let d = dof.pf - dof.p0;
-    let start = State1 { p: dof.p0, v: dof.v0, a: dof.a0 };
+    let start = State1 {
+        p: dof.p0,
+        v: dof.v0,
+        a: dof.a0,
+    };
     let hi = velocity_cap(dof, start);
-    let lo = -velocity_cap(&dof.mirrored(), State1 { p: -dof.p0, v: -dof.v0, a: -dof.a0 });
+    let lo = -velocity_cap(
+        &dof.mirrored(),
+        State1 {
+            p: -dof.p0,
+            v: -dof.v0,
+            a: -dof.a0,
+        },
+    );
     let parts = |vc: f64| -> Option<(VelChange, VelChange, f64)> {
         let c1 = fastest(order, dof.v0, dof.a0, vc, 0.0, dof.jmax, dof.amax, dof.amin)?;
         let c2 = fastest(order, vc, 0.0, dof.vf, dof.af, dof.jmax, dof.amax, dof.amin)?;
@@ -116,7 +135,13 @@ fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile>
 /// (`at_valley` false) or at the valley α₂ (true); the negative direction by mirroring. The
 /// duration and velocity equations give the other level in closed form; free parameter: the
 /// level that holds.
-fn hold(dof: &Dof1, t: f64, mirror: bool, at_valley: bool, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
+fn hold(
+    dof: &Dof1,
+    t: f64,
+    mirror: bool,
+    at_valley: bool,
+    ok: &impl Fn(&Profile) -> bool,
+) -> Option<Profile> {
     let q = if mirror { dof.mirrored() } else { *dof };
     let (j, a0, af, v0) = (q.jmax, q.a0, q.af, q.v0);
     let dv = q.vf - q.v0;
@@ -126,7 +151,9 @@ fn hold(dof: &Dof1, t: f64, mirror: bool, at_valley: bool, ok: &impl Fn(&Profile
         // Returns (α1, α2, hold).
         let (al1, al2) = if !at_valley {
             let al1 = x;
-            let c = al1 * (t - (2.0 * al1 - a0 + af) / j) + (2.0 * al1 * al1 - a0 * a0 + af * af) / (2.0 * j) - dv;
+            let c = al1 * (t - (2.0 * al1 - a0 + af) / j)
+                + (2.0 * al1 * al1 - a0 * a0 + af * af) / (2.0 * j)
+                - dv;
             let rad = al1 * al1 + j * c;
             if rad < 0.0 {
                 return None;
@@ -134,7 +161,9 @@ fn hold(dof: &Dof1, t: f64, mirror: bool, at_valley: bool, ok: &impl Fn(&Profile
             (al1, al1 - rad.sqrt())
         } else {
             let al2 = x;
-            let c = al2 * (t + (a0 + 2.0 * al2 - af) / j) + (af * af - a0 * a0 - 2.0 * al2 * al2) / (2.0 * j) - dv;
+            let c = al2 * (t + (a0 + 2.0 * al2 - af) / j)
+                + (af * af - a0 * a0 - 2.0 * al2 * al2) / (2.0 * j)
+                - dv;
             let rad = al2 * al2 - j * c;
             if rad < 0.0 {
                 return None;
@@ -152,7 +181,11 @@ fn hold(dof: &Dof1, t: f64, mirror: bool, at_valley: bool, ok: &impl Fn(&Profile
     };
     let build = |x: f64| -> Option<Profile> {
         let (al1, al2, h) = levels(x)?;
-        let mut pr = Profile::new(State1 { p: q.p0, v: v0, a: a0 });
+        let mut pr = Profile::new(State1 {
+            p: q.p0,
+            v: v0,
+            a: a0,
+        });
         pr.push(((al1 - a0) / j).max(0.0), j);
         if !at_valley {
             pr.push(h, 0.0);
@@ -194,7 +227,11 @@ fn hold(dof: &Dof1, t: f64, mirror: bool, at_valley: bool, ok: &impl Fn(&Profile
 /// Velocity interface, third order: a₀ → α (hold) → a_f in exactly t.
 fn velocity3(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
     let j = dof.jmax;
-    let start = State1 { p: dof.p0, v: dof.v0, a: dof.a0 };
+    let start = State1 {
+        p: dof.p0,
+        v: dof.v0,
+        a: dof.a0,
+    };
     let build = |al: f64| -> Option<Profile> {
         let t1 = (al - dof.a0).abs() / j;
         let t3 = (dof.af - al).abs() / j;
@@ -231,4 +268,3 @@ fn velocity3(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profi
     });
     best
 }
-

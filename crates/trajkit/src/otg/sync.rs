@@ -76,7 +76,13 @@ pub(crate) fn calculate(
     }
     let opts = view.options;
     let discrete = opts.duration_discretization == DurationDiscretization::Discrete;
-    let disc = |t: f64| if discrete { (t / delta_time - 1e-9).ceil().max(0.0) * delta_time } else { t };
+    let disc = |t: f64| {
+        if discrete {
+            (t / delta_time - 1e-9).ceil().max(0.0) * delta_time
+        } else {
+            t
+        }
+    };
     let min_dur = opts.minimum_duration.unwrap_or(0.0);
 
     // Step 1 for every enabled DOF.
@@ -85,14 +91,21 @@ pub(crate) fn calculate(
         let d = scratch[i].dof;
         if !view.enabled[i] {
             out[i] = DofTrajectory {
-                profile: Profile::new(State1 { p: d.p0, v: d.v0, a: d.a0 }),
+                profile: Profile::new(State1 {
+                    p: d.p0,
+                    v: d.v0,
+                    a: d.a0,
+                }),
                 independent_min_duration: 0.0,
             };
             scratch[i].sync = false;
             continue;
         }
         let s1 = step1(&d).ok_or(OtgResult::CalculationFailed { dof: i })?;
-        out[i] = DofTrajectory { profile: s1.profile, independent_min_duration: s1.t_min() };
+        out[i] = DofTrajectory {
+            profile: s1.profile,
+            independent_min_duration: s1.t_min(),
+        };
         scratch[i].cand = s1.cand;
         scratch[i].ncand = s1.ncand;
         scratch[i].t_min = s1.t_min();
@@ -115,8 +128,11 @@ pub(crate) fn calculate(
         if view.enabled[i] && !scratch[i].sync {
             let t = disc(scratch[i].t_min.max(min_dur));
             if t > scratch[i].t_min {
-                out[i].profile = replan(&scratch[i], t)
-                    .ok_or(OtgResult::SynchronizationFailed { dof: i, duration: t })?;
+                out[i].profile =
+                    replan(&scratch[i], t).ok_or(OtgResult::SynchronizationFailed {
+                        dof: i,
+                        duration: t,
+                    })?;
             }
         }
     }
@@ -125,7 +141,10 @@ pub(crate) fn calculate(
         let t_lead = if opts.synchronization == Synchronization::TimeIfNecessary {
             t_lead
         } else {
-            scratch[..n].iter().filter(|s| s.sync).fold(0.0f64, |m, s| m.max(s.t_min))
+            scratch[..n]
+                .iter()
+                .filter(|s| s.sync)
+                .fold(0.0f64, |m, s| m.max(s.t_min))
         };
         let mut t = disc(t_lead.max(min_dur));
         let mut failed = 0;
@@ -176,12 +195,19 @@ pub(crate) fn calculate(
                 grow += 1;
                 next = disc(t * (1.0 + 1e-6 * 4f64.powi(grow.min(20))));
                 if next <= t {
-                    next = t + if discrete { delta_time } else { t.max(1e-9) * 1e-6 };
+                    next = t + if discrete {
+                        delta_time
+                    } else {
+                        t.max(1e-9) * 1e-6
+                    };
                 }
             }
             t = next;
         }
-        return Err(OtgResult::SynchronizationFailed { dof: failed, duration: t });
+        return Err(OtgResult::SynchronizationFailed {
+            dof: failed,
+            duration: t,
+        });
     }
     Ok(duration_of(&out[..n]))
 }
@@ -210,7 +236,12 @@ fn replan(s: &Scratch, t: f64) -> Option<Profile> {
 
 /// Step 2 for every synchronized DOF at duration `t`; the failing DOF on error. `out` is
 /// written only when every DOF succeeded.
-fn try_all(scratch: &mut [Scratch], out: &mut [DofTrajectory], n: usize, t: f64) -> Result<(), usize> {
+fn try_all(
+    scratch: &mut [Scratch],
+    out: &mut [DofTrajectory],
+    n: usize,
+    t: f64,
+) -> Result<(), usize> {
     for i in 0..n {
         if !scratch[i].sync {
             continue;
@@ -286,8 +317,13 @@ fn phase(
         }
     }
     // The path-coordinate problem s: 0 → 1 (displacement u_i = pf_i − p0_i).
-    let (mut vmax, mut vmin, mut amax, mut amin, mut jmax) =
-        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY);
+    let (mut vmax, mut vmin, mut amax, mut amin, mut jmax) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+    );
     for i in 0..n {
         let d = &scratch[i].dof;
         let u = d.pf - d.p0;
@@ -319,7 +355,9 @@ fn phase(
         jmax,
         interface: ControlInterface::Position,
     };
-    let Some(s1) = step1(&s) else { return Ok(false) };
+    let Some(s1) = step1(&s) else {
+        return Ok(false);
+    };
     let discrete = view.options.duration_discretization == DurationDiscretization::Discrete;
     let mut t = s1.t_min().max(view.options.minimum_duration.unwrap_or(0.0));
     if discrete {
@@ -334,7 +372,9 @@ fn phase(
         step1: s1.profile,
         trial: s1.profile,
     };
-    let Some(sp) = replan(&sc, t) else { return Ok(false) };
+    let Some(sp) = replan(&sc, t) else {
+        return Ok(false);
+    };
     if sp.brake_duration() > 0.0 {
         return Ok(false);
     }

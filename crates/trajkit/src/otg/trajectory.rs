@@ -36,7 +36,10 @@ pub type DynTrajectory = OtgTrajectory<Vec<DofTrajectory>>;
 
 impl<const DOF: usize> Default for FixedTrajectory<DOF> {
     fn default() -> Self {
-        OtgTrajectory { dofs: [DofTrajectory::default(); DOF], duration: 0.0 }
+        OtgTrajectory {
+            dofs: [DofTrajectory::default(); DOF],
+            duration: 0.0,
+        }
     }
 }
 

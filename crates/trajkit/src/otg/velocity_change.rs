@@ -45,7 +45,13 @@ pub(crate) fn fastest(
             let dv = vb - va;
             let a = if dv >= 0.0 { amax } else { amin };
             let t = if dv == 0.0 { 0.0 } else { dv / a };
-            Some(VelChange { d: [t, 0.0, 0.0], j: [0.0; 3], accel: a, t, dist: (va + vb) / 2.0 * t })
+            Some(VelChange {
+                d: [t, 0.0, 0.0],
+                j: [0.0; 3],
+                accel: a,
+                t,
+                dist: (va + vb) / 2.0 * t,
+            })
         }
         ProfileOrder::First => Some(VelChange::default()),
     }
@@ -77,10 +83,20 @@ pub(crate) fn fastest3(
         if alpha >= aa.max(ab) - tol {
             let alpha = alpha.max(aa.max(ab));
             if alpha <= amax {
-                take(build(va, aa, [(alpha - aa) / j, 0.0, (alpha - ab) / j], [j, 0.0, -j]));
+                take(build(
+                    va,
+                    aa,
+                    [(alpha - aa) / j, 0.0, (alpha - ab) / j],
+                    [j, 0.0, -j],
+                ));
             } else if aa <= amax * (1.0 + 1e-12) && ab <= amax * (1.0 + 1e-12) {
                 let tau = (dv - (2.0 * amax * amax - aa * aa - ab * ab) / (2.0 * j)) / amax;
-                take(build(va, aa, [(amax - aa) / j, tau, (amax - ab) / j], [j, 0.0, -j]));
+                take(build(
+                    va,
+                    aa,
+                    [(amax - aa) / j, tau, (amax - ab) / j],
+                    [j, 0.0, -j],
+                ));
             }
         }
     }
@@ -90,10 +106,20 @@ pub(crate) fn fastest3(
         if alpha <= aa.min(ab) + tol {
             let alpha = alpha.min(aa.min(ab));
             if alpha >= amin {
-                take(build(va, aa, [(aa - alpha) / j, 0.0, (ab - alpha) / j], [-j, 0.0, j]));
+                take(build(
+                    va,
+                    aa,
+                    [(aa - alpha) / j, 0.0, (ab - alpha) / j],
+                    [-j, 0.0, j],
+                ));
             } else if aa >= amin * (1.0 + 1e-12) && ab >= amin * (1.0 + 1e-12) {
                 let tau = (-dv - (2.0 * amin * amin - aa * aa - ab * ab) / (2.0 * j)) / -amin;
-                take(build(va, aa, [(aa - amin) / j, tau, (ab - amin) / j], [-j, 0.0, j]));
+                take(build(
+                    va,
+                    aa,
+                    [(aa - amin) / j, tau, (ab - amin) / j],
+                    [-j, 0.0, j],
+                ));
             }
         }
     }
@@ -108,7 +134,13 @@ fn build(va: f64, aa: f64, d: [f64; 3], jk: [f64; 3]) -> VelChange {
         (p, v, a) = super::profile::integrate(p, v, a, jk[k], d[k]);
     }
     let _ = (v, a);
-    VelChange { d, j: jk, accel: 0.0, t: d[0] + d[1] + d[2], dist: p }
+    VelChange {
+        d,
+        j: jk,
+        accel: 0.0,
+        t: d[0] + d[1] + d[2],
+        dist: p,
+    }
 }
 
 #[cfg(test)]

@@ -92,7 +92,11 @@ pub fn problem<const N: usize>(r: &mut SplitMix64, cat: Cat) -> InputParameter<N
         match cat {
             Cat::RestToRest | Cat::BigLimits | Cat::Directional if r.next_f64() < 0.5 => {}
             Cat::RestToRest => {}
-            Cat::General | Cat::BigLimits | Cat::Directional | Cat::Discrete | Cat::VelocityInterface => {
+            Cat::General
+            | Cat::BigLimits
+            | Cat::Directional
+            | Cat::Discrete
+            | Cat::VelocityInterface => {
                 // Large limits: keep the states where stopping takes at most ~1e3 units of
                 // distance, so that 1e-8 absolute position accuracy stays representable in f64
                 // (a 1e9-unit detour cannot end within 1e-8 of its target).
@@ -160,7 +164,13 @@ pub fn problem<const N: usize>(r: &mut SplitMix64, cat: Cat) -> InputParameter<N
         let s = uni(r, -0.2, 0.2);
         for i in 0..N {
             let u = inp.target_position[i] - inp.current_position[i];
-            inp.current_velocity[i] = s * u * inp.max_velocity.iter().fold(f64::INFINITY, |m, &v| m.min(v)) / 10.0;
+            inp.current_velocity[i] = s
+                * u
+                * inp
+                    .max_velocity
+                    .iter()
+                    .fold(f64::INFINITY, |m, &v| m.min(v))
+                / 10.0;
         }
         inp.options.synchronization = Synchronization::Phase;
     }
@@ -214,8 +224,16 @@ pub fn check<const N: usize>(inp: &InputParameter<N>, tr: &FixedTrajectory<N>) -
         let tb = prof.brake_duration();
         // The state where the brake ended may still be outside a limit (on its way back).
         let (_, vb, ab, _) = prof.state_at(tb);
-        let (vmax, vmin) = if tb > 0.0 { (vmax.max(vb), vmin.min(vb)) } else { (vmax, vmin) };
-        let (amax, amin) = if tb > 0.0 { (amax.max(ab), amin.min(ab)) } else { (amax, amin) };
+        let (vmax, vmin) = if tb > 0.0 {
+            (vmax.max(vb), vmin.min(vb))
+        } else {
+            (vmax, vmin)
+        };
+        let (amax, amin) = if tb > 0.0 {
+            (amax.max(ab), amin.min(ab))
+        } else {
+            (amax, amin)
+        };
         for k in 0..prof.segments() {
             let (t0, d, s, j) = prof.segment(k).unwrap();
             if t0 + d <= tb + 1e-15 {
@@ -280,7 +298,9 @@ pub fn ruckig_duration<const N: usize>(inp: &InputParameter<N>, dt: f64) -> Opti
     }
     ri.synchronization = match inp.options.synchronization {
         trajkit::otg::Synchronization::Time => rsruckig::prelude::Synchronization::Time,
-        trajkit::otg::Synchronization::TimeIfNecessary => rsruckig::prelude::Synchronization::TimeIfNecessary,
+        trajkit::otg::Synchronization::TimeIfNecessary => {
+            rsruckig::prelude::Synchronization::TimeIfNecessary
+        }
         trajkit::otg::Synchronization::Phase => rsruckig::prelude::Synchronization::Phase,
         trajkit::otg::Synchronization::None => rsruckig::prelude::Synchronization::None,
     };
@@ -289,8 +309,12 @@ pub fn ruckig_duration<const N: usize>(inp: &InputParameter<N>, dt: f64) -> Opti
         trajkit::otg::ControlInterface::Velocity => rsruckig::prelude::ControlInterface::Velocity,
     };
     ri.duration_discretization = match inp.options.duration_discretization {
-        trajkit::otg::DurationDiscretization::Continuous => rsruckig::prelude::DurationDiscretization::Continuous,
-        trajkit::otg::DurationDiscretization::Discrete => rsruckig::prelude::DurationDiscretization::Discrete,
+        trajkit::otg::DurationDiscretization::Continuous => {
+            rsruckig::prelude::DurationDiscretization::Continuous
+        }
+        trajkit::otg::DurationDiscretization::Discrete => {
+            rsruckig::prelude::DurationDiscretization::Discrete
+        }
     };
     ri.minimum_duration = inp.options.minimum_duration;
     let mut tr = rsruckig::prelude::Trajectory::<N>::new(None);
