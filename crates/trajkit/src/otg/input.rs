@@ -326,16 +326,16 @@ impl InputView<'_> {
             ("max_acceleration", self.amax[i]),
             ("max_jerk", self.jmax[i]),
         ] {
-            if !(v > 0.0) {
+            if v.is_nan() || v <= 0.0 {
                 return Err(bad(i, f, v, NOT_POSITIVE));
             }
         }
         let vmin = self.vmin.map_or(-self.vmax[i], |v| v[i]);
         let amin = self.amin.map_or(-self.amax[i], |v| v[i]);
-        if !(vmin < 0.0) {
+        if vmin.is_nan() || vmin >= 0.0 {
             return Err(bad(i, "min_velocity", vmin, NOT_NEGATIVE));
         }
-        if !(amin < 0.0) {
+        if amin.is_nan() || amin >= 0.0 {
             return Err(bad(i, "min_acceleration", amin, NOT_NEGATIVE));
         }
         if self.amax[i].is_infinite() != amin.is_infinite() {

@@ -95,7 +95,7 @@ impl Profile {
     /// differ from the current end state: second- and first-order profiles) and constant
     /// `jerk`.
     pub fn push_with(&mut self, duration: f64, v: f64, a: f64, jerk: f64) -> bool {
-        if !(duration >= 0.0) || !duration.is_finite() || self.n >= MAX_SEGMENTS {
+        if !duration.is_finite() || duration < 0.0 || self.n >= MAX_SEGMENTS {
             return false;
         }
         if duration == 0.0 {

@@ -205,7 +205,7 @@ mod tests {
             assert!((r - e).abs() < 1e-15);
         }
         // Defined only on [0, 0.3]; root exactly at the edge.
-        let mut g = |x: f64| (x <= 0.3).then(|| x - 0.3);
+        let mut g = |x: f64| (x <= 0.3).then_some(x - 0.3);
         let n = find_roots(&mut g, 0.0, 1.0, &mut out);
         assert_eq!(n, 1);
         assert!((out[0] - 0.3).abs() < 1e-15);

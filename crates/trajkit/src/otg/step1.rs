@@ -83,7 +83,7 @@ impl<'a> Collector<'a> {
             return false;
         }
         let t = main.duration();
-        if self.ncand < MAX_CANDIDATES && !self.cand[..self.ncand].iter().any(|&c| c == t) {
+        if self.ncand < MAX_CANDIDATES && !self.cand[..self.ncand].contains(&t) {
             self.cand[self.ncand] = t;
             self.ncand += 1;
         }
@@ -98,13 +98,14 @@ impl<'a> Collector<'a> {
 pub(crate) fn verify(dof: &Dof1, pr: &Profile) -> bool {
     let e = pr.end();
     let order = dof.order();
-    if dof.interface == ControlInterface::Position && !((e.p - dof.pf).abs() <= TOL_POSITION) {
+    let within = |x: f64, tol: f64| x.abs() <= tol;
+    if dof.interface == ControlInterface::Position && !within(e.p - dof.pf, TOL_POSITION) {
         return false;
     }
-    if order != ProfileOrder::First && !((e.v - dof.vf).abs() <= TOL_VELOCITY) {
+    if order != ProfileOrder::First && !within(e.v - dof.vf, TOL_VELOCITY) {
         return false;
     }
-    if order == ProfileOrder::Third && !((e.a - dof.af).abs() <= TOL_VELOCITY) {
+    if order == ProfileOrder::Third && !within(e.a - dof.af, TOL_VELOCITY) {
         return false;
     }
     if !pr.duration().is_finite() {
@@ -349,7 +350,7 @@ pub(crate) fn kink(order: ProfileOrder, v: f64, a: f64, j: f64, dir: f64) -> f64
 /// Sorts the cut points, clips them to [cuts[0], cuts[1]] and calls `f` on each piece.
 pub(crate) fn for_each_piece<const N: usize>(cuts: &mut [f64; N], mut f: impl FnMut(f64, f64)) {
     let (lo, hi) = (cuts[0], cuts[1]);
-    if !(lo <= hi) {
+    if lo.is_nan() || hi.is_nan() || lo > hi {
         return;
     }
     for c in cuts.iter_mut() {
@@ -379,7 +380,7 @@ fn cruise_family(dof: &Dof1, col: &mut Collector<'_>) {
             continue;
         };
         let tau = (d - c1.dist - c2.dist) / vc;
-        if !(tau >= 0.0) {
+        if tau.is_nan() || tau < 0.0 {
             continue;
         }
         let mut pr = Profile::new(State1 {

@@ -21,7 +21,7 @@ use super::velocity_change::{fastest, VelChange};
 /// A verified profile for `dof` (whose start state is safe) lasting `t` seconds, if one of the
 /// step-2 families has one.
 pub(crate) fn step2(dof: &Dof1, t: f64) -> Option<Profile> {
-    if !(t >= 0.0) || !t.is_finite() {
+    if !t.is_finite() || t < 0.0 {
         return None;
     }
     let start = State1 {
