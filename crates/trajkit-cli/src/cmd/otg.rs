@@ -178,9 +178,11 @@ fn parse(text: &str, src: &str) -> CliResult<Problem> {
     input.options.duration_discretization = match word(&obj, "duration_discretization", src)? {
         None | Some("continuous") => DurationDiscretization::Continuous,
         Some("discrete") => DurationDiscretization::Discrete,
-        Some(w) => return Err(err(format!(
+        Some(w) => {
+            return Err(err(format!(
             "{src}: field 'duration_discretization' = \"{w}\" is not one of continuous, discrete"
-        ))),
+        )))
+        }
     };
     let dt = match obj.get("dt") {
         None | Some(Value::Null) => 0.001,
