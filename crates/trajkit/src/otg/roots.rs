@@ -135,6 +135,7 @@ fn refine(
     mut fb: f64,
 ) -> f64 {
     let mut side = 0i8;
+    let mut prev = f64::NAN;
     for _ in 0..200 {
         let mut m = (a * fb - b * fa) / (fb - fa);
         if !(m > a && m < b) {
@@ -143,6 +144,11 @@ fn refine(
         if m <= a || m >= b {
             break;
         }
+        // Converged: two successive estimates agree to a few ulp.
+        if (m - prev).abs() <= 4.0 * f64::EPSILON * m.abs() {
+            return m;
+        }
+        prev = m;
         let Some(fm) = f(m) else {
             // Should not happen inside a valid bracket; bisect instead.
             let mid = 0.5 * (a + b);
