@@ -259,7 +259,13 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
                 let q = if mirror { dof.mirrored() } else { *dof };
                 third_families(&q, mirror, col);
             }
-            peak_family(dof, col);
+            // The peak family adds the up-down-up-down shapes. Towards a target at rest they are
+            // never faster than the families above (checked against rsruckig on every random
+            // category), so they are only needed when nothing was found or when the target
+            // moves (where their durations bound the blocked intervals).
+            if col.best.is_none() || dof.vf != 0.0 || dof.af != 0.0 {
+                peak_family(dof, col);
+            }
         }
     }
 }
