@@ -255,6 +255,16 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
             cruise_family(dof, col);
         }
         (ProfileOrder::Third, ControlInterface::Position) => {
+            // Towards a target at rest, a valid cruise at the velocity limit is time-optimal:
+            // the other families need not be tried.
+            let mut cruise = false;
+            for mirror in [false, true] {
+                let q = if mirror { dof.mirrored() } else { *dof };
+                cruise |= vel_family(&q, mirror, col);
+            }
+            if cruise && dof.vf == 0.0 && dof.af == 0.0 {
+                return;
+            }
             for mirror in [false, true] {
                 let q = if mirror { dof.mirrored() } else { *dof };
                 third_families(&q, mirror, col);
@@ -437,6 +447,41 @@ impl Seq {
     }
 }
 
+/// The cruise family (vel) in the positive direction of the (possibly mirrored) problem `q`:
+/// fastest change to (v_max, 0), cruise, fastest change to the target. Returns whether it
+/// offered a valid profile.
+fn vel_family(q: &Dof1, mirror: bool, col: &mut Collector<'_>) -> bool {
+    let j = q.jmax;
+    let (a0, v0, af, vf) = (q.a0, q.v0, q.af, q.vf);
+    let amax = q.amax;
+    let a2 = -q.amin;
+    let d = q.pf - q.p0;
+    // vel: cruise at v_max.
+    if q.vmax.is_finite() {
+        let c1 = super::velocity_change::fastest3(v0, a0, q.vmax, 0.0, j, amax, -a2);
+        let c2 = super::velocity_change::fastest3(q.vmax, 0.0, vf, af, j, amax, -a2);
+        if let (Some(c1), Some(c2)) = (c1, c2) {
+            let tau = (d - c1.dist - c2.dist) / q.vmax;
+            if tau >= 0.0 {
+                let mut pr = Profile::new(State1 {
+                    p: q.p0,
+                    v: v0,
+                    a: a0,
+                });
+                push_change(&mut pr, ProfileOrder::Third, &c1, v0);
+                pr.snap(q.vmax, 0.0);
+                pr.push_with(tau, q.vmax, 0.0, 0.0);
+                push_change(&mut pr, ProfileOrder::Third, &c2, q.vmax);
+                if mirror {
+                    pr.mirror();
+                }
+                return col.offer(&pr);
+            }
+        }
+    }
+    false
+}
+
 /// The third-order families in the positive direction of the (possibly mirrored) problem `q`.
 fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     let j = q.jmax;
@@ -611,29 +656,6 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
         for &x in &roots[..n] {
             if let Some(s) = acc01(x) {
                 emit(&s, col);
-            }
-        }
-    }
-    // vel: cruise at v_max.
-    if q.vmax.is_finite() {
-        let c1 = super::velocity_change::fastest3(v0, a0, q.vmax, 0.0, j, amax, -a2);
-        let c2 = super::velocity_change::fastest3(q.vmax, 0.0, vf, af, j, amax, -a2);
-        if let (Some(c1), Some(c2)) = (c1, c2) {
-            let tau = (d - c1.dist - c2.dist) / q.vmax;
-            if tau >= 0.0 {
-                let mut pr = Profile::new(State1 {
-                    p: q.p0,
-                    v: v0,
-                    a: a0,
-                });
-                push_change(&mut pr, ProfileOrder::Third, &c1, v0);
-                pr.snap(q.vmax, 0.0);
-                pr.push_with(tau, q.vmax, 0.0, 0.0);
-                push_change(&mut pr, ProfileOrder::Third, &c2, q.vmax);
-                if mirror {
-                    pr.mirror();
-                }
-                col.offer(&pr);
             }
         }
     }
