@@ -84,14 +84,20 @@ fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile>
             a: -dof.a0,
         },
     );
+    // τ < 0 (the two changes alone take longer than t) is outside the family; the residual
+    // continues there with τ = 0 so that it stays continuous and no domain edge has to be
+    // searched. Roots found there are rejected by the duration check.
     let parts = |vc: f64| -> Option<(VelChange, VelChange, f64)> {
         let c1 = fastest(order, dof.v0, dof.a0, vc, 0.0, dof.jmax, dof.amax, dof.amin)?;
         let c2 = fastest(order, vc, 0.0, dof.vf, dof.af, dof.jmax, dof.amax, dof.amin)?;
         let tau = t - c1.t - c2.t;
-        (tau >= 0.0).then_some((c1, c2, tau))
+        Some((c1, c2, tau))
     };
     let build = |vc: f64| -> Option<Profile> {
         let (c1, c2, tau) = parts(vc)?;
+        if tau < 0.0 {
+            return None;
+        }
         let mut pr = Profile::new(start);
         push_change(&mut pr, order, &c1, dof.v0);
         pr.snap(vc, 0.0);
@@ -102,7 +108,7 @@ fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile>
         }
         Some(pr)
     };
-    let mut f = |vc: f64| parts(vc).map(|(c1, c2, tau)| c1.dist + c2.dist + vc * tau - d);
+    let mut f = |vc: f64| parts(vc).map(|(c1, c2, tau)| c1.dist + c2.dist + vc * tau.max(0.0) - d);
     let mut roots = [0.0; MAX_ROOTS];
     let guess = if t > 0.0 { d / t } else { 0.0 };
     let mut cuts = [
