@@ -365,3 +365,37 @@ fn minimum_duration_discrete_and_disabled() {
     tr.at_time(2.0, &mut p, &mut v, &mut a);
     assert!((p[1] - 0.5).abs() < 1e-15 && v[1] == 0.25);
 }
+
+#[test]
+fn synchronization_none_and_time_if_necessary() {
+    let otg = Otg::<3>::new(0.001);
+    let mut inp = InputParameter::<3>::new();
+    inp.max_velocity = [1.0; 3];
+    inp.max_acceleration = [2.0; 3];
+    inp.max_jerk = [10.0; 3];
+    inp.target_position = [0.2, 1.0, 3.0];
+    inp.target_velocity = [0.1, 0.0, 0.0];
+    let mut mins = [0.0; 3];
+    // None: every DOF at its own minimum.
+    inp.options.synchronization = Synchronization::None;
+    let tr = otg.calculate(&inp).unwrap();
+    tr.independent_min_durations(&mut mins);
+    for i in 0..3 {
+        assert_eq!(tr.dofs()[i].profile.duration(), mins[i]);
+    }
+    assert_eq!(tr.duration(), mins[2]);
+    // Time if necessary: DOF 0 (moving target) ends with the slowest; DOF 1 (at rest) does not
+    // wait.
+    inp.options.synchronization = Synchronization::TimeIfNecessary;
+    let tr = otg.calculate(&inp).unwrap();
+    assert!((tr.dofs()[0].profile.duration() - mins[2]).abs() < 1e-12);
+    assert_eq!(tr.dofs()[1].profile.duration(), mins[1]);
+    assert!(check(&inp, &tr).position < 1e-8);
+    // Time: all end together.
+    inp.options.synchronization = Synchronization::Time;
+    let tr = otg.calculate(&inp).unwrap();
+    for i in 0..3 {
+        assert!((tr.dofs()[i].profile.duration() - mins[2]).abs() < 1e-12);
+    }
+    assert!(within_contract(&check(&inp, &tr)));
+}
