@@ -77,9 +77,16 @@ impl<'a> Collector<'a> {
         }
     }
 
+    /// Whether a candidate of duration `t` can still matter: it could be the fastest, or the
+    /// target moves (then every valid duration bounds a blocked interval).
+    #[inline]
+    pub fn wants(&self, t: f64) -> bool {
+        self.dof.vf != 0.0 || self.dof.af != 0.0 || self.best.is_none_or(|b| t < b.duration())
+    }
+
     /// Offers a main profile (starting after the brake); returns whether it was valid.
     pub fn offer(&mut self, main: &Profile) -> bool {
-        if !verify(self.dof, main) {
+        if !self.wants(main.duration()) || !verify(self.dof, main) {
             return false;
         }
         let t = main.duration();
@@ -504,6 +511,9 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     };
     let tol = 1e-12 * (amax + a2);
     let emit = |seq: &Seq, col: &mut Collector<'_>| {
+        if !col.wants(seq.d[..seq.n].iter().sum()) {
+            return;
+        }
         let mut pr = Profile::new(State1 {
             p: q.p0,
             v: v0,
