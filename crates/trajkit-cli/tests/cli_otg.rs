@@ -147,3 +147,22 @@ fn bad_input_exits_2_with_one_line_and_no_file() {
     assert_eq!(o.status.code(), Some(2));
     assert!(!d.join("r.jsonl").exists());
 }
+
+#[test]
+fn too_many_samples_is_bad_input() {
+    let d = scratch("many");
+    let p = r#"{"current_position":[0],"target_position":[10000],"max_velocity":[0.01],"max_acceleration":[1],"max_jerk":[1]}"#;
+    let o = trajkit(&["otg", "-", "--out", "s.csv"], &d, Some(p));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("'dt'"));
+    assert!(entries(&d).is_empty());
+    // The same problem in a batch: a result line with the duration, no samples.
+    std::fs::write(d.join("b.jsonl"), p).unwrap();
+    let o = trajkit(&["otg", "--batch", "b.jsonl"], &d, None);
+    assert!(o.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(
+        (v["duration"].as_f64().unwrap() - (1e6 + 0.01 + 1.0)).abs() < 1e-6,
+        "{v}"
+    );
+}

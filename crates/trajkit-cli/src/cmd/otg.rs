@@ -298,6 +298,14 @@ pub fn run(a: &OtgArgs) -> CliResult<u8> {
     };
     let p = parse(&text, &src)?;
     let tr = calculate_dyn(&p.input, p.dt).map_err(|e: OtgResult| err(format!("{src}: {e}")))?;
+    let count = tr.duration() / p.dt;
+    if count > 1e7 {
+        return Err(err(format!(
+            "{src}: field 'dt' = {} gives {count:.3e} samples for a {:.6} s trajectory (limit 1e7); use a larger dt or --batch",
+            p.dt,
+            tr.duration()
+        )));
+    }
     let table = trajkit::sample::sample(&tr, 1.0 / p.dt)?;
     let fmt = a
         .format
