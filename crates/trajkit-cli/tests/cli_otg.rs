@@ -161,8 +161,9 @@ fn too_many_samples_is_bad_input() {
     let o = trajkit(&["otg", "--batch", "b.jsonl"], &d, None);
     assert!(o.status.success());
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    // D/v + 2·sqrt(v/j): the acceleration limit is not reached.
     assert!(
-        (v["duration"].as_f64().unwrap() - (1e6 + 0.01 + 1.0)).abs() < 1e-6,
+        (v["duration"].as_f64().unwrap() - (1e6 + 0.2)).abs() < 1e-6,
         "{v}"
     );
 }
