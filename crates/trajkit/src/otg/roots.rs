@@ -21,9 +21,34 @@ const GRID: [f64; 23] = [
     0.87, 0.93, 0.97, 0.99, 0.999, 1.0,
 ];
 
+/// A coarser grid for residuals whose valid domain is known in closed form (no edges to find).
+const COARSE: [f64; 13] = [
+    0.0, 1e-9, 1e-5, 1e-3, 0.03, 0.12, 0.27, 0.45, 0.63, 0.8, 0.93, 0.99, 1.0,
+];
+
 /// Roots of `f` in `[lo, hi]`. `f` returns `None` where the parameter is outside its family's
 /// valid domain. Writes up to [`MAX_ROOTS`] roots into `out` and returns how many.
 pub fn find_roots(
+    f: &mut impl FnMut(f64) -> Option<f64>,
+    lo: f64,
+    hi: f64,
+    out: &mut [f64; MAX_ROOTS],
+) -> usize {
+    find_roots_on(&GRID, f, lo, hi, out)
+}
+
+/// Like [`find_roots`] on the coarse grid, for a residual that is valid on all of `[lo, hi]`.
+pub fn find_roots_coarse(
+    f: &mut impl FnMut(f64) -> Option<f64>,
+    lo: f64,
+    hi: f64,
+    out: &mut [f64; MAX_ROOTS],
+) -> usize {
+    find_roots_on(&COARSE, f, lo, hi, out)
+}
+
+fn find_roots_on(
+    grid: &[f64],
     f: &mut impl FnMut(f64) -> Option<f64>,
     lo: f64,
     hi: f64,
@@ -56,7 +81,7 @@ pub fn find_roots(
     if py == Some(0.0) {
         push(lo, out, &mut n);
     }
-    for &g in &GRID[1..] {
+    for &g in &grid[1..] {
         let x = if g == 1.0 { hi } else { lo + w * g };
         if x <= px {
             continue;

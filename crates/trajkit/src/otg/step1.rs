@@ -28,7 +28,7 @@
 use super::brake::brake;
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
-use super::roots::{find_roots, MAX_ROOTS};
+use super::roots::{find_roots, find_roots_coarse, MAX_ROOTS};
 use super::velocity_change::{fastest, VelChange};
 
 /// Largest number of candidate durations kept per degree of freedom.
@@ -341,7 +341,7 @@ fn peak_family(dof: &Dof1, col: &mut Collector<'_>) {
         kink(order, dof.vf, dof.af, dof.jmax, -1.0),
     ];
     for_each_piece(&mut cuts, |a, b| {
-        let n = find_roots(&mut f, a, b, &mut roots);
+        let n = find_roots_coarse(&mut f, a, b, &mut roots);
         for &vc in &roots[..n] {
             if let Some((c1, c2)) = parts(vc) {
                 let mut pr = Profile::new(State1 {
@@ -565,7 +565,7 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
             (l, a2 * a2 - k, k >= -tol * tol)
         };
         for (lo, hi) in square_window(l, u, a0c, amax, neg_ok, tol) {
-            let n = find_roots(&mut f, lo, hi, &mut roots);
+            let n = find_roots_coarse(&mut f, lo, hi, &mut roots);
             for &x in &roots[..n] {
                 if let Some(s) = none(x) {
                     emit(&s, col);
@@ -601,7 +601,7 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
             let lo = ((l - c0) / (j * amax)).max(0.0);
             let hi = ((u - c0) / (j * amax)).min(tau_hi);
             let n = if lo <= hi {
-                find_roots(&mut f, lo, hi, &mut roots)
+                find_roots_coarse(&mut f, lo, hi, &mut roots)
             } else {
                 0
             };
@@ -629,7 +629,7 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     // τ2 ≥ 0 ⇔ x² ≥ l.
     let l = (2.0 * j * dv + a0 * a0 + 2.0 * a2 * a2 - af * af) / 2.0;
     for (lo, hi) in square_window(l.max(0.0), f64::INFINITY, a0c, amax, true, tol) {
-        let n = find_roots(&mut f, lo, hi, &mut roots);
+        let n = find_roots_coarse(&mut f, lo, hi, &mut roots);
         for &x in &roots[..n] {
             if let Some(s) = acc1(x) {
                 emit(&s, col);
@@ -659,7 +659,7 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
             / amax)
             .max(0.0);
         let n = if lo <= tau_hi {
-            find_roots(&mut f, lo, tau_hi, &mut roots)
+            find_roots_coarse(&mut f, lo, tau_hi, &mut roots)
         } else {
             0
         };

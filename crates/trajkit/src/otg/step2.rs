@@ -14,7 +14,7 @@
 
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
-use super::roots::{find_roots, MAX_ROOTS};
+use super::roots::{find_roots, find_roots_coarse, MAX_ROOTS};
 use super::step1::{for_each_piece, kink, push_change, velocity_cap, verify};
 use super::velocity_change::{fastest, VelChange};
 
@@ -124,7 +124,7 @@ fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile>
         if best.is_some() {
             return;
         }
-        let n = find_roots(&mut f, a, b, &mut roots);
+        let n = find_roots_coarse(&mut f, a, b, &mut roots);
         for &vc in &roots[..n] {
             if let Some(pr) = build(vc) {
                 if ok(&pr) {
