@@ -28,7 +28,7 @@
 use super::brake::brake;
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
-use super::roots::{find_roots, find_roots_coarse, MAX_ROOTS};
+use super::roots::{find_roots_coarse, MAX_ROOTS};
 use super::velocity_change::{fastest, VelChange};
 
 /// Largest number of candidate durations kept per degree of freedom.
