@@ -22,6 +22,11 @@
 //! candidate is the result, and the durations of all valid candidates are kept as candidate
 //! durations for synchronization.
 //!
+//! Shortcuts, each checked against the differential suite: towards a target at rest a valid
+//! cruise at the velocity limit ends the search (nothing is faster), candidates that cannot be
+//! the fastest are not verified, and the peak family runs only for a moving target (where its
+//! durations bound the blocked intervals) or when nothing else was found.
+//!
 //! Second order uses the peak family (one acceleration switch) and the cruise family; first
 //! order moves at the velocity limit. The velocity interface uses the fastest velocity change.
 
