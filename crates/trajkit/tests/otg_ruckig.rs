@@ -223,3 +223,39 @@ fn jerk_near_1e7() {
     }
     eprintln!("jerk near 1e7: rsruckig failed {failed_theirs} of 300, trajkit none");
 }
+
+/// Time-if-necessary and none: the same durations as rsruckig.
+#[test]
+fn other_synchronizations_agree() {
+    use trajkit::otg::Synchronization;
+    let n = if cfg!(debug_assertions) { 60 } else { 1000 };
+    let mut r = SplitMix64::new(77);
+    let otg = Otg::<3>::new(0.001);
+    let mut agree = 0;
+    for sync in [Synchronization::TimeIfNecessary, Synchronization::None] {
+        for cat in [Cat::General, Cat::TargetVelocity, Cat::RestToRest] {
+            for _ in 0..n {
+                let mut inp = problem::<3>(&mut r, cat);
+                // Mix DOFs with targets at rest and moving targets.
+                if r.next_f64() < 0.5 {
+                    inp.target_velocity[0] = 0.0;
+                    inp.target_acceleration[0] = 0.0;
+                }
+                inp.options.synchronization = sync;
+                let tr = otg
+                    .calculate(&inp)
+                    .unwrap_or_else(|e| panic!("{e}\n{inp:?}"));
+                assert!(within_contract(&check(&inp, &tr)));
+                if let Some(t) = ruckig_duration(&inp, 0.001) {
+                    assert!(
+                        (tr.duration() - t).abs() <= 1e-9 * t.max(1.0),
+                        "{sync:?} {cat:?}: trajkit {} rsruckig {t}\n{inp:?}",
+                        tr.duration()
+                    );
+                    agree += 1;
+                }
+            }
+        }
+    }
+    assert!(agree > 5 * n);
+}
