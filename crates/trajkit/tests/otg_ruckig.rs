@@ -84,7 +84,12 @@ fn agrees_with_rsruckig() {
     for (k, cat) in COMPARABLE.into_iter().enumerate() {
         let (a1, m1, f1, _) = compare::<1>(cat, n1, 100 + k as u64, false);
         let (a3, m3, f3, _) = compare::<3>(cat, n1 / 3, 200 + k as u64, false);
-        assert_eq!((m1, f1, m3, f3), (0, 0, 0, 0), "{cat:?}: {a1} + {a3} agree");
+        let (a7, m7, f7, _) = compare::<7>(cat, n1 / 10, 400 + k as u64, false);
+        assert_eq!(
+            (m1, f1, m3, f3, m7, f7),
+            (0, 0, 0, 0, 0, 0),
+            "{cat:?}: {a1} + {a3} + {a7} agree"
+        );
     }
     // The others: every case trajkit solves is within the contract (checked in `compare`).
     for cat in [Cat::Tiny, Cat::Identical, Cat::Phase] {
