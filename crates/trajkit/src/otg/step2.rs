@@ -57,13 +57,83 @@ pub(crate) fn step2(dof: &Dof1, t: f64) -> Option<Profile> {
             ok(&pr).then_some(pr)
         }
         (ProfileOrder::Third, ControlInterface::Velocity) => velocity3(dof, t, &ok),
-        (ProfileOrder::Second, ControlInterface::Position) => cruise(dof, t, &ok),
-        (ProfileOrder::Third, ControlInterface::Position) => cruise(dof, t, &ok)
+        (ProfileOrder::Second, ControlInterface::Position) => {
+            rest_to_rest(dof, t, &ok).or_else(|| cruise(dof, t, &ok))
+        }
+        (ProfileOrder::Third, ControlInterface::Position) => rest_to_rest(dof, t, &ok)
+            .or_else(|| cruise(dof, t, &ok))
             .or_else(|| hold(dof, t, false, false, &ok))
             .or_else(|| hold(dof, t, false, true, &ok))
             .or_else(|| hold(dof, t, true, false, &ok))
             .or_else(|| hold(dof, t, true, true, &ok)),
     }
+}
+
+/// Closed-form cruise velocity for a rest-to-rest move with symmetric acceleration limits (the
+/// common case of synchronization): with t₁ the time of each velocity change and D the distance,
+/// v_c·(t − t₁(v_c)) = D. Without an acceleration plateau t₁ = 2√(v_c/j), a cubic in √v_c;
+/// with one t₁ = v_c/a + a/j, a quadratic. `None` (the general family takes over) when the
+/// case does not apply or the profile fails verification.
+fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
+    if dof.v0 != 0.0 || dof.a0 != 0.0 || dof.vf != 0.0 || dof.af != 0.0 || dof.amax != -dof.amin {
+        return None;
+    }
+    let order = dof.order();
+    let d = (dof.pf - dof.p0).abs();
+    let (a, j) = (dof.amax, dof.jmax);
+    let vc = match order {
+        // v_c² / a − t·v_c + D = 0, smaller root.
+        ProfileOrder::Second => {
+            let disc = t * t - 4.0 * d / a;
+            if disc < 0.0 {
+                return None;
+            }
+            2.0 * d / (t + disc.sqrt())
+        }
+        ProfileOrder::Third => {
+            let tp = t - a / j;
+            let disc = tp * tp - 4.0 * d / a;
+            let plateau = if disc >= 0.0 {
+                2.0 * d / (tp + disc.sqrt())
+            } else {
+                f64::NAN
+            };
+            if plateau >= a * a / j {
+                plateau
+            } else {
+                // (2/√j)·s³ − t·s² + D = 0 for s = √v_c on [0, min(t√j/4, a/√j)].
+                let sj = j.sqrt();
+                let hi = (t * sj / 4.0).min(a / sj);
+                let mut roots = [0.0; crate::poly::roots::MAX_DEGREE];
+                let n = crate::poly::roots::roots_in(&[d, 0.0, -t, 2.0 / sj], 0.0, hi, &mut roots);
+                if n == 0 {
+                    return None;
+                }
+                roots[0] * roots[0]
+            }
+        }
+        ProfileOrder::First => return None,
+    };
+    let vc = if dof.pf >= dof.p0 { vc } else { -vc };
+    let c1 = fastest(order, 0.0, 0.0, vc, 0.0, j, dof.amax, dof.amin)?;
+    let c2 = fastest(order, vc, 0.0, 0.0, 0.0, j, dof.amax, dof.amin)?;
+    let tau = t - c1.t - c2.t;
+    if tau < 0.0 {
+        return None;
+    }
+    let mut pr = Profile::new(State1 {
+        p: dof.p0,
+        v: 0.0,
+        a: 0.0,
+    });
+    push_change(&mut pr, order, &c1, 0.0);
+    pr.snap(vc, 0.0);
+    pr.push_with(tau, vc, 0.0, 0.0);
+    push_change(&mut pr, order, &c2, vc);
+    if order == ProfileOrder::Second {
+        pr.set_final(0.0, 0.0);
+    }
+    ok(&pr).then_some(pr)
 }
 
 /// Cruise family with a free cruise velocity.
@@ -273,4 +343,33 @@ fn velocity3(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profi
         }
     });
     best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rest_to_rest_closed_form_hits_both_cases() {
+        let ok = |pr: &Profile| pr.duration() > 0.0;
+        // Plateau: a²/j = 0.25 < v_c.
+        let d = Dof1::rest_to_rest(0.0, 1.0, 0.6, 1.0, 4.0);
+        let pr = rest_to_rest(&d, 3.0, &ok).unwrap();
+        assert!((pr.duration() - 3.0).abs() < 1e-12 && (pr.end().p - 1.0).abs() < 1e-12);
+        assert!(verify(&d, &pr));
+        // No plateau: large jerk limit... small: a²/j = 1/0.5 = 2 > v_c.
+        let d = Dof1::rest_to_rest(0.0, -0.3, 1.0, 1.0, 0.5);
+        let pr = rest_to_rest(&d, 6.0, &ok).unwrap();
+        assert!((pr.duration() - 6.0).abs() < 1e-12 && (pr.end().p + 0.3).abs() < 1e-12);
+        assert!(verify(&d, &pr));
+        // Second order.
+        let d = Dof1::rest_to_rest(1.0, 2.0, 1.0, 1.0, f64::INFINITY);
+        let pr = rest_to_rest(&d, 4.0, &ok).unwrap();
+        assert!((pr.duration() - 4.0).abs() < 1e-12 && (pr.end().p - 2.0).abs() < 1e-12);
+        // Not rest-to-rest: not this path.
+        let mut d = Dof1::rest_to_rest(0.0, 1.0, 1.0, 1.0, 1.0);
+        d.v0 = 0.1;
+        assert!(rest_to_rest(&d, 5.0, &ok).is_none());
+        assert!(step2(&d, 5.0).is_some());
+    }
 }
