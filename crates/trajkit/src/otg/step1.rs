@@ -277,6 +277,9 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
             if cruise && dof.vf == 0.0 && dof.af == 0.0 {
                 return;
             }
+            if !cruise && rest_to_rest_peak(dof, col) {
+                return;
+            }
             for mirror in [false, true] {
                 let q = if mirror { dof.mirrored() } else { *dof };
                 third_families(&q, mirror, col);
@@ -290,6 +293,45 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
             }
         }
     }
+}
+
+/// Rest to rest with symmetric acceleration limits and no cruise: the time-optimal profile
+/// accelerates to a peak velocity v_p and straight back, with D = v_p·t₁(v_p); closed form
+/// (t₁ = 2√(v_p/j) without an acceleration plateau, t₁ = v_p/a + a/j with one). Returns whether
+/// it offered a valid profile (otherwise the general families take over).
+fn rest_to_rest_peak(dof: &Dof1, col: &mut Collector<'_>) -> bool {
+    if dof.v0 != 0.0 || dof.a0 != 0.0 || dof.vf != 0.0 || dof.af != 0.0 || dof.amax != -dof.amin {
+        return false;
+    }
+    let d = (dof.pf - dof.p0).abs();
+    if d == 0.0 {
+        return false;
+    }
+    let (a, j) = (dof.amax, dof.jmax);
+    let tri = (d * d * j / 4.0).cbrt();
+    let vp = if tri <= a * a / j {
+        tri
+    } else {
+        let k = a / j;
+        (-k + (k * k + 4.0 * d / a).sqrt()) * a / 2.0
+    };
+    let vp = if dof.pf >= dof.p0 { vp } else { -vp };
+    let order = ProfileOrder::Third;
+    let (Some(c1), Some(c2)) = (
+        fastest(order, 0.0, 0.0, vp, 0.0, j, dof.amax, dof.amin),
+        fastest(order, vp, 0.0, 0.0, 0.0, j, dof.amax, dof.amin),
+    ) else {
+        return false;
+    };
+    let mut pr = Profile::new(State1 {
+        p: dof.p0,
+        v: 0.0,
+        a: 0.0,
+    });
+    push_change(&mut pr, order, &c1, 0.0);
+    pr.snap(vp, 0.0);
+    push_change(&mut pr, order, &c2, vp);
+    col.offer(&pr)
 }
 
 /// Appends a velocity change to a profile.
