@@ -16,7 +16,7 @@ use std::process::ExitCode;
     name = "trajkit",
     version,
     about = "Robot paths in, trajectories out: time-parameterize waypoints within joint limits, check and plot trajectories.",
-    after_help = "Examples:\n  trajkit plan                       # embedded 7-joint Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits ur5e --plot traj.svg\n  trajkit poly --table               # peak coefficients of cubic/quintic/septic moves\n  trajkit check trajectory.csv --limits panda\n  trajkit spline --points path.csv --curve minimum-jerk --duration 4 --plot s.svg"
+    after_help = "Examples:\n  trajkit plan                       # embedded 7-joint Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits ur5e --plot traj.svg\n  trajkit poly --table               # peak coefficients of cubic/quintic/septic moves\n  trajkit check trajectory.csv --limits panda\n  trajkit spline --points path.csv --curve minimum-jerk --duration 4 --plot s.svg\n  trajkit otg problem.json --plot otg.svg     # state-to-state jerk-limited motion"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -41,6 +41,8 @@ enum Command {
     /// Fit a curve (cubic, PCHIP, Akima, Catmull-Rom, B-spline, minimum jerk/snap) through
     /// points and sample it with its derivatives.
     Spline(cmd::spline::SplineArgs),
+    /// Online generation: time-optimal jerk-limited motion from any state to a target state.
+    Otg(cmd::otg::OtgArgs),
 }
 
 fn main() -> ExitCode {
@@ -73,6 +75,7 @@ fn main() -> ExitCode {
         Command::Promp(a) => cmd::promp::run(a),
         Command::Kmp(a) => cmd::kmp::run(a),
         Command::Spline(a) => cmd::spline::run(a),
+        Command::Otg(a) => cmd::otg::run(a),
     };
     match result {
         Ok(code) => ExitCode::from(code),

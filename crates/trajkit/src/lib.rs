@@ -26,6 +26,7 @@
 //! - [`limits`]: per-joint limits, robot presets, limits files and URDF.
 //! - [`poly`]: point-to-point polynomials (cubic, quintic/minimum-jerk, septic) and
 //!   multi-waypoint piecewise polynomials.
+//! - [`otg`]: online jerk-limited generation, any state to any state, synchronized DOFs.
 //! - [`linalg`]: small dense solvers (Cholesky, LU) on row-major slices.
 //! - [`sample`], [`check`], [`plot`], [`io`]: sampling into tables, limit checking, SVG plots,
 //!   CSV/JSON reading and writing.
@@ -45,6 +46,7 @@ pub mod error;
 pub mod io;
 pub mod limits;
 pub mod linalg;
+pub mod otg;
 pub mod path;
 pub mod plot;
 pub mod poly;

@@ -10,6 +10,7 @@ pub mod check;
 pub mod common;
 pub mod dmp;
 pub mod kmp;
+pub mod otg;
 pub mod plan;
 pub mod poly;
 pub mod promp;

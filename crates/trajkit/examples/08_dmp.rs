@@ -1,7 +1,7 @@
-//! 07 — Learning from a demonstration: a DMP fitted to one 2-joint motion, replayed with a new
+//! 08 — Learning from a demonstration: a DMP fitted to one 2-joint motion, replayed with a new
 //! goal and twice as slow, then checked against limits like any other trajectory.
 //!
-//! Run: `cargo run -p trajkit --example 07_dmp`
+//! Run: `cargo run -p trajkit --example 08_dmp`
 
 use trajkit::check::check_trajectory;
 use trajkit::primitives::{Dmp, DmpConfig, RolloutOptions};

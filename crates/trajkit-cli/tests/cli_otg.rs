@@ -1,0 +1,169 @@
+//! End-to-end tests of `trajkit otg`.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+
+fn trajkit(args: &[&str], dir: &Path, stdin: Option<&str>) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_trajkit"))
+        .args(args)
+        .current_dir(dir)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("binary runs");
+    if let Some(s) = stdin {
+        use std::io::Write;
+        child.stdin.take().unwrap().write_all(s.as_bytes()).unwrap();
+    } else {
+        drop(child.stdin.take());
+    }
+    child.wait_with_output().unwrap()
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("trajkit-cli-otg-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn entries(d: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+        .collect();
+    v.sort();
+    v
+}
+
+const SEED: &str = r#"{"current_position":[0],"target_position":[1],"max_velocity":[0.6],"max_acceleration":[1],"max_jerk":[4],"comment":"ignored"}"#;
+
+#[test]
+fn seed_example_json_csv_and_plot() {
+    let d = scratch("seed");
+    let o = trajkit(&["otg", "-"], &d, Some(SEED));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let t = v["duration"].as_f64().unwrap();
+    assert!((t - (1.0 / 0.6 + 0.6 + 0.25)).abs() < 1e-12, "{t}");
+    assert!(v["final_error"]["position"].as_f64().unwrap() < 1e-8);
+    assert!(v["worst_limit_ratio"].as_f64().unwrap() <= 1.0 + 1e-12);
+    // Trapezoid: a null jerk limit is unlimited; CSV by extension, and a plot.
+    std::fs::write(d.join("p.json"), SEED.replace("[4]", "[null]")).unwrap();
+    let o = trajkit(
+        &["otg", "p.json", "--out", "s.csv", "--plot", "p.svg"],
+        &d,
+        None,
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("duration 2.266666667"));
+    let csv = std::fs::read_to_string(d.join("s.csv")).unwrap();
+    assert!(csv.starts_with("t,q1,qd1,qdd1,qddd1"));
+    assert!(std::fs::read_to_string(d.join("p.svg"))
+        .unwrap()
+        .starts_with("<svg"));
+}
+
+#[test]
+fn batch_one_line_per_problem() {
+    let d = scratch("batch");
+    let lines = [
+        SEED.to_string(),
+        r#"{"current_position":[0,1],"current_velocity":[0.5,0],"target_position":[1,-1],"target_velocity":[0.2,0],"max_velocity":[1,1],"max_acceleration":[2,2],"max_jerk":[5,5],"synchronization":"phase"}"#.to_string(),
+        "not json".to_string(),
+        r#"{"current_position":[0],"target_position":[1],"max_velocity":[-1]}"#.to_string(),
+    ];
+    std::fs::write(d.join("b.jsonl"), lines.join("\n")).unwrap();
+    let o = trajkit(&["otg", "--batch", "b.jsonl", "--out", "r.jsonl"], &d, None);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(d.join("r.jsonl")).unwrap();
+    let rows: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(rows.len(), 4);
+    assert_eq!(rows[0]["result"], "working");
+    assert!((rows[0]["duration"].as_f64().unwrap() - 2.5166666666666667).abs() < 1e-12);
+    assert!(rows[0].get("samples").is_none());
+    assert_eq!(rows[1]["result"], "working");
+    assert!(rows[1]["final_error"]["position"].as_f64().unwrap() < 1e-8);
+    assert_eq!(rows[2]["result"], "invalid_input");
+    assert_eq!(rows[3]["result"], "invalid_input");
+    assert!(rows[3]["message"]
+        .as_str()
+        .unwrap()
+        .contains("max_velocity[0] = -1"));
+}
+
+#[test]
+fn bad_input_exits_2_with_one_line_and_no_file() {
+    let d = scratch("bad");
+    for (i, (problem, needle)) in [
+        (
+            r#"{"current_position":[0],"target_position":[1,2]}"#,
+            "target_position",
+        ),
+        (
+            r#"{"current_position":[0],"target_position":[1],"synchronization":"fast"}"#,
+            "synchronization",
+        ),
+        (
+            r#"{"current_position":[0],"target_position":[1],"max_velocity":[1],"max_jerk":["x"]}"#,
+            "max_jerk[0]",
+        ),
+        (r#"{"target_position":[1]}"#, "current_position"),
+        (
+            r#"{"current_position":[0],"target_position":[1]}"#,
+            "max_velocity[0] = inf",
+        ),
+        (
+            r#"{"current_position":[0],"target_position":[1],"max_velocity":[1],"dt":0}"#,
+            "dt",
+        ),
+        ("[1, 2", "line 1"),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let f = format!("p{i}.json");
+        std::fs::write(d.join(&f), problem).unwrap();
+        let o = trajkit(&["otg", &f, "--out", "s.csv", "--plot", "p.svg"], &d, None);
+        assert_eq!(o.status.code(), Some(2), "{problem}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+        assert!(err.contains(needle), "{problem}: {err}");
+        let left: Vec<String> = entries(&d)
+            .into_iter()
+            .filter(|e| !e.ends_with(".json"))
+            .collect();
+        assert!(left.is_empty(), "{left:?}");
+    }
+    let o = trajkit(
+        &["otg", "--batch", "missing.jsonl", "--out", "r.jsonl"],
+        &d,
+        None,
+    );
+    assert_eq!(o.status.code(), Some(2));
+    assert!(!d.join("r.jsonl").exists());
+}
+
+#[test]
+fn too_many_samples_is_bad_input() {
+    let d = scratch("many");
+    let p = r#"{"current_position":[0],"target_position":[10000],"max_velocity":[0.01],"max_acceleration":[1],"max_jerk":[1]}"#;
+    let o = trajkit(&["otg", "-", "--out", "s.csv"], &d, Some(p));
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("'dt'"));
+    assert!(entries(&d).is_empty());
+    // The same problem in a batch: a result line with the duration, no samples.
+    std::fs::write(d.join("b.jsonl"), p).unwrap();
+    let o = trajkit(&["otg", "--batch", "b.jsonl"], &d, None);
+    assert!(o.status.success());
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    // D/v + 2·sqrt(v/j): the acceleration limit is not reached.
+    assert!(
+        (v["duration"].as_f64().unwrap() - (1e6 + 0.2)).abs() < 1e-6,
+        "{v}"
+    );
+}

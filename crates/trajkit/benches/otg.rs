@@ -1,0 +1,174 @@
+//! Online trajectory generation, side by side with rsruckig (Ruckig's Rust port) on the same
+//! problems in the same run: 1, 3 and 7 DOF with Franka Panda limits (the first N joints),
+//! general states (non-zero current and target velocity and acceleration) and rest-to-rest.
+//!
+//! Criterion reports the mean time per `calculate`; after it, a per-call timing pass over the
+//! same problem sets prints mean and p99 (`OTG_P99=0` skips it).
+//!
+//! Run: `cargo bench -p trajkit --bench otg`.
+
+use criterion::{criterion_group, Criterion};
+use std::hint::black_box;
+use std::time::Instant;
+use trajkit::otg::{InputParameter, Otg};
+use trajkit::rng::SplitMix64;
+use trajkit::Limits;
+
+const PROBLEMS: usize = 512;
+
+fn problems<const N: usize>(general: bool, seed: u64) -> Vec<InputParameter<N>> {
+    let lim = Limits::preset("panda").unwrap();
+    let mut r = SplitMix64::new(seed);
+    (0..PROBLEMS)
+        .map(|_| {
+            let mut p = InputParameter::<N>::new();
+            for i in 0..N {
+                let j = lim.joint(i);
+                p.max_velocity[i] = j.velocity;
+                p.max_acceleration[i] = j.acceleration;
+                p.max_jerk[i] = j.jerk;
+                p.current_position[i] = r.uniform(-2.0, 2.0);
+                p.target_position[i] = r.uniform(-2.0, 2.0);
+                if general {
+                    // Inside the limits, with v ± a|a|/(2j) inside too.
+                    loop {
+                        let (v0, a0) = (
+                            r.uniform(-0.8, 0.8) * j.velocity,
+                            r.uniform(-0.8, 0.8) * j.acceleration,
+                        );
+                        let (vf, af) = (
+                            r.uniform(-0.8, 0.8) * j.velocity,
+                            r.uniform(-0.8, 0.8) * j.acceleration,
+                        );
+                        let ok = |v: f64, a: f64| (v.abs() + a * a / (2.0 * j.jerk)) <= j.velocity;
+                        if ok(v0, a0) && ok(vf, af) {
+                            p.current_velocity[i] = v0;
+                            p.current_acceleration[i] = a0;
+                            p.target_velocity[i] = vf;
+                            p.target_acceleration[i] = af;
+                            break;
+                        }
+                    }
+                }
+            }
+            p
+        })
+        .collect()
+}
+
+fn to_ruckig<const N: usize>(p: &InputParameter<N>) -> rsruckig::prelude::InputParameter<N> {
+    let mut q = rsruckig::prelude::InputParameter::<N>::new(None);
+    for i in 0..N {
+        q.current_position[i] = p.current_position[i];
+        q.current_velocity[i] = p.current_velocity[i];
+        q.current_acceleration[i] = p.current_acceleration[i];
+        q.target_position[i] = p.target_position[i];
+        q.target_velocity[i] = p.target_velocity[i];
+        q.target_acceleration[i] = p.target_acceleration[i];
+        q.max_velocity[i] = p.max_velocity[i];
+        q.max_acceleration[i] = p.max_acceleration[i];
+        q.max_jerk[i] = p.max_jerk[i];
+    }
+    q
+}
+
+type RuckigOtg<const N: usize> =
+    rsruckig::prelude::Ruckig<N, rsruckig::prelude::IgnoreErrorHandler>;
+
+fn group<const N: usize>(c: &mut Criterion, general: bool) {
+    let name = format!("otg/{}dof_{}", N, if general { "general" } else { "rest" });
+    let ours = problems::<N>(general, 7 + N as u64 + general as u64);
+    let theirs: Vec<_> = ours.iter().map(to_ruckig).collect();
+    let mut g = c.benchmark_group(&name);
+    let otg = Otg::<N>::new(0.001);
+    g.bench_function("trajkit", |b| {
+        let mut k = 0;
+        b.iter(|| {
+            k = (k + 1) % PROBLEMS;
+            black_box(
+                otg.calculate(black_box(&ours[k]))
+                    .map(|t| t.duration())
+                    .unwrap_or(0.0),
+            )
+        })
+    });
+    let mut rk = RuckigOtg::<N>::new(None, 0.001);
+    let mut tr = rsruckig::prelude::Trajectory::<N>::new(None);
+    g.bench_function("rsruckig", |b| {
+        let mut k = 0;
+        b.iter(|| {
+            k = (k + 1) % PROBLEMS;
+            let _ = rk.calculate(black_box(&theirs[k]), &mut tr);
+            black_box(tr.get_duration())
+        })
+    });
+    g.finish();
+}
+
+fn bench(c: &mut Criterion) {
+    group::<1>(c, true);
+    group::<1>(c, false);
+    group::<3>(c, true);
+    group::<3>(c, false);
+    group::<7>(c, true);
+    group::<7>(c, false);
+}
+
+/// Mean and p99 of single calls in nanoseconds.
+fn stats(mut ns: Vec<f64>) -> (f64, f64) {
+    let mean = ns.iter().sum::<f64>() / ns.len() as f64;
+    ns.sort_by(f64::total_cmp);
+    (mean, ns[(ns.len() as f64 * 0.99) as usize])
+}
+
+fn p99<const N: usize>(general: bool) {
+    let ours = problems::<N>(general, 7 + N as u64 + general as u64);
+    let theirs: Vec<_> = ours.iter().map(to_ruckig).collect();
+    let otg = Otg::<N>::new(0.001);
+    let mut rk = RuckigOtg::<N>::new(None, 0.001);
+    let mut tr = rsruckig::prelude::Trajectory::<N>::new(None);
+    let (mut a, mut b) = (Vec::new(), Vec::new());
+    for _round in 0..40 {
+        for k in 0..PROBLEMS {
+            let t0 = Instant::now();
+            black_box(
+                otg.calculate(black_box(&ours[k]))
+                    .map(|t| t.duration())
+                    .unwrap_or(0.0),
+            );
+            a.push(t0.elapsed().as_nanos() as f64);
+            let t0 = Instant::now();
+            let _ = rk.calculate(black_box(&theirs[k]), &mut tr);
+            black_box(tr.get_duration());
+            b.push(t0.elapsed().as_nanos() as f64);
+        }
+    }
+    let (ma, pa) = stats(a);
+    let (mb, pb) = stats(b);
+    println!(
+        "| {N} DOF {:<7} | {:>8.2} | {:>8.2} | {:>8.2} | {:>8.2} | {:>5.2} |",
+        if general { "general" } else { "rest" },
+        ma / 1e3,
+        pa / 1e3,
+        mb / 1e3,
+        pb / 1e3,
+        ma / mb
+    );
+}
+
+criterion_group!(benches, bench);
+
+fn main() {
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+    if std::env::var("OTG_P99").as_deref() != Ok("0") && !std::env::args().any(|a| a == "--test") {
+        println!("\nper-call timing, µs ({PROBLEMS} problems × 40 rounds, interleaved):");
+        println!("| problem         | trajkit mean | trajkit p99 | rsruckig mean | rsruckig p99 | ratio (mean) |");
+        p99::<1>(true);
+        p99::<1>(false);
+        p99::<3>(true);
+        p99::<3>(false);
+        p99::<7>(true);
+        p99::<7>(false);
+    }
+}

@@ -1,0 +1,189 @@
+//! The online generator: `calculate` once, or `update` every control cycle.
+//!
+//! [`Otg`] holds the control period and, for [`Otg::update`], the last input and its
+//! trajectory. `update` re-plans only when the input differs from the last one (the new state it
+//! returned is written back into its copy of the input, so a caller that feeds the output back
+//! as the next current state does not cause a re-plan), then advances one period and returns
+//! the state there. With a compile-time number of degrees of freedom neither call allocates.
+
+use super::input::{DynInputParameter, InputParameter};
+use super::result::OtgResult;
+use super::sync::{calculate, Scratch};
+use super::trajectory::{DofTrajectory, DynTrajectory, FixedTrajectory, OtgTrajectory};
+use std::time::Instant;
+
+/// The output of one [`Otg::update`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OutputParameter<const DOF: usize> {
+    /// Position at the new time.
+    pub new_position: [f64; DOF],
+    /// Velocity at the new time.
+    pub new_velocity: [f64; DOF],
+    /// Acceleration at the new time.
+    pub new_acceleration: [f64; DOF],
+    /// Jerk at the new time.
+    pub new_jerk: [f64; DOF],
+    /// Time since the trajectory was calculated, in seconds.
+    pub time: f64,
+    /// Whether this update calculated a new trajectory.
+    pub new_calculation: bool,
+    /// Wall-clock time of the calculation in microseconds (0 when none was needed).
+    pub calculation_duration_us: f64,
+    /// Duration of the current trajectory.
+    pub duration: f64,
+}
+
+impl<const DOF: usize> Default for OutputParameter<DOF> {
+    fn default() -> Self {
+        OutputParameter {
+            new_position: [0.0; DOF],
+            new_velocity: [0.0; DOF],
+            new_acceleration: [0.0; DOF],
+            new_jerk: [0.0; DOF],
+            time: 0.0,
+            new_calculation: false,
+            calculation_duration_us: 0.0,
+            duration: 0.0,
+        }
+    }
+}
+
+impl<const DOF: usize> OutputParameter<DOF> {
+    /// Copies the new state into the input's current state (the usual control loop).
+    pub fn pass_to_input(&self, input: &mut InputParameter<DOF>) {
+        input.current_position = self.new_position;
+        input.current_velocity = self.new_velocity;
+        input.current_acceleration = self.new_acceleration;
+    }
+}
+
+/// The online trajectory generator for `DOF` degrees of freedom.
+///
+/// ```
+/// use trajkit::otg::{InputParameter, Otg, OtgResult, OutputParameter};
+/// let mut otg = Otg::<2>::new(0.01);
+/// let mut input = InputParameter::<2>::new();
+/// input.target_position = [1.0, -0.5];
+/// input.max_velocity = [1.0, 1.0];
+/// input.max_acceleration = [2.0, 2.0];
+/// input.max_jerk = [10.0, 10.0];
+/// let mut out = OutputParameter::<2>::default();
+/// let mut cycles = 0;
+/// while otg.update(&input, &mut out) == OtgResult::Working {
+///     out.pass_to_input(&mut input);
+///     cycles += 1;
+/// }
+/// assert!((out.new_position[0] - 1.0).abs() < 1e-8);
+/// assert!(cycles > 100 && cycles < 300);
+/// ```
+#[derive(Debug, Clone)]
+pub struct Otg<const DOF: usize> {
+    /// Control period in seconds (used by `update` and by discrete durations).
+    pub delta_time: f64,
+    last: Option<InputParameter<DOF>>,
+    traj: FixedTrajectory<DOF>,
+    scratch: [Scratch; DOF],
+    time: f64,
+}
+
+impl<const DOF: usize> Otg<DOF> {
+    /// A generator with control period `delta_time` (seconds).
+    pub fn new(delta_time: f64) -> Self {
+        Otg {
+            delta_time,
+            last: None,
+            traj: FixedTrajectory::default(),
+            scratch: [Scratch::default(); DOF],
+            time: 0.0,
+        }
+    }
+
+    /// Calculates the trajectory for `input` (no allocation).
+    pub fn calculate(
+        &self,
+        input: &InputParameter<DOF>,
+    ) -> Result<FixedTrajectory<DOF>, OtgResult> {
+        let mut traj = FixedTrajectory::<DOF>::default();
+        let mut scratch = [Scratch::default(); DOF];
+        self.calculate_into(input, &mut traj, &mut scratch)?;
+        Ok(traj)
+    }
+
+    /// Calculates into a trajectory the caller owns; on error the trajectory is unspecified.
+    pub fn calculate_into(
+        &self,
+        input: &InputParameter<DOF>,
+        traj: &mut FixedTrajectory<DOF>,
+        scratch: &mut [Scratch; DOF],
+    ) -> Result<(), OtgResult> {
+        let d = calculate(&input.view(), self.delta_time, &mut traj.dofs, scratch)?;
+        traj.duration = d;
+        Ok(())
+    }
+
+    /// One control cycle: re-plan if the input changed, advance by `delta_time`, write the new
+    /// state. Returns `Working`, `Finished` (the new time is at or past the end) or an error.
+    pub fn update(
+        &mut self,
+        input: &InputParameter<DOF>,
+        out: &mut OutputParameter<DOF>,
+    ) -> OtgResult {
+        out.new_calculation = false;
+        out.calculation_duration_us = 0.0;
+        if self.last.as_ref() != Some(input) {
+            let start = Instant::now();
+            let r = calculate(
+                &input.view(),
+                self.delta_time,
+                &mut self.traj.dofs,
+                &mut self.scratch,
+            );
+            out.calculation_duration_us = start.elapsed().as_secs_f64() * 1e6;
+            match r {
+                Ok(d) => self.traj.duration = d,
+                Err(e) => {
+                    self.last = None;
+                    return e;
+                }
+            }
+            self.last = Some(*input);
+            self.time = 0.0;
+            out.new_calculation = true;
+        }
+        self.time += self.delta_time;
+        self.traj.at_time_with_jerk(
+            self.time,
+            &mut out.new_position,
+            &mut out.new_velocity,
+            &mut out.new_acceleration,
+            &mut out.new_jerk,
+        );
+        out.time = self.time;
+        out.duration = self.traj.duration;
+        if let Some(last) = self.last.as_mut() {
+            out.pass_to_input(last);
+        }
+        if self.time >= self.traj.duration {
+            OtgResult::Finished
+        } else {
+            OtgResult::Working
+        }
+    }
+
+    /// The trajectory of the last `update`.
+    pub fn trajectory(&self) -> &FixedTrajectory<DOF> {
+        &self.traj
+    }
+}
+
+/// Calculates the trajectory of a run-time-sized input (allocates its result).
+pub fn calculate_dyn(
+    input: &DynInputParameter,
+    delta_time: f64,
+) -> Result<DynTrajectory, OtgResult> {
+    let n = input.dof();
+    let mut dofs = vec![DofTrajectory::default(); n];
+    let mut scratch = vec![Scratch::default(); n];
+    let d = calculate(&input.view(), delta_time, &mut dofs, &mut scratch)?;
+    Ok(OtgTrajectory { dofs, duration: d })
+}

@@ -1,0 +1,404 @@
+//! The input of the generator: current state, target state, limits and options.
+//!
+//! Field names follow Ruckig's `InputParameter`, so that a problem written for Ruckig reads the
+//! same here. [`InputParameter`] has a compile-time number of degrees of freedom (arrays, no
+//! allocation); [`DynInputParameter`] has a run-time number (vectors, e.g. for the CLI). An
+//! infinite limit means unlimited: `max_jerk = ∞` gives second-order (trapezoidal) profiles,
+//! `max_acceleration = ∞` first-order (velocity-limited) ones. Minima default to the negated
+//! maxima.
+
+pub use super::problem::ControlInterface;
+use super::problem::Dof1;
+use super::result::OtgResult;
+
+/// How the degrees of freedom are coordinated in time.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Synchronization {
+    /// All degrees of freedom finish at the same time (the default).
+    #[default]
+    Time,
+    /// Only degrees of freedom with a non-zero target velocity or acceleration are synchronized
+    /// (with the slowest of all); the others finish as fast as they can.
+    TimeIfNecessary,
+    /// Straight-line motion in joint space when the boundary states are collinear; otherwise
+    /// like `Time`.
+    Phase,
+    /// Every degree of freedom finishes as fast as it can.
+    None,
+}
+
+/// Whether the duration must be a multiple of the control period.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum DurationDiscretization {
+    /// Any duration.
+    #[default]
+    Continuous,
+    /// A multiple of the generator's `delta_time`.
+    Discrete,
+}
+
+/// The options shared by both input types.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Options {
+    /// Time coordination.
+    pub synchronization: Synchronization,
+    /// Position or velocity target.
+    pub control_interface: ControlInterface,
+    /// Continuous or discrete duration.
+    pub duration_discretization: DurationDiscretization,
+    /// The trajectory lasts at least this long (seconds), if given.
+    pub minimum_duration: Option<f64>,
+}
+
+/// The input with a compile-time number of degrees of freedom.
+///
+/// ```
+/// use trajkit::otg::{InputParameter, Otg, OtgResult};
+/// let mut input = InputParameter::<1>::new();
+/// input.target_position = [1.0];
+/// input.max_velocity = [0.6];
+/// input.max_acceleration = [1.0];
+/// input.max_jerk = [4.0];
+/// let otg = Otg::<1>::new(0.001);
+/// let traj = otg.calculate(&input).unwrap();
+/// assert!((traj.duration() - 2.516_666_666_666_667).abs() < 1e-12);
+/// ```
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InputParameter<const DOF: usize> {
+    /// Current position.
+    pub current_position: [f64; DOF],
+    /// Current velocity.
+    pub current_velocity: [f64; DOF],
+    /// Current acceleration.
+    pub current_acceleration: [f64; DOF],
+    /// Target position.
+    pub target_position: [f64; DOF],
+    /// Target velocity.
+    pub target_velocity: [f64; DOF],
+    /// Target acceleration.
+    pub target_acceleration: [f64; DOF],
+    /// Velocity limit (> 0; ∞ = unlimited).
+    pub max_velocity: [f64; DOF],
+    /// Acceleration limit (> 0; ∞ = first-order profiles).
+    pub max_acceleration: [f64; DOF],
+    /// Jerk limit (> 0; ∞ = second-order profiles).
+    pub max_jerk: [f64; DOF],
+    /// Direction-dependent minimum velocity (< 0); `None` = −max_velocity.
+    pub min_velocity: Option<[f64; DOF]>,
+    /// Direction-dependent minimum acceleration (< 0); `None` = −max_acceleration.
+    pub min_acceleration: Option<[f64; DOF]>,
+    /// Degrees of freedom to plan; a disabled one keeps its current acceleration.
+    pub enabled: [bool; DOF],
+    /// Options.
+    pub options: Options,
+}
+
+impl<const DOF: usize> Default for InputParameter<DOF> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const DOF: usize> InputParameter<DOF> {
+    /// All states zero, all limits infinite (set at least the limits before use), all degrees
+    /// of freedom enabled, default options.
+    pub fn new() -> Self {
+        InputParameter {
+            current_position: [0.0; DOF],
+            current_velocity: [0.0; DOF],
+            current_acceleration: [0.0; DOF],
+            target_position: [0.0; DOF],
+            target_velocity: [0.0; DOF],
+            target_acceleration: [0.0; DOF],
+            max_velocity: [f64::INFINITY; DOF],
+            max_acceleration: [f64::INFINITY; DOF],
+            max_jerk: [f64::INFINITY; DOF],
+            min_velocity: None,
+            min_acceleration: None,
+            enabled: [true; DOF],
+            options: Options::default(),
+        }
+    }
+
+    pub(crate) fn view(&self) -> InputView<'_> {
+        InputView {
+            cp: &self.current_position,
+            cv: &self.current_velocity,
+            ca: &self.current_acceleration,
+            tp: &self.target_position,
+            tv: &self.target_velocity,
+            ta: &self.target_acceleration,
+            vmax: &self.max_velocity,
+            amax: &self.max_acceleration,
+            jmax: &self.max_jerk,
+            vmin: self.min_velocity.as_ref().map(|v| &v[..]),
+            amin: self.min_acceleration.as_ref().map(|v| &v[..]),
+            enabled: &self.enabled,
+            options: self.options,
+        }
+    }
+}
+
+/// The input with a run-time number of degrees of freedom; same fields as
+/// [`InputParameter`]. Vectors shorter or longer than `current_position` are invalid input.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct DynInputParameter {
+    /// Current position; its length is the number of degrees of freedom.
+    pub current_position: Vec<f64>,
+    /// Current velocity.
+    pub current_velocity: Vec<f64>,
+    /// Current acceleration.
+    pub current_acceleration: Vec<f64>,
+    /// Target position.
+    pub target_position: Vec<f64>,
+    /// Target velocity.
+    pub target_velocity: Vec<f64>,
+    /// Target acceleration.
+    pub target_acceleration: Vec<f64>,
+    /// Velocity limit.
+    pub max_velocity: Vec<f64>,
+    /// Acceleration limit.
+    pub max_acceleration: Vec<f64>,
+    /// Jerk limit.
+    pub max_jerk: Vec<f64>,
+    /// Direction-dependent minimum velocity.
+    pub min_velocity: Option<Vec<f64>>,
+    /// Direction-dependent minimum acceleration.
+    pub min_acceleration: Option<Vec<f64>>,
+    /// Degrees of freedom to plan.
+    pub enabled: Vec<bool>,
+    /// Options.
+    pub options: Options,
+}
+
+impl DynInputParameter {
+    /// `dof` degrees of freedom, all zero, limits infinite, all enabled.
+    pub fn new(dof: usize) -> Self {
+        let z = vec![0.0; dof];
+        let inf = vec![f64::INFINITY; dof];
+        DynInputParameter {
+            current_position: z.clone(),
+            current_velocity: z.clone(),
+            current_acceleration: z.clone(),
+            target_position: z.clone(),
+            target_velocity: z.clone(),
+            target_acceleration: z,
+            max_velocity: inf.clone(),
+            max_acceleration: inf.clone(),
+            max_jerk: inf,
+            min_velocity: None,
+            min_acceleration: None,
+            enabled: vec![true; dof],
+            options: Options::default(),
+        }
+    }
+
+    /// Number of degrees of freedom.
+    pub fn dof(&self) -> usize {
+        self.current_position.len()
+    }
+
+    pub(crate) fn view(&self) -> InputView<'_> {
+        InputView {
+            cp: &self.current_position,
+            cv: &self.current_velocity,
+            ca: &self.current_acceleration,
+            tp: &self.target_position,
+            tv: &self.target_velocity,
+            ta: &self.target_acceleration,
+            vmax: &self.max_velocity,
+            amax: &self.max_acceleration,
+            jmax: &self.max_jerk,
+            vmin: self.min_velocity.as_deref(),
+            amin: self.min_acceleration.as_deref(),
+            enabled: &self.enabled,
+            options: self.options,
+        }
+    }
+}
+
+/// Borrowed view of either input type.
+pub(crate) struct InputView<'a> {
+    pub cp: &'a [f64],
+    pub cv: &'a [f64],
+    pub ca: &'a [f64],
+    pub tp: &'a [f64],
+    pub tv: &'a [f64],
+    pub ta: &'a [f64],
+    pub vmax: &'a [f64],
+    pub amax: &'a [f64],
+    pub jmax: &'a [f64],
+    pub vmin: Option<&'a [f64]>,
+    pub amin: Option<&'a [f64]>,
+    pub enabled: &'a [bool],
+    pub options: Options,
+}
+
+const NOT_FINITE: &str = "is not a finite number";
+const NOT_POSITIVE: &str = "is not a positive number (or infinity)";
+const NOT_NEGATIVE: &str = "is not a negative number (or -infinity)";
+const WRONG_LEN: &str = "is the length of this vector, which differs from the number of DOFs";
+
+fn bad(dof: usize, field: &'static str, value: f64, reason: &'static str) -> OtgResult {
+    OtgResult::InvalidInput {
+        dof,
+        field,
+        value,
+        reason,
+    }
+}
+
+impl InputView<'_> {
+    /// Number of degrees of freedom.
+    pub fn dof(&self) -> usize {
+        self.cp.len()
+    }
+
+    /// Checks the lengths and the options.
+    pub fn check_shape(&self, delta_time: f64) -> Result<(), OtgResult> {
+        let n = self.dof();
+        let lens: [(&'static str, usize); 10] = [
+            ("current_velocity", self.cv.len()),
+            ("current_acceleration", self.ca.len()),
+            ("target_position", self.tp.len()),
+            ("target_velocity", self.tv.len()),
+            ("target_acceleration", self.ta.len()),
+            ("max_velocity", self.vmax.len()),
+            ("max_acceleration", self.amax.len()),
+            ("max_jerk", self.jmax.len()),
+            ("enabled", self.enabled.len()),
+            ("min_velocity", self.vmin.map_or(n, |v| v.len())),
+        ];
+        for (f, l) in lens {
+            if l != n {
+                return Err(bad(usize::MAX, f, l as f64, WRONG_LEN));
+            }
+        }
+        if let Some(a) = self.amin {
+            if a.len() != n {
+                return Err(bad(
+                    usize::MAX,
+                    "min_acceleration",
+                    a.len() as f64,
+                    WRONG_LEN,
+                ));
+            }
+        }
+        if let Some(m) = self.options.minimum_duration {
+            if !(m.is_finite() && m >= 0.0) {
+                return Err(bad(
+                    usize::MAX,
+                    "minimum_duration",
+                    m,
+                    "is not a finite number ≥ 0",
+                ));
+            }
+        }
+        if self.options.duration_discretization == DurationDiscretization::Discrete
+            && !(delta_time.is_finite() && delta_time > 0.0)
+        {
+            return Err(bad(
+                usize::MAX,
+                "delta_time",
+                delta_time,
+                "is not a positive finite number",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The validated problem of degree of freedom `i`.
+    pub fn dof_problem(&self, i: usize) -> Result<Dof1, OtgResult> {
+        for (f, v) in [
+            ("current_position", self.cp[i]),
+            ("current_velocity", self.cv[i]),
+            ("current_acceleration", self.ca[i]),
+            ("target_position", self.tp[i]),
+            ("target_velocity", self.tv[i]),
+            ("target_acceleration", self.ta[i]),
+        ] {
+            if !v.is_finite() {
+                return Err(bad(i, f, v, NOT_FINITE));
+            }
+        }
+        for (f, v) in [
+            ("max_velocity", self.vmax[i]),
+            ("max_acceleration", self.amax[i]),
+            ("max_jerk", self.jmax[i]),
+        ] {
+            if v.is_nan() || v <= 0.0 {
+                return Err(bad(i, f, v, NOT_POSITIVE));
+            }
+        }
+        let vmin = self.vmin.map_or(-self.vmax[i], |v| v[i]);
+        let amin = self.amin.map_or(-self.amax[i], |v| v[i]);
+        if vmin.is_nan() || vmin >= 0.0 {
+            return Err(bad(i, "min_velocity", vmin, NOT_NEGATIVE));
+        }
+        if amin.is_nan() || amin >= 0.0 {
+            return Err(bad(i, "min_acceleration", amin, NOT_NEGATIVE));
+        }
+        if self.amax[i].is_infinite() != amin.is_infinite() {
+            return Err(bad(
+                i,
+                "min_acceleration",
+                amin,
+                "must be infinite exactly when max_acceleration is",
+            ));
+        }
+        let d = Dof1 {
+            p0: self.cp[i],
+            v0: self.cv[i],
+            a0: self.ca[i],
+            pf: self.tp[i],
+            vf: self.tv[i],
+            af: self.ta[i],
+            vmax: self.vmax[i],
+            vmin,
+            amax: self.amax[i],
+            amin,
+            jmax: self.jmax[i],
+            interface: self.options.control_interface,
+        };
+        use super::problem::ProfileOrder;
+        let order = d.order();
+        if d.interface == ControlInterface::Position {
+            if order == ProfileOrder::First && (d.vmax.is_infinite() || d.vmin.is_infinite()) {
+                return Err(bad(
+                    i,
+                    "max_velocity",
+                    d.vmax,
+                    "must be finite when the acceleration limit is infinite",
+                ));
+            }
+            if d.vf > d.vmax || d.vf < d.vmin {
+                return Err(bad(
+                    i,
+                    "target_velocity",
+                    d.vf,
+                    "is outside the velocity limits",
+                ));
+            }
+        }
+        if order == ProfileOrder::Third {
+            if d.af > d.amax || d.af < d.amin {
+                return Err(bad(
+                    i,
+                    "target_acceleration",
+                    d.af,
+                    "is outside the acceleration limits",
+                ));
+            }
+            let before = d.vf - d.af * d.af.abs() / (2.0 * d.jmax);
+            if d.interface == ControlInterface::Position && (before > d.vmax || before < d.vmin) {
+                return Err(bad(
+                    i,
+                    "target_acceleration",
+                    d.af,
+                    "cannot be reached with the target velocity inside the velocity limits",
+                ));
+            }
+        }
+        Ok(d)
+    }
+}

@@ -1,0 +1,769 @@
+//! Step 1: the time-optimal profile of one degree of freedom.
+//!
+//! Third order, position interface. After the brake pre-profile, the solver enumerates the
+//! profile families of the time-optimal jerk-limited motion, in both directions (the negative
+//! direction by mirroring the problem):
+//!
+//! | family      | acceleration path                          | free parameter |
+//! |-------------|--------------------------------------------|----------------|
+//! | none        | a₀ ↗ α₁ ↘ α₂ ↗ a_f                          | α₁             |
+//! | acc0        | a₀ ↗ a_max (hold τ₁) ↘ α₂ ↗ a_f              | τ₁             |
+//! | acc1        | a₀ ↗ α₁ ↘ a_min (hold τ₂) ↗ a_f              | α₁             |
+//! | acc0_acc1   | a₀ ↗ a_max (τ₁) ↘ a_min (τ₂) ↗ a_f           | τ₁             |
+//! | vel         | a₀ ↗ α₁ (plateau) ↘ 0, cruise at v_max, ↘ α₂ (plateau) ↗ a_f | closed form |
+//! | peak        | fastest to (v_c, 0), fastest to (v_f, a_f) | v_c            |
+//!
+//! In each family the velocity equation gives the second unknown in closed form; the position
+//! equation is a scalar residual in the free parameter whose roots [`super::roots`] finds.
+//! The "peak" family (a velocity extremum with zero acceleration, reached either way) adds
+//! the up-down-up-down shapes. Every root becomes a candidate profile that is **verified by
+//! integration** (target within 1e-8 in position and 1e-10 in velocity and acceleration; limits
+//! within 1e-12 relative at segment ends and interior velocity extrema); the fastest valid
+//! candidate is the result, and the durations of all valid candidates are kept as candidate
+//! durations for synchronization.
+//!
+//! Shortcuts, each checked against the differential suite: towards a target at rest a valid
+//! cruise at the velocity limit ends the search (nothing is faster), candidates that cannot be
+//! the fastest are not verified, and the peak family runs only for a moving target (where its
+//! durations bound the blocked intervals) or when nothing else was found.
+//!
+//! Second order uses the peak family (one acceleration switch) and the cruise family; first
+//! order moves at the velocity limit. The velocity interface uses the fastest velocity change.
+
+use super::brake::brake;
+use super::problem::{ControlInterface, Dof1, ProfileOrder};
+use super::profile::{Profile, State1};
+use super::roots::{find_roots_coarse, MAX_ROOTS};
+use super::velocity_change::{fastest, VelChange};
+
+/// Largest number of candidate durations kept per degree of freedom.
+pub(crate) const MAX_CANDIDATES: usize = 24;
+
+/// Position tolerance of the target (absolute).
+pub const TOL_POSITION: f64 = 1e-8;
+/// Velocity and acceleration tolerance of the target (absolute).
+pub const TOL_VELOCITY: f64 = 1e-10;
+/// Relative tolerance of the limits.
+pub const TOL_LIMIT: f64 = 1e-12;
+
+/// The result of step 1 for one degree of freedom.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Step1 {
+    /// The time-optimal profile (brake included).
+    pub profile: Profile,
+    /// Durations of all valid candidate profiles (brake included), unsorted.
+    pub cand: [f64; MAX_CANDIDATES],
+    /// Number of entries in `cand`.
+    pub ncand: usize,
+}
+
+impl Step1 {
+    /// The minimum duration.
+    pub fn t_min(&self) -> f64 {
+        self.profile.duration()
+    }
+}
+
+/// Collects verified candidates and keeps the fastest.
+pub(crate) struct Collector<'a> {
+    dof: &'a Dof1,
+    pub best: Option<Profile>,
+    pub cand: [f64; MAX_CANDIDATES],
+    pub ncand: usize,
+}
+
+impl<'a> Collector<'a> {
+    pub fn new(dof: &'a Dof1) -> Self {
+        Collector {
+            dof,
+            best: None,
+            cand: [0.0; MAX_CANDIDATES],
+            ncand: 0,
+        }
+    }
+
+    /// Whether a candidate of duration `t` can still matter: it could be the fastest, or the
+    /// target moves (then every valid duration bounds a blocked interval).
+    #[inline]
+    pub fn wants(&self, t: f64) -> bool {
+        self.dof.vf != 0.0 || self.dof.af != 0.0 || self.best.is_none_or(|b| t < b.duration())
+    }
+
+    /// Offers a main profile (starting after the brake); returns whether it was valid.
+    pub fn offer(&mut self, main: &Profile) -> bool {
+        if !self.wants(main.duration()) || !verify(self.dof, main) {
+            return false;
+        }
+        let t = main.duration();
+        if self.ncand < MAX_CANDIDATES && !self.cand[..self.ncand].contains(&t) {
+            self.cand[self.ncand] = t;
+            self.ncand += 1;
+        }
+        if self.best.is_none_or(|b| t < b.duration()) {
+            self.best = Some(*main);
+        }
+        true
+    }
+}
+
+/// Checks a main profile (no brake) against the target and the limits of `dof`.
+pub(crate) fn verify(dof: &Dof1, pr: &Profile) -> bool {
+    let e = pr.end();
+    let order = dof.order();
+    let within = |x: f64, tol: f64| x.abs() <= tol;
+    if dof.interface == ControlInterface::Position && !within(e.p - dof.pf, TOL_POSITION) {
+        return false;
+    }
+    if order != ProfileOrder::First && !within(e.v - dof.vf, TOL_VELOCITY) {
+        return false;
+    }
+    if order == ProfileOrder::Third && !within(e.a - dof.af, TOL_VELOCITY) {
+        return false;
+    }
+    if !pr.duration().is_finite() {
+        return false;
+    }
+    // Half the contract's tolerance, so that an independent re-evaluation (with its own
+    // round-off) still finds the limits within TOL_LIMIT.
+    let widen = |lim: f64| lim + 0.5 * TOL_LIMIT * lim;
+    let (vmax, vmin) = (widen(dof.vmax), widen(dof.vmin));
+    let (amax, amin) = (widen(dof.amax), widen(dof.amin));
+    let check_v = dof.interface == ControlInterface::Position;
+    let check_a = order != ProfileOrder::First;
+    // A start state that the brake left outside a limit (on its way back) may stay outside
+    // only until it first comes inside, and never go further out than it started.
+    let s = pr.start();
+    let mut v_in = !check_v || (s.v <= vmax && s.v >= vmin);
+    let mut a_in = !check_a || (s.a <= amax && s.a >= amin);
+    let (v_hi, v_lo) = (vmax.max(s.v), vmin.min(s.v));
+    let (a_hi, a_lo) = (amax.max(s.a), amin.min(s.a));
+    for k in 0..pr.segments() {
+        let Some((_, d, st, j)) = pr.segment(k) else {
+            break;
+        };
+        let vend = st.v + d * (st.a + d * j / 2.0);
+        let aend = st.a + d * j;
+        let mut vs = [st.v, st.v, vend];
+        if j != 0.0 {
+            let r = -st.a / j;
+            if r > 0.0 && r < d {
+                vs[1] = st.v + r * (st.a + r * j / 2.0);
+            }
+        }
+        if check_v {
+            for v in vs {
+                if v_in {
+                    if v > vmax || v < vmin {
+                        return false;
+                    }
+                } else if v > v_hi || v < v_lo {
+                    return false;
+                } else if v <= vmax && v >= vmin {
+                    v_in = true;
+                }
+            }
+        }
+        if check_a {
+            for a in [st.a, aend] {
+                if a_in {
+                    if a > amax || a < amin {
+                        return false;
+                    }
+                } else if a > a_hi || a < a_lo {
+                    return false;
+                } else if a <= amax && a >= amin {
+                    a_in = true;
+                }
+            }
+        }
+    }
+    true
+}
+
+/// A velocity bound that the optimal profile never needs to exceed, used to bound parameter
+/// ranges when the velocity limit is infinite.
+pub(crate) fn velocity_cap(dof: &Dof1, s: State1) -> f64 {
+    if dof.vmax.is_finite() {
+        return dof.vmax;
+    }
+    let a = dof.amax.max(-dof.amin);
+    let a = if a.is_finite() { a } else { 0.0 };
+    let d = (dof.pf - s.p).abs();
+    let cap = 2.0 * (s.v.abs() + dof.vf.abs())
+        + (s.a * s.a + dof.af * dof.af) / dof.jmax
+        + 2.0 * (2.0 * a * d).sqrt()
+        + 2.0 * a * a / dof.jmax;
+    4.0 * cap.max(1e-300)
+}
+
+/// Step 1 for one degree of freedom. `None` when no valid profile was found.
+pub(crate) fn step1(dof: &Dof1) -> Option<Step1> {
+    let mut pr = Profile::new(State1 {
+        p: dof.p0,
+        v: dof.v0,
+        a: dof.a0,
+    });
+    brake(dof, &mut pr);
+    let s = pr.end();
+    let mut main_dof = *dof;
+    main_dof.p0 = s.p;
+    main_dof.v0 = s.v;
+    main_dof.a0 = s.a;
+    let mut col = Collector::new(&main_dof);
+    solve_main(&main_dof, &mut col);
+    let best = col.best?;
+    let tb = pr.duration();
+    if !pr.append(&best) {
+        return None;
+    }
+    let mut cand = col.cand;
+    for c in cand[..col.ncand].iter_mut() {
+        *c += tb;
+    }
+    Some(Step1 {
+        profile: pr,
+        cand,
+        ncand: col.ncand,
+    })
+}
+
+/// Enumerates the main-profile candidates of a problem whose start state is safe.
+fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
+    let start = State1 {
+        p: dof.p0,
+        v: dof.v0,
+        a: dof.a0,
+    };
+    match (dof.order(), dof.interface) {
+        (ProfileOrder::First, ControlInterface::Position) => {
+            let d = dof.pf - dof.p0;
+            let mut pr = Profile::new(start);
+            if d != 0.0 {
+                let v = if d > 0.0 { dof.vmax } else { dof.vmin };
+                pr.push_with(d / v, v, 0.0, 0.0);
+            }
+            pr.set_final(dof.vf, 0.0);
+            col.offer(&pr);
+        }
+        (ProfileOrder::First, ControlInterface::Velocity) => {
+            let mut pr = Profile::new(start);
+            pr.set_final(dof.vf, 0.0);
+            col.offer(&pr);
+        }
+        (order, ControlInterface::Velocity) => {
+            if let Some(c) = fastest(
+                order, dof.v0, dof.a0, dof.vf, dof.af, dof.jmax, dof.amax, dof.amin,
+            ) {
+                let mut pr = Profile::new(start);
+                push_change(&mut pr, order, &c, dof.v0);
+                if order == ProfileOrder::Second {
+                    pr.set_final(dof.vf, 0.0);
+                }
+                col.offer(&pr);
+            }
+        }
+        (ProfileOrder::Second, ControlInterface::Position) => {
+            peak_family(dof, col);
+            cruise_family(dof, col);
+        }
+        (ProfileOrder::Third, ControlInterface::Position) => {
+            // Towards a target at rest, a valid cruise at the velocity limit is time-optimal:
+            // the other families need not be tried.
+            let mut cruise = false;
+            for mirror in [false, true] {
+                let q = if mirror { dof.mirrored() } else { *dof };
+                cruise |= vel_family(&q, mirror, col);
+            }
+            if cruise && dof.vf == 0.0 && dof.af == 0.0 {
+                return;
+            }
+            if !cruise && rest_to_rest_peak(dof, col) {
+                return;
+            }
+            for mirror in [false, true] {
+                let q = if mirror { dof.mirrored() } else { *dof };
+                third_families(&q, mirror, col);
+            }
+            // The peak family adds the up-down-up-down shapes. Towards a target at rest they are
+            // never faster than the families above (checked against rsruckig on every random
+            // category), so they are only needed when nothing was found or when the target
+            // moves (where their durations bound the blocked intervals).
+            if col.best.is_none() || dof.vf != 0.0 || dof.af != 0.0 {
+                peak_family(dof, col);
+            }
+        }
+    }
+}
+
+/// Rest to rest with symmetric acceleration limits and no cruise: the time-optimal profile
+/// accelerates to a peak velocity v_p and straight back, with D = v_p·t₁(v_p); closed form
+/// (t₁ = 2√(v_p/j) without an acceleration plateau, t₁ = v_p/a + a/j with one). Returns whether
+/// it offered a valid profile (otherwise the general families take over).
+fn rest_to_rest_peak(dof: &Dof1, col: &mut Collector<'_>) -> bool {
+    if dof.v0 != 0.0 || dof.a0 != 0.0 || dof.vf != 0.0 || dof.af != 0.0 || dof.amax != -dof.amin {
+        return false;
+    }
+    let d = (dof.pf - dof.p0).abs();
+    if d == 0.0 {
+        return false;
+    }
+    let (a, j) = (dof.amax, dof.jmax);
+    let tri = (d * d * j / 4.0).cbrt();
+    let vp = if tri <= a * a / j {
+        tri
+    } else {
+        let k = a / j;
+        (-k + (k * k + 4.0 * d / a).sqrt()) * a / 2.0
+    };
+    let vp = if dof.pf >= dof.p0 { vp } else { -vp };
+    let order = ProfileOrder::Third;
+    let (Some(c1), Some(c2)) = (
+        fastest(order, 0.0, 0.0, vp, 0.0, j, dof.amax, dof.amin),
+        fastest(order, vp, 0.0, 0.0, 0.0, j, dof.amax, dof.amin),
+    ) else {
+        return false;
+    };
+    let mut pr = Profile::new(State1 {
+        p: dof.p0,
+        v: 0.0,
+        a: 0.0,
+    });
+    push_change(&mut pr, order, &c1, 0.0);
+    pr.snap(vp, 0.0);
+    push_change(&mut pr, order, &c2, vp);
+    col.offer(&pr)
+}
+
+/// Appends a velocity change to a profile.
+pub(crate) fn push_change(pr: &mut Profile, order: ProfileOrder, c: &VelChange, va: f64) {
+    match order {
+        ProfileOrder::Third => {
+            for k in 0..3 {
+                pr.push(c.d[k], c.j[k]);
+            }
+        }
+        ProfileOrder::Second => {
+            if c.t > 0.0 {
+                pr.push_with(c.t, va, c.accel, 0.0);
+            }
+        }
+        ProfileOrder::First => {}
+    }
+}
+
+/// Peak family: fastest change to (v_c, 0), then fastest change to the target; residual in
+/// position, free parameter v_c.
+fn peak_family(dof: &Dof1, col: &mut Collector<'_>) {
+    let order = dof.order();
+    let d = dof.pf - dof.p0;
+    let vcap = velocity_cap(
+        dof,
+        State1 {
+            p: dof.p0,
+            v: dof.v0,
+            a: dof.a0,
+        },
+    );
+    let vcap_neg = velocity_cap(
+        &dof.mirrored(),
+        State1 {
+            p: -dof.p0,
+            v: -dof.v0,
+            a: -dof.a0,
+        },
+    );
+    let (lo, hi) = (-vcap_neg, vcap);
+    let parts = |vc: f64| -> Option<(VelChange, VelChange)> {
+        let c1 = fastest(order, dof.v0, dof.a0, vc, 0.0, dof.jmax, dof.amax, dof.amin)?;
+        let c2 = fastest(order, vc, 0.0, dof.vf, dof.af, dof.jmax, dof.amax, dof.amin)?;
+        Some((c1, c2))
+    };
+    let mut f = |vc: f64| parts(vc).map(|(c1, c2)| c1.dist + c2.dist - d);
+    let mut roots = [0.0; MAX_ROOTS];
+    let mut cuts = [
+        lo,
+        hi,
+        0.0,
+        kink(order, dof.v0, dof.a0, dof.jmax, 1.0),
+        kink(order, dof.vf, dof.af, dof.jmax, -1.0),
+    ];
+    for_each_piece(&mut cuts, |a, b| {
+        let n = find_roots_coarse(&mut f, a, b, &mut roots);
+        for &vc in &roots[..n] {
+            if let Some((c1, c2)) = parts(vc) {
+                let mut pr = Profile::new(State1 {
+                    p: dof.p0,
+                    v: dof.v0,
+                    a: dof.a0,
+                });
+                push_change(&mut pr, order, &c1, dof.v0);
+                pr.snap(vc, 0.0);
+                push_change(&mut pr, order, &c2, vc);
+                if order == ProfileOrder::Second {
+                    pr.set_final(dof.vf, 0.0);
+                }
+                col.offer(&pr);
+            }
+        }
+    });
+}
+
+/// The velocity where the fastest change from (v, a) to zero acceleration lands (`dir` = 1),
+/// or from which it reaches (v, a) (`dir` = −1).
+pub(crate) fn kink(order: ProfileOrder, v: f64, a: f64, j: f64, dir: f64) -> f64 {
+    match order {
+        ProfileOrder::Third => v + dir * a * a.abs() / (2.0 * j),
+        _ => v,
+    }
+}
+
+/// Sorts the cut points, clips them to [cuts[0], cuts[1]] and calls `f` on each piece.
+pub(crate) fn for_each_piece<const N: usize>(cuts: &mut [f64; N], mut f: impl FnMut(f64, f64)) {
+    let (lo, hi) = (cuts[0], cuts[1]);
+    if lo.is_nan() || hi.is_nan() || lo > hi {
+        return;
+    }
+    for c in cuts.iter_mut() {
+        *c = c.clamp(lo, hi);
+    }
+    cuts.sort_by(|a, b| a.total_cmp(b));
+    for k in 0..N - 1 {
+        if cuts[k + 1] > cuts[k] || (k == 0 && lo == hi) {
+            f(cuts[k], cuts[k + 1]);
+        }
+    }
+}
+
+/// Cruise family: fastest change to (v_max, 0), cruise, fastest change to the target (both
+/// signs of the cruise velocity).
+fn cruise_family(dof: &Dof1, col: &mut Collector<'_>) {
+    let order = dof.order();
+    let d = dof.pf - dof.p0;
+    for vc in [dof.vmax, dof.vmin] {
+        if !vc.is_finite() || vc == 0.0 {
+            continue;
+        }
+        let Some(c1) = fastest(order, dof.v0, dof.a0, vc, 0.0, dof.jmax, dof.amax, dof.amin) else {
+            continue;
+        };
+        let Some(c2) = fastest(order, vc, 0.0, dof.vf, dof.af, dof.jmax, dof.amax, dof.amin) else {
+            continue;
+        };
+        let tau = (d - c1.dist - c2.dist) / vc;
+        if tau.is_nan() || tau < 0.0 {
+            continue;
+        }
+        let mut pr = Profile::new(State1 {
+            p: dof.p0,
+            v: dof.v0,
+            a: dof.a0,
+        });
+        push_change(&mut pr, order, &c1, dof.v0);
+        pr.snap(vc, 0.0);
+        pr.push_with(tau, vc, 0.0, 0.0);
+        push_change(&mut pr, order, &c2, vc);
+        if order == ProfileOrder::Second {
+            pr.set_final(dof.vf, 0.0);
+        }
+        col.offer(&pr);
+    }
+}
+
+/// A sequence of up to 7 constant-jerk segments.
+#[derive(Clone, Copy)]
+struct Seq {
+    n: usize,
+    d: [f64; 7],
+    j: [f64; 7],
+}
+
+impl Seq {
+    fn new() -> Seq {
+        Seq {
+            n: 0,
+            d: [0.0; 7],
+            j: [0.0; 7],
+        }
+    }
+    #[inline]
+    fn add(&mut self, d: f64, j: f64) {
+        self.d[self.n] = d.max(0.0);
+        self.j[self.n] = j;
+        self.n += 1;
+    }
+    #[inline]
+    fn displacement(&self, v0: f64, a0: f64) -> f64 {
+        let (mut p, mut v, mut a) = (0.0, v0, a0);
+        for k in 0..self.n {
+            (p, v, a) = super::profile::integrate(p, v, a, self.j[k], self.d[k]);
+        }
+        p
+    }
+}
+
+/// The cruise family (vel) in the positive direction of the (possibly mirrored) problem `q`:
+/// fastest change to (v_max, 0), cruise, fastest change to the target. Returns whether it
+/// offered a valid profile.
+fn vel_family(q: &Dof1, mirror: bool, col: &mut Collector<'_>) -> bool {
+    let j = q.jmax;
+    let (a0, v0, af, vf) = (q.a0, q.v0, q.af, q.vf);
+    let amax = q.amax;
+    let a2 = -q.amin;
+    let d = q.pf - q.p0;
+    // vel: cruise at v_max.
+    if q.vmax.is_finite() {
+        let c1 = super::velocity_change::fastest3(v0, a0, q.vmax, 0.0, j, amax, -a2);
+        let c2 = super::velocity_change::fastest3(q.vmax, 0.0, vf, af, j, amax, -a2);
+        if let (Some(c1), Some(c2)) = (c1, c2) {
+            let tau = (d - c1.dist - c2.dist) / q.vmax;
+            if tau >= 0.0 {
+                let mut pr = Profile::new(State1 {
+                    p: q.p0,
+                    v: v0,
+                    a: a0,
+                });
+                push_change(&mut pr, ProfileOrder::Third, &c1, v0);
+                pr.snap(q.vmax, 0.0);
+                pr.push_with(tau, q.vmax, 0.0, 0.0);
+                push_change(&mut pr, ProfileOrder::Third, &c2, q.vmax);
+                if mirror {
+                    pr.mirror();
+                }
+                return col.offer(&pr);
+            }
+        }
+    }
+    false
+}
+
+/// The third-order families in the positive direction of the (possibly mirrored) problem `q`.
+fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
+    let j = q.jmax;
+    let (a0, v0, af, vf) = (q.a0, q.v0, q.af, q.vf);
+    let amax = q.amax;
+    let a2 = -q.amin;
+    let dv = vf - v0;
+    let d = q.pf - q.p0;
+    let vlim = if q.vmax.is_finite() {
+        q.vmax
+    } else {
+        velocity_cap(
+            q,
+            State1 {
+                p: q.p0,
+                v: v0,
+                a: a0,
+            },
+        )
+    };
+    let tol = 1e-12 * (amax + a2);
+    let emit = |seq: &Seq, col: &mut Collector<'_>| {
+        if !col.wants(seq.d[..seq.n].iter().sum()) {
+            return;
+        }
+        let mut pr = Profile::new(State1 {
+            p: q.p0,
+            v: v0,
+            a: a0,
+        });
+        for k in 0..seq.n {
+            pr.push(seq.d[k], seq.j[k]);
+        }
+        if mirror {
+            pr.mirror();
+        }
+        col.offer(&pr);
+    };
+    let mut roots = [0.0; MAX_ROOTS];
+    if a0 > amax + tol {
+        return;
+    }
+    let a0c = a0.min(amax);
+    let tau_hi = (vlim - v0 - (amax * amax - a0 * a0) / (2.0 * j)) / amax;
+    for sign in [1.0, -1.0] {
+        // none: parameter α1.
+        let none = |x: f64| -> Option<Seq> {
+            let rad = x * x + (af * af - a0 * a0) / 2.0 - j * dv;
+            if rad < -tol * tol {
+                return None;
+            }
+            let al2 = sign * rad.max(0.0).sqrt();
+            if al2 > x + tol || al2 > af + tol || al2 < -a2 - tol {
+                return None;
+            }
+            let mut s = Seq::new();
+            s.add((x - a0) / j, j);
+            s.add((x - al2) / j, -j);
+            s.add((af - al2) / j, j);
+            Some(s)
+        };
+        let mut f = |x: f64| none(x).map(|s| s.displacement(v0, a0) - d);
+        // Valid domain: x² ∈ [l, u] (and the sign conditions), computed in closed form so that
+        // narrow windows are not missed by sampling.
+        let k = (af * af - a0 * a0) / 2.0 - j * dv;
+        let (l, u, neg_ok) = if sign > 0.0 {
+            if af < -tol || k > tol * tol {
+                (1.0, 0.0, false)
+            } else {
+                ((-k).max(0.0), af.max(0.0) * af.max(0.0) - k, false)
+            }
+        } else {
+            let l = (-k).max(0.0).max(if af < 0.0 { af * af - k } else { 0.0 });
+            (l, a2 * a2 - k, k >= -tol * tol)
+        };
+        for (lo, hi) in square_window(l, u, a0c, amax, neg_ok, tol) {
+            let n = find_roots_coarse(&mut f, lo, hi, &mut roots);
+            for &x in &roots[..n] {
+                if let Some(s) = none(x) {
+                    emit(&s, col);
+                }
+            }
+        }
+        // acc0: parameter τ1.
+        if tau_hi >= 0.0 {
+            let acc0 = |t1: f64| -> Option<Seq> {
+                let rad = amax * amax + (af * af - a0 * a0) / 2.0 + j * amax * t1 - j * dv;
+                if rad < -tol * tol {
+                    return None;
+                }
+                let al2 = sign * rad.max(0.0).sqrt();
+                if al2 > amax + tol || al2 > af + tol || al2 < -a2 - tol {
+                    return None;
+                }
+                let mut s = Seq::new();
+                s.add((amax - a0) / j, j);
+                s.add(t1, 0.0);
+                s.add((amax - al2) / j, -j);
+                s.add((af - al2) / j, j);
+                Some(s)
+            };
+            let mut f = |x: f64| acc0(x).map(|s| s.displacement(v0, a0) - d);
+            // rad = c0 + j·amax·τ1 must lie in [l, u].
+            let c0 = amax * amax + (af * af - a0 * a0) / 2.0 - j * dv;
+            let (l, u) = if sign > 0.0 {
+                (0.0, if af < 0.0 { -1.0 } else { amax.min(af).powi(2) })
+            } else {
+                (if af < 0.0 { af * af } else { 0.0 }, a2 * a2)
+            };
+            let lo = ((l - c0) / (j * amax)).max(0.0);
+            let hi = ((u - c0) / (j * amax)).min(tau_hi);
+            let n = if lo <= hi {
+                find_roots_coarse(&mut f, lo, hi, &mut roots)
+            } else {
+                0
+            };
+            for &x in &roots[..n] {
+                if let Some(s) = acc0(x) {
+                    emit(&s, col);
+                }
+            }
+        }
+    }
+    // acc1: parameter α1.
+    let acc1 = |x: f64| -> Option<Seq> {
+        let t2 = ((2.0 * x * x - a0 * a0 - 2.0 * a2 * a2 + af * af) / (2.0 * j) - dv) / a2;
+        if t2 < 0.0 || af < -a2 - tol {
+            return None;
+        }
+        let mut s = Seq::new();
+        s.add((x - a0) / j, j);
+        s.add((x + a2) / j, -j);
+        s.add(t2, 0.0);
+        s.add((af + a2) / j, j);
+        Some(s)
+    };
+    let mut f = |x: f64| acc1(x).map(|s| s.displacement(v0, a0) - d);
+    // τ2 ≥ 0 ⇔ x² ≥ l.
+    let l = (2.0 * j * dv + a0 * a0 + 2.0 * a2 * a2 - af * af) / 2.0;
+    for (lo, hi) in square_window(l.max(0.0), f64::INFINITY, a0c, amax, true, tol) {
+        let n = find_roots_coarse(&mut f, lo, hi, &mut roots);
+        for &x in &roots[..n] {
+            if let Some(s) = acc1(x) {
+                emit(&s, col);
+            }
+        }
+    }
+    // acc0_acc1: parameter τ1.
+    if tau_hi >= 0.0 {
+        let acc01 = |t1: f64| -> Option<Seq> {
+            let t2 = ((2.0 * amax * amax - a0 * a0 - 2.0 * a2 * a2 + af * af) / (2.0 * j)
+                + amax * t1
+                - dv)
+                / a2;
+            if t2 < 0.0 {
+                return None;
+            }
+            let mut s = Seq::new();
+            s.add((amax - a0) / j, j);
+            s.add(t1, 0.0);
+            s.add((amax + a2) / j, -j);
+            s.add(t2, 0.0);
+            s.add((af + a2) / j, j);
+            Some(s)
+        };
+        let mut f = |x: f64| acc01(x).map(|s| s.displacement(v0, a0) - d);
+        let lo = ((dv - (2.0 * amax * amax - a0 * a0 - 2.0 * a2 * a2 + af * af) / (2.0 * j))
+            / amax)
+            .max(0.0);
+        let n = if lo <= tau_hi {
+            find_roots_coarse(&mut f, lo, tau_hi, &mut roots)
+        } else {
+            0
+        };
+        for &x in &roots[..n] {
+            if let Some(s) = acc01(x) {
+                emit(&s, col);
+            }
+        }
+    }
+}
+
+/// The parts of `[lo, hi]` where x² ∈ [l, u]: up to two intervals (the negative one only
+/// when `neg_ok`). Bounds are widened by `tol` so that edge roots survive round-off.
+fn square_window(
+    l: f64,
+    u: f64,
+    lo: f64,
+    hi: f64,
+    neg_ok: bool,
+    tol: f64,
+) -> impl Iterator<Item = (f64, f64)> {
+    let mut out = [(1.0, 0.0); 2];
+    if l <= u && u >= 0.0 {
+        let (r0, r1) = (l.max(0.0).sqrt(), u.sqrt());
+        let (a, b) = ((r0 - tol).max(lo), (r1 + tol).min(hi));
+        if a <= b {
+            out[0] = (a, b);
+        }
+        if neg_ok {
+            let (a, b) = ((-r1 - tol).max(lo), (-r0 + tol).min(hi));
+            if a <= b {
+                out[1] = (a, b);
+            }
+        }
+    }
+    out.into_iter().filter(|(a, b)| a <= b)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn seed_example_trapezoid_and_scurve() {
+        let tr = step1(&Dof1::rest_to_rest(0.0, 1.0, 0.6, 1.0, f64::INFINITY)).unwrap();
+        assert!(
+            (tr.t_min() - (1.0 / 0.6 + 0.6)).abs() < 1e-12,
+            "{}",
+            tr.t_min()
+        );
+        let sc = step1(&Dof1::rest_to_rest(0.0, 1.0, 0.6, 1.0, 4.0)).unwrap();
+        assert!(
+            (sc.t_min() - (1.0 / 0.6 + 0.6 + 0.25)).abs() < 1e-12,
+            "{}",
+            sc.t_min()
+        );
+        let fo = step1(&Dof1::rest_to_rest(0.0, 1.0, 0.6, f64::INFINITY, 4.0)).unwrap();
+        assert!((fo.t_min() - 1.0 / 0.6).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,375 @@
+//! Step 2: a profile of one degree of freedom with a prescribed duration.
+//!
+//! When several degrees of freedom must finish together, every one of them except the slowest
+//! has to be re-planned for a longer duration T. Position interface (second and third order):
+//! the profile changes velocity as fast as possible to a cruise velocity v_c (with zero
+//! acceleration), cruises for τ ≥ 0, and changes as fast as possible to the target velocity and
+//! acceleration; τ = T − t₁(v_c) − t₂(v_c) and the position equation is a scalar residual in
+//! v_c, solved by [`super::roots`]. When no cruise profile fits, the step-1 candidate profiles
+//! whose duration equals T are used (the caller tries those first). First order: the constant
+//! velocity D/T. Velocity interface: the acceleration ramps to a level α, holds it, and ramps
+//! to the target acceleration; the residual is the velocity change, free parameter α.
+//!
+//! Every profile is verified by integration exactly like step 1, plus |duration − T| ≤ 1e−12·T.
+
+use super::problem::{ControlInterface, Dof1, ProfileOrder};
+use super::profile::{Profile, State1};
+use super::roots::{find_roots, find_roots_coarse, MAX_ROOTS};
+use super::step1::{for_each_piece, kink, push_change, velocity_cap, verify};
+use super::velocity_change::{fastest, VelChange};
+
+/// A verified profile for `dof` (whose start state is safe) lasting `t` seconds, if one of the
+/// step-2 families has one.
+pub(crate) fn step2(dof: &Dof1, t: f64) -> Option<Profile> {
+    if !t.is_finite() || t < 0.0 {
+        return None;
+    }
+    let start = State1 {
+        p: dof.p0,
+        v: dof.v0,
+        a: dof.a0,
+    };
+    let order = dof.order();
+    let ok = |pr: &Profile| verify(dof, pr) && (pr.duration() - t).abs() <= 1e-12 * t.max(1.0);
+    match (order, dof.interface) {
+        (ProfileOrder::First, iface) => {
+            let d = if iface == ControlInterface::Position {
+                dof.pf - dof.p0
+            } else {
+                0.0
+            };
+            let mut pr = Profile::new(start);
+            if t > 0.0 {
+                let v = d / t;
+                pr.push_with(t, v, 0.0, 0.0);
+            } else if d != 0.0 {
+                return None;
+            }
+            pr.set_final(dof.vf, 0.0);
+            ok(&pr).then_some(pr)
+        }
+        (ProfileOrder::Second, ControlInterface::Velocity) => {
+            let mut pr = Profile::new(start);
+            if t > 0.0 {
+                pr.push_with(t, dof.v0, (dof.vf - dof.v0) / t, 0.0);
+            }
+            pr.set_final(dof.vf, 0.0);
+            ok(&pr).then_some(pr)
+        }
+        (ProfileOrder::Third, ControlInterface::Velocity) => velocity3(dof, t, &ok),
+        (ProfileOrder::Second, ControlInterface::Position) => {
+            rest_to_rest(dof, t, &ok).or_else(|| cruise(dof, t, &ok))
+        }
+        (ProfileOrder::Third, ControlInterface::Position) => rest_to_rest(dof, t, &ok)
+            .or_else(|| cruise(dof, t, &ok))
+            .or_else(|| hold(dof, t, false, false, &ok))
+            .or_else(|| hold(dof, t, false, true, &ok))
+            .or_else(|| hold(dof, t, true, false, &ok))
+            .or_else(|| hold(dof, t, true, true, &ok)),
+    }
+}
+
+/// Closed-form cruise velocity for a rest-to-rest move with symmetric acceleration limits (the
+/// common case of synchronization): with t₁ the time of each velocity change and D the distance,
+/// v_c·(t − t₁(v_c)) = D. Without an acceleration plateau t₁ = 2√(v_c/j), a cubic in √v_c;
+/// with one t₁ = v_c/a + a/j, a quadratic. `None` (the general family takes over) when the
+/// case does not apply or the profile fails verification.
+fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
+    if dof.v0 != 0.0 || dof.a0 != 0.0 || dof.vf != 0.0 || dof.af != 0.0 || dof.amax != -dof.amin {
+        return None;
+    }
+    let order = dof.order();
+    let d = (dof.pf - dof.p0).abs();
+    let (a, j) = (dof.amax, dof.jmax);
+    let vc = match order {
+        // v_c² / a − t·v_c + D = 0, smaller root.
+        ProfileOrder::Second => {
+            let disc = t * t - 4.0 * d / a;
+            if disc < 0.0 {
+                return None;
+            }
+            2.0 * d / (t + disc.sqrt())
+        }
+        ProfileOrder::Third => {
+            let tp = t - a / j;
+            let disc = tp * tp - 4.0 * d / a;
+            let plateau = if disc >= 0.0 {
+                2.0 * d / (tp + disc.sqrt())
+            } else {
+                f64::NAN
+            };
+            if plateau >= a * a / j {
+                plateau
+            } else {
+                // (2/√j)·s³ − t·s² + D = 0 for s = √v_c on [0, min(t√j/4, a/√j)].
+                let sj = j.sqrt();
+                let hi = (t * sj / 4.0).min(a / sj);
+                let mut roots = [0.0; crate::poly::roots::MAX_DEGREE];
+                let n = crate::poly::roots::roots_in(&[d, 0.0, -t, 2.0 / sj], 0.0, hi, &mut roots);
+                if n == 0 {
+                    return None;
+                }
+                roots[0] * roots[0]
+            }
+        }
+        ProfileOrder::First => return None,
+    };
+    let vc = if dof.pf >= dof.p0 { vc } else { -vc };
+    let c1 = fastest(order, 0.0, 0.0, vc, 0.0, j, dof.amax, dof.amin)?;
+    let c2 = fastest(order, vc, 0.0, 0.0, 0.0, j, dof.amax, dof.amin)?;
+    let tau = t - c1.t - c2.t;
+    if tau < 0.0 {
+        return None;
+    }
+    let mut pr = Profile::new(State1 {
+        p: dof.p0,
+        v: 0.0,
+        a: 0.0,
+    });
+    push_change(&mut pr, order, &c1, 0.0);
+    pr.snap(vc, 0.0);
+    pr.push_with(tau, vc, 0.0, 0.0);
+    push_change(&mut pr, order, &c2, vc);
+    if order == ProfileOrder::Second {
+        pr.set_final(0.0, 0.0);
+    }
+    ok(&pr).then_some(pr)
+}
+
+/// Cruise family with a free cruise velocity.
+fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
+    let order = dof.order();
+    let d = dof.pf - dof.p0;
+    let start = State1 {
+        p: dof.p0,
+        v: dof.v0,
+        a: dof.a0,
+    };
+    let hi = velocity_cap(dof, start);
+    let lo = -velocity_cap(
+        &dof.mirrored(),
+        State1 {
+            p: -dof.p0,
+            v: -dof.v0,
+            a: -dof.a0,
+        },
+    );
+    // τ < 0 (the two changes alone take longer than t) is outside the family; the residual
+    // continues there with τ = 0 so that it stays continuous and no domain edge has to be
+    // searched. Roots found there are rejected by the duration check.
+    let parts = |vc: f64| -> Option<(VelChange, VelChange, f64)> {
+        let c1 = fastest(order, dof.v0, dof.a0, vc, 0.0, dof.jmax, dof.amax, dof.amin)?;
+        let c2 = fastest(order, vc, 0.0, dof.vf, dof.af, dof.jmax, dof.amax, dof.amin)?;
+        let tau = t - c1.t - c2.t;
+        Some((c1, c2, tau))
+    };
+    let build = |vc: f64| -> Option<Profile> {
+        let (c1, c2, tau) = parts(vc)?;
+        if tau < 0.0 {
+            return None;
+        }
+        let mut pr = Profile::new(start);
+        push_change(&mut pr, order, &c1, dof.v0);
+        pr.snap(vc, 0.0);
+        pr.push_with(tau, vc, 0.0, 0.0);
+        push_change(&mut pr, order, &c2, vc);
+        if order == ProfileOrder::Second {
+            pr.set_final(dof.vf, 0.0);
+        }
+        Some(pr)
+    };
+    let mut f = |vc: f64| parts(vc).map(|(c1, c2, tau)| c1.dist + c2.dist + vc * tau.max(0.0) - d);
+    let mut roots = [0.0; MAX_ROOTS];
+    let guess = if t > 0.0 { d / t } else { 0.0 };
+    let mut cuts = [
+        lo,
+        hi,
+        0.0,
+        guess,
+        kink(order, dof.v0, dof.a0, dof.jmax, 1.0),
+        kink(order, dof.vf, dof.af, dof.jmax, -1.0),
+    ];
+    let mut best: Option<Profile> = None;
+    for_each_piece(&mut cuts, |a, b| {
+        if best.is_some() {
+            return;
+        }
+        let n = find_roots_coarse(&mut f, a, b, &mut roots);
+        for &vc in &roots[..n] {
+            if let Some(pr) = build(vc) {
+                if ok(&pr) {
+                    best = Some(pr);
+                    return;
+                }
+            }
+        }
+    });
+    best
+}
+
+/// Hold families (third order): a₀ ↗ α₁ ↘ α₂ ↗ a_f with a zero-jerk hold at the peak α₁
+/// (`at_valley` false) or at the valley α₂ (true); the negative direction by mirroring. The
+/// duration and velocity equations give the other level in closed form; free parameter: the
+/// level that holds.
+fn hold(
+    dof: &Dof1,
+    t: f64,
+    mirror: bool,
+    at_valley: bool,
+    ok: &impl Fn(&Profile) -> bool,
+) -> Option<Profile> {
+    let q = if mirror { dof.mirrored() } else { *dof };
+    let (j, a0, af, v0) = (q.jmax, q.a0, q.af, q.v0);
+    let dv = q.vf - q.v0;
+    let (amax, a2) = (q.amax, -q.amin);
+    let tol = 1e-12 * (amax + a2);
+    let levels = |x: f64| -> Option<(f64, f64, f64)> {
+        // Returns (α1, α2, hold).
+        let (al1, al2) = if !at_valley {
+            let al1 = x;
+            let c = al1 * (t - (2.0 * al1 - a0 + af) / j)
+                + (2.0 * al1 * al1 - a0 * a0 + af * af) / (2.0 * j)
+                - dv;
+            let rad = al1 * al1 + j * c;
+            if rad < 0.0 {
+                return None;
+            }
+            (al1, al1 - rad.sqrt())
+        } else {
+            let al2 = x;
+            let c = al2 * (t + (a0 + 2.0 * al2 - af) / j)
+                + (af * af - a0 * a0 - 2.0 * al2 * al2) / (2.0 * j)
+                - dv;
+            let rad = al2 * al2 - j * c;
+            if rad < 0.0 {
+                return None;
+            }
+            (al2 + rad.sqrt(), al2)
+        };
+        let h = t - (2.0 * al1 - a0 - 2.0 * al2 + af) / j;
+        let valid = h >= 0.0
+            && al1 >= a0 - tol
+            && al1 >= al2 - tol
+            && al2 <= af + tol
+            && al1 <= amax + tol
+            && al2 >= -a2 - tol;
+        valid.then_some((al1, al2, h))
+    };
+    let build = |x: f64| -> Option<Profile> {
+        let (al1, al2, h) = levels(x)?;
+        let mut pr = Profile::new(State1 {
+            p: q.p0,
+            v: v0,
+            a: a0,
+        });
+        pr.push(((al1 - a0) / j).max(0.0), j);
+        if !at_valley {
+            pr.push(h, 0.0);
+        }
+        pr.push(((al1 - al2) / j).max(0.0), -j);
+        if at_valley {
+            pr.push(h, 0.0);
+        }
+        pr.push(((af - al2) / j).max(0.0), j);
+        if mirror {
+            pr.mirror();
+        }
+        Some(pr)
+    };
+    let d = dof.pf - dof.p0;
+    let sgn = if mirror { -1.0 } else { 1.0 };
+    let mut f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf) + 0.0 * d);
+    let (lo, hi) = if at_valley { (-a2, af) } else { (a0, amax) };
+    let mut roots = [0.0; MAX_ROOTS];
+    let mut cuts = [lo, hi, 0.0, if at_valley { a0.min(af) } else { af.max(a0) }];
+    let mut best = None;
+    for_each_piece(&mut cuts, |a, b| {
+        if best.is_some() {
+            return;
+        }
+        let n = find_roots(&mut f, a, b, &mut roots);
+        for &x in &roots[..n] {
+            if let Some(pr) = build(x) {
+                if ok(&pr) {
+                    best = Some(pr);
+                    return;
+                }
+            }
+        }
+    });
+    best
+}
+
+/// Velocity interface, third order: a₀ → α (hold) → a_f in exactly t.
+fn velocity3(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
+    let j = dof.jmax;
+    let start = State1 {
+        p: dof.p0,
+        v: dof.v0,
+        a: dof.a0,
+    };
+    let build = |al: f64| -> Option<Profile> {
+        let t1 = (al - dof.a0).abs() / j;
+        let t3 = (dof.af - al).abs() / j;
+        let tau = t - t1 - t3;
+        if tau < 0.0 {
+            return None;
+        }
+        let mut pr = Profile::new(start);
+        pr.push(t1, if al >= dof.a0 { j } else { -j });
+        pr.push(tau, 0.0);
+        pr.push(t3, if dof.af >= al { j } else { -j });
+        Some(pr)
+    };
+    let mut f = |al: f64| build(al).map(|pr| pr.end().v - dof.vf);
+    let mut roots = [0.0; MAX_ROOTS];
+    // τ ≥ 0 ⇔ |α − a₀| + |a_f − α| ≤ j·t: an explicit window around [a₀, a_f].
+    let w_lo = ((dof.a0 + dof.af - j * t) / 2.0).max(dof.amin);
+    let w_hi = ((dof.a0 + dof.af + j * t) / 2.0).min(dof.amax);
+    let mut cuts = [w_lo, w_hi, dof.a0, dof.af, 0.0];
+    let mut best = None;
+    for_each_piece(&mut cuts, |a, b| {
+        if best.is_some() {
+            return;
+        }
+        let n = find_roots(&mut f, a, b, &mut roots);
+        for &al in &roots[..n] {
+            if let Some(pr) = build(al) {
+                if ok(&pr) {
+                    best = Some(pr);
+                    return;
+                }
+            }
+        }
+    });
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rest_to_rest_closed_form_hits_both_cases() {
+        let ok = |pr: &Profile| pr.duration() > 0.0;
+        // Plateau: a²/j = 0.25 < v_c.
+        let d = Dof1::rest_to_rest(0.0, 1.0, 0.6, 1.0, 4.0);
+        let pr = rest_to_rest(&d, 3.0, &ok).unwrap();
+        assert!((pr.duration() - 3.0).abs() < 1e-12 && (pr.end().p - 1.0).abs() < 1e-12);
+        assert!(verify(&d, &pr));
+        // No plateau: large jerk limit... small: a²/j = 1/0.5 = 2 > v_c.
+        let d = Dof1::rest_to_rest(0.0, -0.3, 1.0, 1.0, 0.5);
+        let pr = rest_to_rest(&d, 6.0, &ok).unwrap();
+        assert!((pr.duration() - 6.0).abs() < 1e-12 && (pr.end().p + 0.3).abs() < 1e-12);
+        assert!(verify(&d, &pr));
+        // Second order.
+        let d = Dof1::rest_to_rest(1.0, 2.0, 1.0, 1.0, f64::INFINITY);
+        let pr = rest_to_rest(&d, 4.0, &ok).unwrap();
+        assert!((pr.duration() - 4.0).abs() < 1e-12 && (pr.end().p - 2.0).abs() < 1e-12);
+        // Not rest-to-rest: not this path.
+        let mut d = Dof1::rest_to_rest(0.0, 1.0, 1.0, 1.0, 1.0);
+        d.v0 = 0.1;
+        assert!(rest_to_rest(&d, 5.0, &ok).is_none());
+        assert!(step2(&d, 5.0).is_some());
+    }
+}

@@ -1,0 +1,146 @@
+//! The calculated trajectory: one [`Profile`] per degree of freedom and a common duration.
+//!
+//! [`OtgTrajectory`] is generic over its storage: `[DofTrajectory; DOF]` for a compile-time
+//! number of degrees of freedom (no allocation; [`FixedTrajectory`]) or `Vec<DofTrajectory>`
+//! ([`DynTrajectory`]). Queries write into buffers the caller owns.
+//!
+//! Time policy: [`OtgTrajectory::at_time`] follows the online-generation convention — after the
+//! end every degree of freedom continues from its final state with constant acceleration (zero
+//! for a target at rest), before 0 it reports the start state. The [`crate::Trajectory`]
+//! implementation follows trajkit's shared policy instead: time is clamped to `[0, duration]`.
+
+use super::profile::Profile;
+use crate::{Order, Trajectory};
+
+/// One degree of freedom of a trajectory.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct DofTrajectory {
+    /// The motion.
+    pub profile: Profile,
+    /// The duration this degree of freedom would need on its own (time-optimal, brake
+    /// included); 0 for a disabled one.
+    pub independent_min_duration: f64,
+}
+
+/// A multi-DOF trajectory from the online generator.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OtgTrajectory<S> {
+    pub(crate) dofs: S,
+    pub(crate) duration: f64,
+}
+
+/// A trajectory with a compile-time number of degrees of freedom.
+pub type FixedTrajectory<const DOF: usize> = OtgTrajectory<[DofTrajectory; DOF]>;
+/// A trajectory with a run-time number of degrees of freedom.
+pub type DynTrajectory = OtgTrajectory<Vec<DofTrajectory>>;
+
+impl<const DOF: usize> Default for FixedTrajectory<DOF> {
+    fn default() -> Self {
+        OtgTrajectory {
+            dofs: [DofTrajectory::default(); DOF],
+            duration: 0.0,
+        }
+    }
+}
+
+impl<S: AsRef<[DofTrajectory]>> OtgTrajectory<S> {
+    /// Duration in seconds.
+    pub fn duration(&self) -> f64 {
+        self.duration
+    }
+
+    /// Number of degrees of freedom.
+    pub fn dof(&self) -> usize {
+        self.dofs.as_ref().len()
+    }
+
+    /// The per-DOF data.
+    pub fn dofs(&self) -> &[DofTrajectory] {
+        self.dofs.as_ref()
+    }
+
+    /// Position, velocity and acceleration at `t` into the caller's buffers (each at least
+    /// `dof()` long; extra entries are left alone). After the end: constant-acceleration
+    /// extrapolation (see the module documentation).
+    pub fn at_time(&self, t: f64, p: &mut [f64], v: &mut [f64], a: &mut [f64]) {
+        for (i, d) in self.dofs.as_ref().iter().enumerate() {
+            let (pi, vi, ai, _) = d.profile.state_at(t);
+            p[i] = pi;
+            v[i] = vi;
+            a[i] = ai;
+        }
+    }
+
+    /// Like [`OtgTrajectory::at_time`], also writing the jerk.
+    pub fn at_time_with_jerk(
+        &self,
+        t: f64,
+        p: &mut [f64],
+        v: &mut [f64],
+        a: &mut [f64],
+        j: &mut [f64],
+    ) {
+        for (i, d) in self.dofs.as_ref().iter().enumerate() {
+            let (pi, vi, ai, ji) = d.profile.state_at(t);
+            p[i] = pi;
+            v[i] = vi;
+            a[i] = ai;
+            j[i] = ji;
+        }
+    }
+
+    /// The duration each degree of freedom would need on its own, into `out`.
+    pub fn independent_min_durations(&self, out: &mut [f64]) {
+        for (o, d) in out.iter_mut().zip(self.dofs.as_ref()) {
+            *o = d.independent_min_duration;
+        }
+    }
+
+    /// Position extrema of degree of freedom `i` over `[0, duration]`:
+    /// `(min, t_min, max, t_max)`. `None` for an index out of range.
+    pub fn position_extrema(&self, i: usize) -> Option<(f64, f64, f64, f64)> {
+        let d = self.dofs.as_ref().get(i)?;
+        let (lo, tlo, hi, thi) = d.profile.position_extrema();
+        // A profile that ends early holds (or extrapolates) until the common end.
+        let end = d.profile.duration();
+        if end < self.duration {
+            let (p, ..) = d.profile.state_at(self.duration);
+            let (mut lo, mut tlo, mut hi, mut thi) = (lo, tlo, hi, thi);
+            if p < lo {
+                (lo, tlo) = (p, self.duration);
+            }
+            if p > hi {
+                (hi, thi) = (p, self.duration);
+            }
+            return Some((lo, tlo, hi, thi));
+        }
+        Some((lo, tlo, hi, thi))
+    }
+
+    /// The first time at which degree of freedom `i` is at position `p`, if it gets there
+    /// within its profile.
+    pub fn first_time_at_position(&self, i: usize, p: f64) -> Option<f64> {
+        self.dofs.as_ref().get(i)?.profile.first_time_at_position(p)
+    }
+}
+
+impl<S: AsRef<[DofTrajectory]>> Trajectory for OtgTrajectory<S> {
+    fn dof(&self) -> usize {
+        self.dofs.as_ref().len()
+    }
+    fn duration(&self) -> f64 {
+        self.duration
+    }
+    fn eval(&self, t: f64, order: Order, out: &mut [f64]) {
+        let t = crate::traj::clamp_time(t, self.duration);
+        for (i, d) in self.dofs.as_ref().iter().enumerate() {
+            let s = d.profile.state_at(t);
+            out[i] = match order {
+                Order::Position => s.0,
+                Order::Velocity => s.1,
+                Order::Acceleration => s.2,
+                Order::Jerk => s.3,
+            };
+        }
+    }
+}

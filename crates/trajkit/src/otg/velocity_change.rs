@@ -1,0 +1,169 @@
+//! The fastest change of velocity (and acceleration), the building block of every profile.
+//!
+//! Third order: from (v₀, a₀) to (v₁, a₁) under jerk limit J and acceleration limits
+//! [a_min, a_max], the fastest motion ramps the acceleration to a peak α with jerk ±J and back
+//! down to a₁ with ∓J, holding α = a_max (or a_min) in between when the peak would exceed it.
+//! The peak follows in closed form from the velocity change: α² = ±J·Δv + (a₀² + a₁²)/2.
+//! Second order: one constant-acceleration segment. First order: an instantaneous jump.
+//!
+//! Precision: durations are closed-form; negative round-off (≥ −1e−12 relative) is clamped to 0.
+
+use super::problem::ProfileOrder;
+
+/// A velocity change of at most three segments: durations and jerks (third order), or one
+/// constant-acceleration segment (second order, `accel` set).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(crate) struct VelChange {
+    /// Segment durations.
+    pub d: [f64; 3],
+    /// Segment jerks (third order).
+    pub j: [f64; 3],
+    /// Constant acceleration of the single segment (second order).
+    pub accel: f64,
+    /// Total duration.
+    pub t: f64,
+    /// Displacement during the change.
+    pub dist: f64,
+}
+
+/// Fastest velocity change for the given order; `None` when no such change exists (e.g. the
+/// start acceleration is outside the limits).
+#[inline]
+pub(crate) fn fastest(
+    order: ProfileOrder,
+    va: f64,
+    aa: f64,
+    vb: f64,
+    ab: f64,
+    j: f64,
+    amax: f64,
+    amin: f64,
+) -> Option<VelChange> {
+    match order {
+        ProfileOrder::Third => fastest3(va, aa, vb, ab, j, amax, amin),
+        ProfileOrder::Second => {
+            let dv = vb - va;
+            let a = if dv >= 0.0 { amax } else { amin };
+            let t = if dv == 0.0 { 0.0 } else { dv / a };
+            Some(VelChange {
+                d: [t, 0.0, 0.0],
+                j: [0.0; 3],
+                accel: a,
+                t,
+                dist: (va + vb) / 2.0 * t,
+            })
+        }
+        ProfileOrder::First => Some(VelChange::default()),
+    }
+}
+
+/// Third-order fastest change from (va, aa) to (vb, ab).
+pub(crate) fn fastest3(
+    va: f64,
+    aa: f64,
+    vb: f64,
+    ab: f64,
+    j: f64,
+    amax: f64,
+    amin: f64,
+) -> Option<VelChange> {
+    let dv = vb - va;
+    let base = (aa * aa + ab * ab) / 2.0;
+    let tol = 1e-12 * (aa.abs() + ab.abs() + (j * dv.abs()).sqrt()) + 1e-300;
+    // Both shapes (ramp up then down, or down then up) can be valid; the faster one wins.
+    let mut best: Option<VelChange> = None;
+    let mut take = |c: VelChange| {
+        if best.is_none_or(|b| c.t < b.t) {
+            best = Some(c);
+        }
+    };
+    let ru = j * dv + base;
+    if ru >= -tol * tol {
+        let alpha = ru.max(0.0).sqrt();
+        if alpha >= aa.max(ab) - tol {
+            let alpha = alpha.max(aa.max(ab));
+            if alpha <= amax {
+                take(build(
+                    va,
+                    aa,
+                    [(alpha - aa) / j, 0.0, (alpha - ab) / j],
+                    [j, 0.0, -j],
+                ));
+            } else if aa <= amax * (1.0 + 1e-12) && ab <= amax * (1.0 + 1e-12) {
+                let tau = (dv - (2.0 * amax * amax - aa * aa - ab * ab) / (2.0 * j)) / amax;
+                take(build(
+                    va,
+                    aa,
+                    [(amax - aa) / j, tau, (amax - ab) / j],
+                    [j, 0.0, -j],
+                ));
+            }
+        }
+    }
+    let rd = -j * dv + base;
+    if rd >= -tol * tol {
+        let alpha = -rd.max(0.0).sqrt();
+        if alpha <= aa.min(ab) + tol {
+            let alpha = alpha.min(aa.min(ab));
+            if alpha >= amin {
+                take(build(
+                    va,
+                    aa,
+                    [(aa - alpha) / j, 0.0, (ab - alpha) / j],
+                    [-j, 0.0, j],
+                ));
+            } else if aa >= amin * (1.0 + 1e-12) && ab >= amin * (1.0 + 1e-12) {
+                let tau = (-dv - (2.0 * amin * amin - aa * aa - ab * ab) / (2.0 * j)) / -amin;
+                take(build(
+                    va,
+                    aa,
+                    [(aa - amin) / j, tau, (ab - amin) / j],
+                    [-j, 0.0, j],
+                ));
+            }
+        }
+    }
+    best
+}
+
+#[inline]
+fn build(va: f64, aa: f64, d: [f64; 3], jk: [f64; 3]) -> VelChange {
+    let d = [d[0].max(0.0), d[1].max(0.0), d[2].max(0.0)];
+    let (mut p, mut v, mut a) = (0.0, va, aa);
+    for k in 0..3 {
+        (p, v, a) = super::profile::integrate(p, v, a, jk[k], d[k]);
+    }
+    let _ = (v, a);
+    VelChange {
+        d,
+        j: jk,
+        accel: 0.0,
+        t: d[0] + d[1] + d[2],
+        dist: p,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reaches_the_target_velocity() {
+        for &(va, aa, vb, ab) in &[
+            (0.0, 0.0, 1.0, 0.0),
+            (0.0, 0.5, 0.01, 0.0),
+            (1.0, 0.0, -2.0, 0.3),
+            (0.3, -0.2, 0.3, -0.2),
+            (0.0, 0.0, 100.0, 0.0),
+        ] {
+            let c = fastest3(va, aa, vb, ab, 2.0, 1.0, -1.5).unwrap();
+            let (mut p, mut v, mut a) = (0.0, va, aa);
+            for k in 0..3 {
+                (p, v, a) = crate::otg::profile::integrate(p, v, a, c.j[k], c.d[k]);
+            }
+            assert!((v - vb).abs() < 1e-12, "{va} {aa} {vb} {ab}: v {v}");
+            assert!((a - ab).abs() < 1e-12);
+            assert!((p - c.dist).abs() < 1e-12);
+        }
+    }
+}

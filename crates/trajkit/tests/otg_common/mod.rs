@@ -1,0 +1,325 @@
+//! Shared by the otg test binaries: seeded random problems by category, the invariant check
+//! of every solved case, and the conversion to rsruckig's input.
+#![allow(dead_code)]
+
+use trajkit::otg::{
+    ControlInterface, DurationDiscretization, FixedTrajectory, InputParameter, Synchronization,
+};
+use trajkit::rng::SplitMix64;
+
+/// Problem categories of the random suites.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Cat {
+    RestToRest,
+    General,
+    BeyondLimits,
+    TargetVelocity,
+    TargetAtVmax,
+    Tiny,
+    Huge,
+    Identical,
+    Directional,
+    BigLimits,
+    SecondOrder,
+    VelocityInterface,
+    Phase,
+    Discrete,
+}
+
+pub const ALL: [Cat; 14] = [
+    Cat::RestToRest,
+    Cat::General,
+    Cat::BeyondLimits,
+    Cat::TargetVelocity,
+    Cat::TargetAtVmax,
+    Cat::Tiny,
+    Cat::Huge,
+    Cat::Identical,
+    Cat::Directional,
+    Cat::BigLimits,
+    Cat::SecondOrder,
+    Cat::VelocityInterface,
+    Cat::Phase,
+    Cat::Discrete,
+];
+
+pub fn uni(r: &mut SplitMix64, lo: f64, hi: f64) -> f64 {
+    lo + (hi - lo) * r.next_f64()
+}
+
+fn logu(r: &mut SplitMix64, lo: f64, hi: f64) -> f64 {
+    (lo.ln() + (hi.ln() - lo.ln()) * r.next_f64()).exp()
+}
+
+/// A random state (v, a) inside the limits, with v + a|a|/(2j) also inside.
+fn inside(r: &mut SplitMix64, vmax: f64, vmin: f64, amax: f64, amin: f64, j: f64) -> (f64, f64) {
+    for _ in 0..100 {
+        let v = uni(r, vmin, vmax);
+        let a = uni(r, amin, amax);
+        let stop = v + a * a.abs() / (2.0 * j);
+        let before = v - a * a.abs() / (2.0 * j);
+        if stop <= vmax && stop >= vmin && before <= vmax && before >= vmin {
+            return (v, a);
+        }
+    }
+    (0.0, 0.0)
+}
+
+/// A random problem of category `cat`.
+pub fn problem<const N: usize>(r: &mut SplitMix64, cat: Cat) -> InputParameter<N> {
+    let mut inp = InputParameter::<N>::new();
+    let big = cat == Cat::BigLimits;
+    for i in 0..N {
+        let (vmax, amax, jmax) = if big {
+            (logu(r, 1.0, 1e6), logu(r, 1.0, 1e6), logu(r, 1.0, 1e6))
+        } else {
+            (logu(r, 0.1, 5.0), logu(r, 0.1, 10.0), logu(r, 0.1, 100.0))
+        };
+        let (vmin, amin) = if cat == Cat::Directional {
+            (-logu(r, 0.1, 5.0), -logu(r, 0.1, 10.0))
+        } else {
+            (-vmax, -amax)
+        };
+        inp.max_velocity[i] = vmax;
+        inp.max_acceleration[i] = amax;
+        inp.max_jerk[i] = jmax;
+        if cat == Cat::Directional {
+            inp.min_velocity.get_or_insert([0.0; N])[i] = vmin;
+            inp.min_acceleration.get_or_insert([0.0; N])[i] = amin;
+        }
+        inp.current_position[i] = uni(r, -5.0, 5.0);
+        inp.target_position[i] = uni(r, -5.0, 5.0);
+        match cat {
+            Cat::RestToRest | Cat::BigLimits | Cat::Directional if r.next_f64() < 0.5 => {}
+            Cat::RestToRest => {}
+            Cat::General
+            | Cat::BigLimits
+            | Cat::Directional
+            | Cat::Discrete
+            | Cat::VelocityInterface => {
+                // Large limits: keep the states where stopping takes at most ~1e3 units of
+                // distance, so that 1e-8 absolute position accuracy stays representable in f64
+                // (a 1e9-unit detour cannot end within 1e-8 of its target).
+                let (vmax, vmin) = if big {
+                    let cap = (2.0 * amax * 1e3).sqrt().min((jmax * 1e6).cbrt());
+                    (vmax.min(cap), vmin.max(-cap))
+                } else {
+                    (vmax, vmin)
+                };
+                let (v, a) = inside(r, vmax, vmin, amax, amin, jmax);
+                inp.current_velocity[i] = v;
+                inp.current_acceleration[i] = a;
+                let (v, a) = inside(r, vmax, vmin, amax, amin, jmax);
+                inp.target_velocity[i] = v;
+                inp.target_acceleration[i] = a;
+            }
+            Cat::BeyondLimits => {
+                inp.current_velocity[i] = uni(r, -2.0, 2.0) * vmax;
+                inp.current_acceleration[i] = uni(r, -2.0, 2.0) * amax;
+                if r.next_f64() < 0.5 {
+                    let (v, a) = inside(r, vmax, vmin, amax, amin, jmax);
+                    inp.target_velocity[i] = v;
+                    inp.target_acceleration[i] = a;
+                }
+            }
+            Cat::TargetVelocity => {
+                inp.target_velocity[i] = uni(r, vmin, vmax);
+            }
+            Cat::TargetAtVmax => {
+                inp.target_velocity[i] = if r.next_f64() < 0.5 { vmax } else { vmin };
+            }
+            Cat::Tiny => {
+                let d = logu(r, 1e-12, 1e-4) * if r.next_f64() < 0.5 { -1.0 } else { 1.0 };
+                inp.target_position[i] = inp.current_position[i] + d;
+                if r.next_f64() < 0.5 {
+                    inp.current_velocity[i] = uni(r, -1.0, 1.0) * logu(r, 1e-20, 1e-10);
+                    inp.target_velocity[i] = uni(r, -1.0, 1.0) * logu(r, 1e-20, 1e-10);
+                }
+            }
+            Cat::Huge => {
+                inp.target_position[i] = uni(r, -1e4, 1e4);
+            }
+            Cat::Identical => {
+                inp.target_position[i] = inp.current_position[i];
+                if r.next_f64() < 0.5 {
+                    let (v, a) = inside(r, vmax, vmin, amax, amin, jmax);
+                    inp.current_velocity[i] = v;
+                    inp.target_velocity[i] = v;
+                    inp.current_acceleration[i] = a;
+                    inp.target_acceleration[i] = a;
+                }
+            }
+            Cat::SecondOrder => {
+                inp.max_jerk[i] = f64::INFINITY;
+                inp.current_velocity[i] = uni(r, vmin, vmax);
+                if r.next_f64() < 0.5 {
+                    inp.target_velocity[i] = uni(r, vmin, vmax);
+                }
+            }
+            Cat::Phase => {}
+        }
+    }
+    if cat == Cat::Phase {
+        // Collinear boundary states: rest or proportional velocities.
+        let s = uni(r, -0.2, 0.2);
+        for i in 0..N {
+            let u = inp.target_position[i] - inp.current_position[i];
+            inp.current_velocity[i] = s
+                * u
+                * inp
+                    .max_velocity
+                    .iter()
+                    .fold(f64::INFINITY, |m, &v| m.min(v))
+                / 10.0;
+        }
+        inp.options.synchronization = Synchronization::Phase;
+    }
+    if cat == Cat::VelocityInterface {
+        inp.options.control_interface = ControlInterface::Velocity;
+    }
+    if cat == Cat::Discrete {
+        inp.options.duration_discretization = DurationDiscretization::Discrete;
+    }
+    inp
+}
+
+/// Worst violations of a solved case.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct Violation {
+    pub position: f64,
+    pub velocity: f64,
+    pub acceleration: f64,
+    /// Largest relative limit excess (0 when within).
+    pub limit: f64,
+}
+
+/// Checks a solved trajectory: final state vs target (position interface: position too) and
+/// limits at every segment boundary and interior velocity extremum after the brake.
+pub fn check<const N: usize>(inp: &InputParameter<N>, tr: &FixedTrajectory<N>) -> Violation {
+    let mut w = Violation::default();
+    let t = tr.duration();
+    let (mut p, mut v, mut a) = ([0.0; N], [0.0; N], [0.0; N]);
+    tr.at_time(t, &mut p, &mut v, &mut a);
+    let vel_if = inp.options.control_interface == ControlInterface::Velocity;
+    for i in 0..N {
+        if !inp.enabled[i] {
+            continue;
+        }
+        let prof = &tr.dofs()[i].profile;
+        let second = inp.max_jerk[i].is_infinite();
+        let e = prof.end();
+        // Final state of the DOF's own profile (it may end earlier with synchronization none).
+        if !vel_if {
+            w.position = w.position.max((e.p - inp.target_position[i]).abs());
+        }
+        w.velocity = w.velocity.max((e.v - inp.target_velocity[i]).abs());
+        if !second {
+            w.acceleration = w.acceleration.max((e.a - inp.target_acceleration[i]).abs());
+        }
+        let _ = (&p, &v, &a);
+        let vmax = inp.max_velocity[i];
+        let vmin = inp.min_velocity.map_or(-vmax, |m| m[i]);
+        let amax = inp.max_acceleration[i];
+        let amin = inp.min_acceleration.map_or(-amax, |m| m[i]);
+        let tb = prof.brake_duration();
+        // The state where the brake ended may still be outside a limit (on its way back).
+        let (_, vb, ab, _) = prof.state_at(tb);
+        let (vmax, vmin) = if tb > 0.0 {
+            (vmax.max(vb), vmin.min(vb))
+        } else {
+            (vmax, vmin)
+        };
+        let (amax, amin) = if tb > 0.0 {
+            (amax.max(ab), amin.min(ab))
+        } else {
+            (amax, amin)
+        };
+        for k in 0..prof.segments() {
+            let (t0, d, s, j) = prof.segment(k).unwrap();
+            if t0 + d <= tb + 1e-15 {
+                continue;
+            }
+            let vend = s.v + d * (s.a + d * j / 2.0);
+            let aend = s.a + d * j;
+            let mut vs = [s.v, vend, s.v];
+            if j != 0.0 {
+                let r = -s.a / j;
+                if r > 0.0 && r < d {
+                    vs[2] = s.v + r * (s.a + r * j / 2.0);
+                }
+            }
+            if !vel_if {
+                for vv in vs {
+                    w.limit = w.limit.max((vv - vmax) / vmax).max((vv - vmin) / vmin);
+                }
+            }
+            for aa in [s.a, aend] {
+                w.limit = w.limit.max((aa - amax) / amax).max((aa - amin) / amin);
+            }
+        }
+    }
+    w
+}
+
+pub fn within_contract(w: &Violation) -> bool {
+    w.position <= 1e-8 && w.velocity <= 1e-10 && w.acceleration <= 1e-10 && w.limit <= 1e-12
+}
+
+/// rsruckig's duration for the same input; `None` when it fails.
+pub fn ruckig_duration<const N: usize>(inp: &InputParameter<N>, dt: f64) -> Option<f64> {
+    use rsruckig::prelude::{IgnoreErrorHandler, Ruckig, RuckigResult};
+    let mut otg = Ruckig::<N, IgnoreErrorHandler>::new(None, dt);
+    let mut ri = rsruckig::prelude::InputParameter::<N>::new(None);
+    for i in 0..N {
+        ri.current_position[i] = inp.current_position[i];
+        ri.current_velocity[i] = inp.current_velocity[i];
+        ri.current_acceleration[i] = inp.current_acceleration[i];
+        ri.target_position[i] = inp.target_position[i];
+        ri.target_velocity[i] = inp.target_velocity[i];
+        ri.target_acceleration[i] = inp.target_acceleration[i];
+        ri.max_velocity[i] = inp.max_velocity[i];
+        ri.max_acceleration[i] = inp.max_acceleration[i];
+        ri.max_jerk[i] = inp.max_jerk[i];
+        ri.enabled[i] = inp.enabled[i];
+    }
+    if let Some(m) = inp.min_velocity {
+        let mut x = ri.max_velocity.clone();
+        for i in 0..N {
+            x[i] = m[i];
+        }
+        ri.min_velocity = Some(x);
+    }
+    if let Some(m) = inp.min_acceleration {
+        let mut x = ri.max_acceleration.clone();
+        for i in 0..N {
+            x[i] = m[i];
+        }
+        ri.min_acceleration = Some(x);
+    }
+    ri.synchronization = match inp.options.synchronization {
+        trajkit::otg::Synchronization::Time => rsruckig::prelude::Synchronization::Time,
+        trajkit::otg::Synchronization::TimeIfNecessary => {
+            rsruckig::prelude::Synchronization::TimeIfNecessary
+        }
+        trajkit::otg::Synchronization::Phase => rsruckig::prelude::Synchronization::Phase,
+        trajkit::otg::Synchronization::None => rsruckig::prelude::Synchronization::None,
+    };
+    ri.control_interface = match inp.options.control_interface {
+        trajkit::otg::ControlInterface::Position => rsruckig::prelude::ControlInterface::Position,
+        trajkit::otg::ControlInterface::Velocity => rsruckig::prelude::ControlInterface::Velocity,
+    };
+    ri.duration_discretization = match inp.options.duration_discretization {
+        trajkit::otg::DurationDiscretization::Continuous => {
+            rsruckig::prelude::DurationDiscretization::Continuous
+        }
+        trajkit::otg::DurationDiscretization::Discrete => {
+            rsruckig::prelude::DurationDiscretization::Discrete
+        }
+    };
+    ri.minimum_duration = inp.options.minimum_duration;
+    let mut tr = rsruckig::prelude::Trajectory::<N>::new(None);
+    match otg.calculate(&ri, &mut tr) {
+        Ok(RuckigResult::Working) | Ok(RuckigResult::Finished) => Some(tr.get_duration()),
+        _ => None,
+    }
+}

@@ -1,0 +1,98 @@
+//! The online generator allocates nothing with a compile-time number of degrees of freedom:
+//! `calculate`, `update` and trajectory queries run under a counting global allocator.
+//!
+//! This test binary needs `unsafe` for one reason only: `GlobalAlloc` is an unsafe trait. The
+//! library itself forbids unsafe code.
+#![allow(unsafe_code)]
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+
+struct Counting;
+
+thread_local! {
+    static ALLOCS: Cell<usize> = const { Cell::new(0) };
+}
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCS.with(|c| c.set(c.get() + 1));
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCS.with(|c| c.set(c.get() + 1));
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn allocations(f: impl FnOnce()) -> usize {
+    let before = ALLOCS.with(|c| c.get());
+    f();
+    ALLOCS.with(|c| c.get()) - before
+}
+
+use trajkit::otg::{InputParameter, Otg, OtgResult, OutputParameter, Synchronization};
+use trajkit::rng::SplitMix64;
+use trajkit::{Order, Trajectory};
+
+fn panda() -> InputParameter<7> {
+    let mut inp = InputParameter::<7>::new();
+    inp.max_velocity = [2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61];
+    inp.max_acceleration = [15.0, 7.5, 10.0, 12.5, 15.0, 20.0, 20.0];
+    inp.max_jerk = [7500.0, 3750.0, 5000.0, 6250.0, 7500.0, 10000.0, 10000.0];
+    inp
+}
+
+#[test]
+fn calculate_update_and_queries_allocate_nothing() {
+    let mut r = SplitMix64::new(3);
+    let mut problems = [panda(); 64];
+    for (k, p) in problems.iter_mut().enumerate() {
+        for i in 0..7 {
+            p.current_position[i] = r.uniform(-2.0, 2.0);
+            p.target_position[i] = r.uniform(-2.0, 2.0);
+            p.current_velocity[i] = r.uniform(-1.0, 1.0);
+            p.target_velocity[i] = r.uniform(-0.5, 0.5);
+            p.current_acceleration[i] = r.uniform(-2.0, 2.0);
+        }
+        p.options.synchronization = [
+            Synchronization::Time,
+            Synchronization::TimeIfNecessary,
+            Synchronization::Phase,
+            Synchronization::None,
+        ][k % 4];
+    }
+    // Non-finite input goes through the same path.
+    problems[5].target_position[3] = f64::NAN;
+    let mut otg = Otg::<7>::new(0.001);
+    let mut out = OutputParameter::<7>::default();
+    let mut results = [OtgResult::Working; 64];
+    let n = allocations(|| {
+        for (k, p) in problems.iter().enumerate() {
+            let tr = otg.calculate(p);
+            if let Ok(tr) = tr {
+                let mut q = [0.0; 7];
+                tr.eval(tr.duration() * 0.3, Order::Jerk, &mut q);
+                let _ = tr.position_extrema(2);
+                let _ = tr.first_time_at_position(1, p.target_position[1]);
+            }
+            let mut inp = *p;
+            for _ in 0..20 {
+                results[k] = otg.update(&inp, &mut out);
+                if !results[k].is_ok() {
+                    break;
+                }
+                out.pass_to_input(&mut inp);
+            }
+        }
+    });
+    assert_eq!(n, 0, "allocations on the real-time path");
+    assert!(matches!(results[5], OtgResult::InvalidInput { .. }));
+    assert!(results.iter().filter(|r| r.is_ok()).count() >= 60);
+}
