@@ -275,6 +275,34 @@ fn bad_inputs_exit_2_with_one_line_and_no_output() {
     }
 }
 
+/// Writing to a device (here /dev/null) must not replace it with a regular file.
+#[cfg(unix)]
+#[test]
+fn output_to_a_device_writes_in_place() {
+    use std::os::unix::fs::FileTypeExt;
+    let d = scratch("devnull");
+    let o = trajkit(
+        &[
+            "poly",
+            "--from",
+            "0",
+            "--to",
+            "1",
+            "--duration",
+            "1",
+            "--out",
+            "/dev/null",
+        ],
+        &d,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let meta = std::fs::metadata("/dev/null").unwrap();
+    assert!(
+        meta.file_type().is_char_device(),
+        "/dev/null is no longer a device"
+    );
+}
+
 #[test]
 fn help_has_examples_everywhere() {
     let d = scratch("help");

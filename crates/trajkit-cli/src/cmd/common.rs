@@ -188,6 +188,15 @@ impl Outputs {
     pub fn commit(self) -> CliResult<()> {
         let mut done: Vec<PathBuf> = Vec::new();
         for (path, content) in &self.files {
+            // A target that exists and is not a regular file (/dev/null, a FIFO, a terminal)
+            // is written in place: renaming over it would replace the device with a file.
+            if let Ok(meta) = std::fs::metadata(path) {
+                if !meta.is_file() {
+                    std::fs::write(path, content)
+                        .map_err(|e| CliError(format!("{}: {e}", path.display())))?;
+                    continue;
+                }
+            }
             let name = path
                 .file_name()
                 .map(|n| n.to_string_lossy().to_string())
