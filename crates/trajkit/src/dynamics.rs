@@ -287,14 +287,19 @@ impl<'a, 'input> Reader<'a, 'input> {
         let mut out = [0.0; N];
         let mut count = 0;
         for word in raw.split_whitespace() {
-            let x: f64 = word.parse().map_err(|_| {
-                self.error_at(pos, field(), format!("'{word}' in '{raw}' is not a number"))
-            })?;
+            let quoted = if raw.trim() == word {
+                format!("'{word}'")
+            } else {
+                format!("'{word}' in '{raw}'")
+            };
+            let x: f64 = word
+                .parse()
+                .map_err(|_| self.error_at(pos, field(), format!("{quoted} is not a number")))?;
             if !x.is_finite() {
                 return Err(self.error_at(
                     pos,
                     field(),
-                    format!("'{word}' in '{raw}' is not a finite number"),
+                    format!("{quoted} is not a finite number"),
                 ));
             }
             if count < N {
