@@ -35,6 +35,8 @@
 //!   B-spline, NURBS, arc length, SO(3)); every curve is a [`Path`].
 //! - [`topp`]: time-optimal path parameterization (TOPP-RA with general constraints, bounded-jerk
 //!   output) and time rescaling of any path.
+//! - [`dynamics`]: rigid-body inverse dynamics of a serial chain read from a URDF (for torque
+//!   limits in [`topp`]).
 //! - [`primitives`]: movement primitives learned from demonstrations: DMP, ProMP, KMP.
 //!
 //! See ARCHITECTURE.md in the repository for how data flows between them.
@@ -42,6 +44,7 @@
 #![forbid(unsafe_code)]
 
 pub mod check;
+pub mod dynamics;
 pub mod error;
 pub mod io;
 pub mod limits;

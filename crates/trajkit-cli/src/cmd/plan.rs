@@ -92,7 +92,7 @@ pub enum ViaArg {
 /// Arguments of `trajkit plan`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "Examples:\n  trajkit plan                                  # embedded Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits robot.urdf --fill-from panda --out traj.json\n  trajkit plan --method poly --degree septic --via-velocity zero --rate 500 --plot traj.svg\n  trajkit plan --path linear --gridpoints auto"
+    after_help = "Examples:\n  trajkit plan                                  # embedded Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits robot.urdf --fill-from panda --out traj.json\n  trajkit plan --method poly --degree septic --via-velocity zero --rate 500 --plot traj.svg\n  trajkit plan --path linear --gridpoints auto\n  trajkit plan --waypoints path.csv --limits robot.urdf --torque-limits"
 )]
 pub struct PlanArgs {
     /// Waypoints: CSV (a row per waypoint, a column per joint, optional header) or JSON.
@@ -116,6 +116,15 @@ pub struct PlanArgs {
     /// unbounded jerk) instead of bounding its jerk.
     #[arg(long)]
     pub no_jerk_limit: bool,
+    /// With --method toppra: also hold each joint's torque within its `effort` limit, using the
+    /// rigid-body dynamics of a URDF (see --dynamics). The torque is checked again after jerk
+    /// bounding and time is slowed down uniformly (up to 4x) if needed.
+    #[arg(long)]
+    pub torque_limits: bool,
+    /// URDF with the robot's chain and inertial parameters for --torque-limits. Default: the
+    /// --limits argument when it is a .urdf file.
+    #[arg(long, value_name = "FILE.urdf")]
+    pub dynamics: Option<PathBuf>,
     /// Polynomial degree of each segment (--method poly).
     #[arg(long, value_enum, default_value = "quintic")]
     pub degree: DegreeArg,
@@ -170,6 +179,146 @@ pub fn check_waypoints_in_range(w: &Waypoints, limits: &Limits, src: &str) -> Cl
     Ok(())
 }
 
+/// Largest uniform time-scale factor tried to bring jerk-bounded output back within torque
+/// limits.
+const MAX_TORQUE_SCALE: f64 = 4.0;
+
+/// Relative torque excess accepted on samples (TOPP-RA's own tolerance between gridpoints).
+const TORQUE_TOLERANCE: f64 = 1e-6;
+
+/// The dynamics model and effort limits for `--torque-limits`.
+struct TorqueSetup {
+    chain: trajkit::dynamics::SerialChain,
+    effort: Vec<f64>,
+    source: String,
+}
+
+/// Resolves `--torque-limits`: the URDF model (from --dynamics or a .urdf --limits) and every
+/// joint's effort limit.
+fn torque_setup(a: &PlanArgs, limits: &Limits) -> CliResult<TorqueSetup> {
+    if a.method != Method::Toppra {
+        return Err(CliError(
+            "--torque-limits needs --method toppra".to_string(),
+        ));
+    }
+    let spec = &a.limits.limits;
+    let is_urdf = std::path::Path::new(spec)
+        .extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("urdf"));
+    let path = match (&a.dynamics, is_urdf) {
+        (Some(p), _) => p.clone(),
+        (None, true) => PathBuf::from(spec),
+        (None, false) => {
+            return Err(CliError(format!(
+                "--torque-limits needs a dynamics model: --limits '{spec}' is not a .urdf file, give --dynamics FILE.urdf"
+            )))
+        }
+    };
+    let chain = trajkit::dynamics::SerialChain::from_urdf_file(&path)?;
+    let source = path.display().to_string();
+    use trajkit::topp::constraint::InverseDynamics;
+    if chain.dof() != limits.dof() {
+        return Err(CliError(format!(
+            "{source}: the dynamics model has {} joints, the limits have {}",
+            chain.dof(),
+            limits.dof()
+        )));
+    }
+    let mut effort = Vec::with_capacity(limits.dof());
+    for (j, jl) in limits.joints().iter().enumerate() {
+        match jl.effort {
+            Some(e) => effort.push(e),
+            None => {
+                return Err(CliError(format!(
+                    "--torque-limits: joint {} ({}) has no effort limit in --limits '{spec}'",
+                    j + 1,
+                    jl.name
+                )))
+            }
+        }
+    }
+    Ok(TorqueSetup {
+        chain,
+        effort,
+        source,
+    })
+}
+
+/// Worst |τ_j| / effort_j over samples at 1 kHz and at `rate` Hz, and the joint where it
+/// occurs.
+fn worst_torque_ratio(traj: &dyn Trajectory, t: &TorqueSetup, rate: f64) -> (f64, usize) {
+    use trajkit::topp::constraint::InverseDynamics;
+    use trajkit::Order;
+    let n = traj.dof();
+    let (mut q, mut qd, mut qdd, mut tau) =
+        (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let (mut worst, mut joint) = (0.0_f64, 0);
+    let duration = traj.duration();
+    for step in [1e-3, 1.0 / rate] {
+        if !(step.is_finite() && step > 0.0) {
+            continue;
+        }
+        let count = (duration / step).ceil() as usize;
+        for k in 0..=count {
+            let time = (k as f64 * step).min(duration);
+            traj.eval(time, Order::Position, &mut q);
+            traj.eval(time, Order::Velocity, &mut qd);
+            traj.eval(time, Order::Acceleration, &mut qdd);
+            t.chain.torque(&q, &qd, &qdd, &mut tau);
+            for j in 0..n {
+                let r = tau[j].abs() / t.effort[j];
+                if r > worst || r.is_nan() {
+                    worst = if r.is_nan() { f64::INFINITY } else { r };
+                    joint = j;
+                }
+            }
+        }
+    }
+    (worst, joint)
+}
+
+/// The smallest uniform time-scale factor k ∈ [1, MAX_TORQUE_SCALE] keeping the sampled torque
+/// within the efforts, by bisection. Slowing down by k leaves τ = g(q) + (M q̈ + C q̇)/k²: for
+/// each path point the torque moves along a segment towards the static torque, so once within
+/// the limits it stays within them for every larger k, which makes bisection valid.
+fn torque_time_scale(
+    traj: Box<dyn Trajectory>,
+    t: &TorqueSetup,
+    rate: f64,
+) -> CliResult<(Box<dyn Trajectory>, f64, f64, usize)> {
+    use trajkit::topp::Scaled;
+    let ok = |r: f64| r <= 1.0 + TORQUE_TOLERANCE;
+    let (r1, j1) = worst_torque_ratio(&*traj, t, rate);
+    if ok(r1) {
+        return Ok((traj, 1.0, r1, j1));
+    }
+    let at = |k: f64| -> CliResult<(f64, usize)> {
+        let s = Scaled::new(&*traj, k)?;
+        Ok(worst_torque_ratio(&s, t, rate))
+    };
+    let (rmax, jmax) = at(MAX_TORQUE_SCALE)?;
+    if !ok(rmax) {
+        return Err(CliError(format!(
+            "--torque-limits: after jerk bounding the torque exceeds the effort limits (worst ratio {r1:.4}) and slowing down {MAX_TORQUE_SCALE}x still leaves ratio {rmax:.4} at joint {}; use --no-jerk-limit or check the efforts in {}",
+            jmax + 1,
+            t.source
+        )));
+    }
+    let (mut lo, mut hi, mut best) = (1.0, MAX_TORQUE_SCALE, (rmax, jmax));
+    while hi - lo > 1e-4 {
+        let mid = 0.5 * (lo + hi);
+        let r = at(mid)?;
+        if ok(r.0) {
+            hi = mid;
+            best = r;
+        } else {
+            lo = mid;
+        }
+    }
+    Ok((Box::new(Scaled::new(traj, hi)?), hi, best.0, best.1))
+}
+
 /// Runs `trajkit plan`.
 pub fn run(a: &PlanArgs) -> CliResult<u8> {
     let (w, src, removed) = load_waypoints(&a.waypoints)?;
@@ -178,6 +327,15 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
         .expect_dof(w.dof(), "the waypoints")
         .map_err(|e| CliError(format!("{src}: {e}")))?;
     check_waypoints_in_range(&w, &limits, &src)?;
+    let torque = if a.torque_limits {
+        Some(torque_setup(a, &limits)?)
+    } else if a.dynamics.is_some() {
+        return Err(CliError(
+            "--dynamics is used only with --torque-limits".to_string(),
+        ));
+    } else {
+        None
+    };
     let has_jerk = limits.joints().iter().any(|j| j.jerk.is_finite());
     let jerk_limited = a.method == Method::Toppra && has_jerk && !a.no_jerk_limit;
     let mut note = String::new();
@@ -190,6 +348,9 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
                     gridpoints: a.gridpoints.clone(),
                     ..Default::default()
                 },
+                torque: torque
+                    .as_ref()
+                    .map(|t| trajkit::topp::messy::TorqueModel::new(t.chain.clone())),
                 ..Default::default()
             };
             let raw = plan_waypoints(w.points(), w.dof(), &limits, &opts)?;
@@ -222,6 +383,28 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
                 vel,
                 ViaTiming::Limits(&limits),
             )?)
+        }
+    };
+    let mut torque_note = String::new();
+    let traj = match &torque {
+        None => traj,
+        Some(t) => {
+            let (traj, k, ratio, joint) = torque_time_scale(traj, t, a.output.rate)?;
+            let verdict = if ratio <= 1.0 + TORQUE_TOLERANCE {
+                "within effort limits"
+            } else {
+                "EFFORT EXCEEDED"
+            };
+            torque_note = format!(
+                "torque: worst ratio {ratio:.6} (joint {}) — {verdict}; dynamics from {}",
+                joint + 1,
+                t.source
+            );
+            if k > 1.0 {
+                torque_note +=
+                    &format!("; time slowed down x{k:.4} after jerk bounding to hold the torque");
+            }
+            traj
         }
     };
     let names: Vec<String> = w.names().to_vec();
@@ -263,6 +446,9 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
     );
     if !note.is_empty() {
         let _ = writeln!(s, "{note}");
+    }
+    if !torque_note.is_empty() {
+        let _ = writeln!(s, "{torque_note}");
     }
     let _ = writeln!(s, "worst limit ratio per joint (velocity / acceleration / jerk, pointwise and finite-difference):");
     for (j, jr) in report.joints.iter().enumerate() {

@@ -1062,7 +1062,7 @@ pub fn moveit_joint_limits_from_str(
 // ---------------------------------------------------------------------------------------------
 // URDF.
 
-fn line_of(doc: &roxmltree::Document<'_>, pos: usize) -> usize {
+pub(crate) fn line_of(doc: &roxmltree::Document<'_>, pos: usize) -> usize {
     doc.text_pos_at(pos).row as usize
 }
 

@@ -10,6 +10,10 @@
 //!    or a polyline) and is timed by TOPP-RA from rest to rest;
 //! 4. the pieces are played one after the other ([`Sequence`]).
 //!
+//! With [`PlanOptions::torque`] set, every piece is also limited in joint torque
+//! ([`JointTorque::from_limits`]: `±effort` of `limits`) through the given inverse-dynamics
+//! model, e.g. a [`crate::dynamics::SerialChain`] read from a URDF.
+//!
 //! Nearly collinear waypoints need nothing special. A joint with a zero limit that must move
 //! is an [`Error::Infeasible`] naming the joint, and an infeasible problem names the path piece,
 //! the position s and the constraint.
@@ -18,12 +22,14 @@
 //! Each piece carries the precision contract of [`crate::topp::toppra`]; at piece boundaries
 //! the robot is at rest (velocity exactly zero) and the position is the shared waypoint.
 
+use super::constraint::{InverseDynamics, JointTorque};
 use super::paths::{check_waypoints, seg_len, LinearPath};
 use super::{Options, Parametrized, Toppra};
 use crate::error::{Error, Result};
 use crate::spline::CubicSpline;
 use crate::traj::{clamp_time, find_piece};
 use crate::{Limits, Order, Path, Trajectory};
+use std::sync::Arc;
 
 /// Removes consecutive waypoints within `tol` (Euclidean distance) of the previous kept one.
 /// Returns the kept waypoints (row-major) and their indices in the input.
@@ -211,6 +217,39 @@ impl<T: Trajectory> Trajectory for Sequence<T> {
     }
 }
 
+/// A shared inverse-dynamics model, for torque limits in [`PlanOptions::torque`]. Clones share
+/// the model; two are equal when they share it.
+#[derive(Clone)]
+pub struct TorqueModel(pub Arc<dyn InverseDynamics + Send + Sync>);
+
+impl TorqueModel {
+    /// Wraps a model.
+    pub fn new(dynamics: impl InverseDynamics + Send + Sync + 'static) -> Self {
+        TorqueModel(Arc::new(dynamics))
+    }
+}
+
+impl std::fmt::Debug for TorqueModel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "TorqueModel {{ dof: {} }}", self.0.dof())
+    }
+}
+
+impl PartialEq for TorqueModel {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
+impl InverseDynamics for TorqueModel {
+    fn dof(&self) -> usize {
+        self.0.dof()
+    }
+    fn torque(&self, q: &[f64], qd: &[f64], qdd: &[f64], tau: &mut [f64]) {
+        self.0.torque(q, qd, qdd, tau)
+    }
+}
+
 /// Settings of [`plan_waypoints`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct PlanOptions {
@@ -224,6 +263,9 @@ pub struct PlanOptions {
     pub reversal_angle: f64,
     /// TOPP-RA options for each piece (boundary velocities are forced to zero).
     pub toppra: Options,
+    /// Joint torque limits: when set, each piece is also held within `±effort` of the limits
+    /// (every joint needs an `effort`) for this inverse-dynamics model. Default `None`.
+    pub torque: Option<TorqueModel>,
 }
 
 impl Default for PlanOptions {
@@ -233,12 +275,17 @@ impl Default for PlanOptions {
             duplicate_tolerance: 1e-9,
             reversal_angle: std::f64::consts::PI - 1e-6,
             toppra: Options::default(),
+            torque: None,
         }
     }
 }
 
 /// A time-optimal trajectory through messy waypoints (row-major `count × dim`) under the
-/// velocity and acceleration limits of `limits`. See the module documentation.
+/// velocity and acceleration limits of `limits` (and the torque limits when
+/// [`PlanOptions::torque`] is set). See the module documentation.
+///
+/// Errors besides the solver's: [`Error::InvalidValue`] when torque limits are asked for and a
+/// joint has no effort limit; [`Error::DimensionMismatch`] when the model's joint count differs.
 ///
 /// ```
 /// use trajkit::topp::messy::{plan_waypoints, PlanOptions};
@@ -257,6 +304,9 @@ pub fn plan_waypoints(
     options: &PlanOptions,
 ) -> Result<Sequence<Parametrized<PiecePath>>> {
     limits.expect_dof(dim, "the waypoints")?;
+    if let Some(model) = &options.torque {
+        JointTorque::from_limits(model.clone(), limits)?;
+    }
     let (w, kept) = dedup_waypoints(waypoints, dim, options.duplicate_tolerance)?;
     let count = w.len() / dim;
     if count < 2 {
@@ -282,18 +332,19 @@ pub fn plan_waypoints(
             end_velocity: 0.0,
             ..options.toppra.clone()
         };
-        let traj = Toppra::with_limits(path, limits)?
-            .options(opts)
-            .solve()
-            .map_err(|e| match e {
-                Error::Infeasible(m) => Error::Infeasible(format!(
-                    "path piece {} (waypoints {} to {}): {m}",
-                    p + 1,
-                    kept[c[0]],
-                    kept[c[1]]
-                )),
-                e => e,
-            })?;
+        let mut problem = Toppra::with_limits(path, limits)?;
+        if let Some(model) = &options.torque {
+            problem = problem.constraint(JointTorque::from_limits(model.clone(), limits)?)?;
+        }
+        let traj = problem.options(opts).solve().map_err(|e| match e {
+            Error::Infeasible(m) => Error::Infeasible(format!(
+                "path piece {} (waypoints {} to {}): {m}",
+                p + 1,
+                kept[c[0]],
+                kept[c[1]]
+            )),
+            e => e,
+        })?;
         pieces.push(traj);
     }
     Sequence::new(pieces)
