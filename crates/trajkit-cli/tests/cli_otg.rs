@@ -1,48 +1,14 @@
 //! End-to-end tests of `trajkit otg`.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
-
-fn trajkit(args: &[&str], dir: &Path, stdin: Option<&str>) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_trajkit"))
-        .args(args)
-        .current_dir(dir)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("binary runs");
-    if let Some(s) = stdin {
-        use std::io::Write;
-        child.stdin.take().unwrap().write_all(s.as_bytes()).unwrap();
-    } else {
-        drop(child.stdin.take());
-    }
-    child.wait_with_output().unwrap()
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("trajkit-cli-otg-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn entries(d: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(d)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
-        .collect();
-    v.sort();
-    v
-}
+mod common;
+use common::{entries, scratch, trajkit_stdin};
 
 const SEED: &str = r#"{"current_position":[0],"target_position":[1],"max_velocity":[0.6],"max_acceleration":[1],"max_jerk":[4],"comment":"ignored"}"#;
 
 #[test]
 fn seed_example_json_csv_and_plot() {
     let d = scratch("seed");
-    let o = trajkit(&["otg", "-"], &d, Some(SEED));
+    let o = trajkit_stdin(&["otg", "-"], &d, Some(SEED));
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let t = v["duration"].as_f64().unwrap();
@@ -51,7 +17,7 @@ fn seed_example_json_csv_and_plot() {
     assert!(v["worst_limit_ratio"].as_f64().unwrap() <= 1.0 + 1e-12);
     // Trapezoid: a null jerk limit is unlimited; CSV by extension, and a plot.
     std::fs::write(d.join("p.json"), SEED.replace("[4]", "[null]")).unwrap();
-    let o = trajkit(
+    let o = trajkit_stdin(
         &["otg", "p.json", "--out", "s.csv", "--plot", "p.svg"],
         &d,
         None,
@@ -75,7 +41,7 @@ fn batch_one_line_per_problem() {
         r#"{"current_position":[0],"target_position":[1],"max_velocity":[-1]}"#.to_string(),
     ];
     std::fs::write(d.join("b.jsonl"), lines.join("\n")).unwrap();
-    let o = trajkit(&["otg", "--batch", "b.jsonl", "--out", "r.jsonl"], &d, None);
+    let o = trajkit_stdin(&["otg", "--batch", "b.jsonl", "--out", "r.jsonl"], &d, None);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = std::fs::read_to_string(d.join("r.jsonl")).unwrap();
     let rows: Vec<serde_json::Value> = text
@@ -128,7 +94,7 @@ fn bad_input_exits_2_with_one_line_and_no_file() {
     {
         let f = format!("p{i}.json");
         std::fs::write(d.join(&f), problem).unwrap();
-        let o = trajkit(&["otg", &f, "--out", "s.csv", "--plot", "p.svg"], &d, None);
+        let o = trajkit_stdin(&["otg", &f, "--out", "s.csv", "--plot", "p.svg"], &d, None);
         assert_eq!(o.status.code(), Some(2), "{problem}");
         let err = String::from_utf8_lossy(&o.stderr);
         assert_eq!(err.trim_end().lines().count(), 1, "{err}");
@@ -139,7 +105,7 @@ fn bad_input_exits_2_with_one_line_and_no_file() {
             .collect();
         assert!(left.is_empty(), "{left:?}");
     }
-    let o = trajkit(
+    let o = trajkit_stdin(
         &["otg", "--batch", "missing.jsonl", "--out", "r.jsonl"],
         &d,
         None,
@@ -152,13 +118,13 @@ fn bad_input_exits_2_with_one_line_and_no_file() {
 fn too_many_samples_is_bad_input() {
     let d = scratch("many");
     let p = r#"{"current_position":[0],"target_position":[10000],"max_velocity":[0.01],"max_acceleration":[1],"max_jerk":[1]}"#;
-    let o = trajkit(&["otg", "-", "--out", "s.csv"], &d, Some(p));
+    let o = trajkit_stdin(&["otg", "-", "--out", "s.csv"], &d, Some(p));
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("'dt'"));
     assert!(entries(&d).is_empty());
     // The same problem in a batch: a result line with the duration, no samples.
     std::fs::write(d.join("b.jsonl"), p).unwrap();
-    let o = trajkit(&["otg", "--batch", "b.jsonl"], &d, None);
+    let o = trajkit_stdin(&["otg", "--batch", "b.jsonl"], &d, None);
     assert!(o.status.success());
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     // D/v + 2·sqrt(v/j): the acceleration limit is not reached.

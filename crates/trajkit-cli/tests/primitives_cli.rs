@@ -1,22 +1,9 @@
 //! End-to-end tests of `trajkit dmp`, `trajkit promp` and `trajkit kmp`.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn trajkit(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_trajkit"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("binary runs")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("trajkit-mp-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+use std::path::Path;
+use std::process::Output;
+mod common;
+use common::{scratch, trajkit};
 
 fn text(o: &Output) -> String {
     format!(

@@ -1,22 +1,7 @@
 //! End-to-end tests of `trajkit spline`.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn trajkit(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_trajkit"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("binary runs")
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("trajkit-spline-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
+mod common;
+use common::{scratch, trajkit};
 
 fn text(b: &[u8]) -> String {
     String::from_utf8_lossy(b).to_string()

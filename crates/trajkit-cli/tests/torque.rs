@@ -1,7 +1,9 @@
 //! End-to-end tests of `trajkit plan --torque-limits`.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
+mod common;
+use common::trajkit;
 
 /// A two-link arm in the vertical x-z plane, with effort limits that bind.
 const ARM: &str = r#"<robot name="arm">
@@ -25,14 +27,6 @@ const ARM: &str = r#"<robot name="arm">
 </robot>"#;
 
 const WAYPOINTS: &str = "q1,q2\n0,0\n1.2,-1.0\n0.3,1.0\n-0.5,0.2\n";
-
-fn trajkit(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_trajkit"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("binary runs")
-}
 
 /// A fresh directory holding the arm's URDF and the waypoints.
 fn scratch(name: &str) -> PathBuf {

@@ -1,61 +1,11 @@
 //! Real-time paths allocate nothing: trajectory evaluation is run under a counting global
 //! allocator and must not allocate once constructed.
-//!
-//! This test binary needs `unsafe` for one reason only: `GlobalAlloc` is an unsafe trait. The
-//! library itself forbids unsafe code.
-#![allow(unsafe_code)]
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-
-struct Counting;
-
-thread_local! {
-    static ALLOCS: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCS.with(|c| c.set(c.get() + 1));
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCS.with(|c| c.set(c.get() + 1));
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
-
-/// Allocations made on this thread while running `f`.
-fn allocations(f: impl FnOnce()) -> usize {
-    let before = ALLOCS.with(|c| c.get());
-    f();
-    ALLOCS.with(|c| c.get()) - before
-}
+mod alloc_counter;
+use alloc_counter::{allocations, exercise};
 
 use trajkit::poly::{Degree, PolyMove, ViaTiming, ViaTrajectory, ViaVelocities};
-use trajkit::{Limits, Order, Trajectory};
-
-fn exercise(tr: &dyn Trajectory) -> f64 {
-    let mut out = [0.0; 16];
-    let mut s = 0.0;
-    let n = 2000;
-    for i in 0..=n {
-        // Includes times before 0 and after the end (clamping) and NaN.
-        let t = -0.1 + (tr.duration() + 0.2) * i as f64 / n as f64;
-        for o in Order::ALL {
-            tr.eval(t, o, &mut out);
-            s += out[0];
-        }
-    }
-    tr.eval(f64::NAN, Order::Jerk, &mut out);
-    s
-}
+use trajkit::{Limits, Trajectory};
 
 #[test]
 fn evaluation_allocates_nothing() {
@@ -82,7 +32,7 @@ fn evaluation_allocates_nothing() {
     ];
     for (name, tr) in cases {
         let mut sink = 0.0;
-        let n = allocations(|| sink = exercise(tr));
+        let n = allocations(|| sink = exercise(tr, 2000));
         assert!(sink.is_finite() || sink.is_nan());
         assert_eq!(n, 0, "{name} allocated {n} times during evaluation");
     }

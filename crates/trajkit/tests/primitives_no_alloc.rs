@@ -1,60 +1,14 @@
 //! Evaluating a movement primitive's trajectory (DMP rollout, ProMP mean and samples, KMP
 //! mean) allocates nothing, under a counting global allocator.
-//!
-//! This test binary needs `unsafe` for one reason only: `GlobalAlloc` is an unsafe trait. The
-//! library itself forbids unsafe code.
-#![allow(unsafe_code)]
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
 use trajkit::primitives::{
     Demo, Dmp, DmpConfig, Kmp, KmpConfig, KmpReference, ProMp, ProMpConfig, RolloutOptions,
 };
 use trajkit::rng::SplitMix64;
-use trajkit::{Order, Trajectory};
+use trajkit::Trajectory;
 
-struct Counting;
-
-thread_local! {
-    static ALLOCS: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCS.with(|c| c.set(c.get() + 1));
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCS.with(|c| c.set(c.get() + 1));
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
-
-fn allocations(f: impl FnOnce()) -> usize {
-    let before = ALLOCS.with(|c| c.get());
-    f();
-    ALLOCS.with(|c| c.get()) - before
-}
-
-fn exercise(tr: &dyn Trajectory) -> f64 {
-    let mut out = [0.0; 8];
-    let mut s = 0.0;
-    for i in 0..=500 {
-        let t = -0.1 + (tr.duration() + 0.2) * i as f64 / 500.0;
-        for o in Order::ALL {
-            tr.eval(t, o, &mut out);
-            s += out[0];
-        }
-    }
-    tr.eval(f64::NAN, Order::Position, &mut out);
-    s
-}
+mod alloc_counter;
+use alloc_counter::{allocations, exercise};
 
 #[test]
 fn primitive_trajectories_evaluate_without_allocating() {
@@ -81,7 +35,7 @@ fn primitive_trajectories_evaluate_without_allocating() {
     let kmp = Kmp::fit(&r, &KmpConfig::default()).unwrap();
     for tr in [&roll as &dyn Trajectory, &promp, &sample, &kmp] {
         let n = allocations(|| {
-            std::hint::black_box(exercise(tr));
+            std::hint::black_box(exercise(tr, 500));
         });
         assert_eq!(n, 0);
     }

@@ -1,62 +1,13 @@
 //! TOPP-RA output, retimed paths, scaled trajectories and rest-to-rest sequences evaluate
 //! without allocating (counting global allocator, as in no_alloc.rs).
-//!
-//! This test binary needs `unsafe` for one reason only: `GlobalAlloc` is an unsafe trait. The
-//! library itself forbids unsafe code.
-#![allow(unsafe_code)]
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-
-struct Counting;
-
-thread_local! {
-    static ALLOCS: Cell<usize> = const { Cell::new(0) };
-}
-
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCS.with(|c| c.set(c.get() + 1));
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCS.with(|c| c.set(c.get() + 1));
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
-
-#[global_allocator]
-static GLOBAL: Counting = Counting;
-
-/// Allocations made on this thread while running `f`.
-fn allocations(f: impl FnOnce()) -> usize {
-    let before = ALLOCS.with(|c| c.get());
-    f();
-    ALLOCS.with(|c| c.get()) - before
-}
+mod alloc_counter;
+use alloc_counter::{allocations, exercise};
 
 use trajkit::spline::CubicSpline;
 use trajkit::topp::messy::{plan_waypoints, PlanOptions};
 use trajkit::topp::{Gridpoints, Options, QuinticLaw, Retimed, Scaled, Toppra};
-use trajkit::{Limits, Order, Trajectory};
-
-fn exercise(tr: &dyn Trajectory) -> f64 {
-    let mut out = [0.0; 16];
-    let mut s = 0.0;
-    let n = 2000;
-    for i in 0..=n {
-        let t = -0.1 + (tr.duration() + 0.2) * i as f64 / n as f64;
-        for o in Order::ALL {
-            tr.eval(t, o, &mut out);
-            s += out[0];
-        }
-    }
-    tr.eval(f64::NAN, Order::Jerk, &mut out);
-    s
-}
+use trajkit::{Limits, Trajectory};
 
 #[test]
 fn topp_outputs_evaluate_without_allocating() {
@@ -92,7 +43,7 @@ fn topp_outputs_evaluate_without_allocating() {
     .unwrap();
     for tr in [&traj as &dyn Trajectory, &retimed, &scaled, &seq] {
         let mut s = 0.0;
-        let n = allocations(|| s = exercise(tr));
+        let n = allocations(|| s = exercise(tr, 2000));
         assert!(s.is_finite());
         assert_eq!(n, 0, "evaluation allocated {n} times");
     }
