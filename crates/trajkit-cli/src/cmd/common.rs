@@ -234,3 +234,13 @@ pub fn finite_list(flag: &str, v: &[f64]) -> CliResult<()> {
     }
     Ok(())
 }
+
+/// Prints a subcommand's summary: on standard error when the table itself went to standard
+/// output (`--out -`), else on standard output.
+pub fn print_summary(out: &Path, summary: &str) {
+    if out.as_os_str() == "-" {
+        eprintln!("{summary}");
+    } else {
+        println!("{summary}");
+    }
+}

@@ -275,10 +275,6 @@ pub fn run(a: &DmpArgs) -> CliResult<u8> {
     if let Some(p) = &a.output.plot {
         s.push_str(&format!(" and {}", p.display()));
     }
-    if a.out.as_os_str() == "-" {
-        eprintln!("{s}");
-    } else {
-        println!("{s}");
-    }
+    super::common::print_summary(&a.out, &s);
     Ok(0)
 }

@@ -166,10 +166,6 @@ pub fn run(a: &KmpArgs) -> CliResult<u8> {
     for p in [&a.band, &a.output.plot].into_iter().flatten() {
         s.push_str(&format!(" and {}", p.display()));
     }
-    if a.out.as_os_str() == "-" {
-        eprintln!("{s}");
-    } else {
-        println!("{s}");
-    }
+    super::common::print_summary(&a.out, &s);
     Ok(0)
 }

@@ -478,10 +478,6 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
     if let Some(p) = &a.output.plot {
         let _ = write!(s, " and {}", p.display());
     }
-    if a.out.as_os_str() == "-" {
-        eprintln!("{s}");
-    } else {
-        println!("{s}");
-    }
+    super::common::print_summary(&a.out, &s);
     Ok(0)
 }
