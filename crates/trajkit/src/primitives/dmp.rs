@@ -346,6 +346,28 @@ pub struct Dmp {
 }
 
 /// Second-order finite-difference derivative on a possibly non-uniform grid.
+/// Velocities and accelerations (row-major, like `q`) of a demonstration sampled at times
+/// `ts`, by [`derivative`] applied twice, joint by joint.
+pub(crate) fn demo_derivatives(ts: &[f64], q: &[f64], dof: usize) -> (Vec<f64>, Vec<f64>) {
+    let rows = ts.len();
+    let mut vel = vec![0.0; rows * dof];
+    let mut acc = vec![0.0; rows * dof];
+    let mut col = vec![0.0; rows];
+    for j in 0..dof {
+        derivative(ts, q, dof, j, &mut col);
+        for k in 0..rows {
+            vel[k * dof + j] = col[k];
+        }
+    }
+    for j in 0..dof {
+        derivative(ts, &vel, dof, j, &mut col);
+        for k in 0..rows {
+            acc[k * dof + j] = col[k];
+        }
+    }
+    (vel, acc)
+}
+
 pub(crate) fn derivative(t: &[f64], y: &[f64], stride: usize, col: usize, out: &mut [f64]) {
     let n = t.len();
     let v = |k: usize| y[k * stride + col];
@@ -451,21 +473,7 @@ impl Dmp {
         let goal = q[(rows - 1) * dof..].to_vec();
 
         // Velocities and accelerations of the demonstration.
-        let mut vel = vec![0.0; rows * dof];
-        let mut acc = vec![0.0; rows * dof];
-        let mut col = vec![0.0; rows];
-        for j in 0..dof {
-            derivative(&ts, q, dof, j, &mut col);
-            for k in 0..rows {
-                vel[k * dof + j] = col[k];
-            }
-        }
-        for j in 0..dof {
-            derivative(&ts, &vel, dof, j, &mut col);
-            for k in 0..rows {
-                acc[k * dof + j] = col[k];
-            }
-        }
+        let (vel, acc) = demo_derivatives(&ts, q, dof);
         let start_velocity = vel[..dof].to_vec();
 
         let amplitude: Vec<f64> = (0..dof)

@@ -17,7 +17,7 @@
 //! period, with an RMS error ≤ 1e-3 of its range (tests).
 
 use crate::error::{Error, Result};
-use crate::primitives::dmp::{check_demo, derivative, ridge_fit, DmpRollout};
+use crate::primitives::dmp::{check_demo, demo_derivatives, ridge_fit, DmpRollout};
 use crate::traj::Trajectory;
 
 /// A rhythmic DMP for `dof` joints.
@@ -67,21 +67,7 @@ impl RhythmicDmp {
         let tau = period / std::f64::consts::TAU;
         let ts: Vec<f64> = t.iter().map(|v| v - t[0]).collect();
         let (az, bz) = (25.0, 6.25);
-        let mut vel = vec![0.0; rows * dof];
-        let mut acc = vec![0.0; rows * dof];
-        let mut col = vec![0.0; rows];
-        for j in 0..dof {
-            derivative(&ts, q, dof, j, &mut col);
-            for k in 0..rows {
-                vel[k * dof + j] = col[k];
-            }
-        }
-        for j in 0..dof {
-            derivative(&ts, &vel, dof, j, &mut col);
-            for k in 0..rows {
-                acc[k * dof + j] = col[k];
-            }
-        }
+        let (vel, acc) = demo_derivatives(&ts, q, dof);
         let anchor: Vec<f64> = (0..dof)
             .map(|j| (0..rows - 1).map(|k| q[k * dof + j]).sum::<f64>() / (rows - 1) as f64)
             .collect();
