@@ -288,6 +288,19 @@ impl PiecewisePolynomial {
                 }
                 *o = acc;
             }
+        } else if k <= 16 {
+            // The factors j!/(j−order)! are the same for every component: once per call.
+            let mut f = [0.0; 16];
+            for j in order..k {
+                f[j] = falling(j, order);
+            }
+            for (o, c) in out.iter_mut().zip(block.chunks_exact(k)) {
+                let mut acc = 0.0;
+                for j in (order..k).rev() {
+                    acc = acc * h + c[j] * f[j];
+                }
+                *o = acc;
+            }
         } else {
             for (o, c) in out.iter_mut().zip(block.chunks_exact(k)) {
                 let mut acc = 0.0;
