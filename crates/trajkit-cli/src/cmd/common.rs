@@ -244,3 +244,23 @@ pub fn print_summary(out: &Path, summary: &str) {
         println!("{summary}");
     }
 }
+
+/// One summary line per via point: the largest position error of `traj` at the via point's
+/// time, over the joints.
+pub fn via_point_report(traj: &dyn trajkit::Trajectory, vias: &[(f64, &[f64])]) -> String {
+    let mut y = vec![0.0; traj.dof()];
+    let mut s = String::new();
+    for (k, (t, q)) in vias.iter().enumerate() {
+        traj.eval(*t, Order::Position, &mut y);
+        let e = y
+            .iter()
+            .zip(q.iter())
+            .map(|(a, b)| (a - b).abs())
+            .fold(0.0, f64::max);
+        s.push_str(&format!(
+            "\nvia point {} at t = {t}: max error {e:.3e}",
+            k + 1
+        ));
+    }
+    s
+}

@@ -114,18 +114,8 @@ pub fn run(a: &PrompArgs) -> CliResult<u8> {
         p.duration(),
         p.n_basis()
     );
-    let mut y = vec![0.0; dof];
-    for (k, v) in via.iter().enumerate() {
-        p.eval(v.t, Order::Position, &mut y);
-        let e = (0..dof)
-            .map(|j| (y[j] - v.value[j]).abs())
-            .fold(0.0, f64::max);
-        s.push_str(&format!(
-            "\nvia point {} at t = {}: max error {e:.3e}",
-            k + 1,
-            v.t
-        ));
-    }
+    let points: Vec<(f64, &[f64])> = via.iter().map(|v| (v.t, &v.value[..])).collect();
+    s.push_str(&super::common::via_point_report(&p, &points));
     s.push_str(&format!("\nwrote {}", a.out.display()));
     for p in [&a.band, &a.output.plot].into_iter().flatten() {
         s.push_str(&format!(" and {}", p.display()));
