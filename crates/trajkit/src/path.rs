@@ -21,6 +21,15 @@ pub trait Path {
     /// may be zero.
     fn eval(&self, s: f64, order: usize, out: &mut [f64]);
 
+    /// Writes σ′(s) into `first` and σ″(s) into `second`: what time parameterization needs at
+    /// every gridpoint. The default calls [`Path::eval`] twice; a path that can share work
+    /// between the two (one piece search, one pass over the coefficients) should override it.
+    /// Both must equal what `eval` writes for orders 1 and 2.
+    fn eval_derivatives(&self, s: f64, first: &mut [f64], second: &mut [f64]) {
+        self.eval(s, 1, first);
+        self.eval(s, 2, second);
+    }
+
     /// Parameters where σ or a low derivative is not smooth (segment joints of a spline,
     /// corners of a piecewise-linear path), increasing, including both ends. Time
     /// parameterization puts gridpoints there. The default is just the two ends; a path that
@@ -41,6 +50,9 @@ impl<P: Path + ?Sized> Path for &P {
     fn eval(&self, s: f64, order: usize, out: &mut [f64]) {
         (**self).eval(s, order, out)
     }
+    fn eval_derivatives(&self, s: f64, first: &mut [f64], second: &mut [f64]) {
+        (**self).eval_derivatives(s, first, second)
+    }
     fn breakpoints(&self) -> Vec<f64> {
         (**self).breakpoints()
     }
@@ -55,6 +67,9 @@ impl<P: Path + ?Sized> Path for Box<P> {
     }
     fn eval(&self, s: f64, order: usize, out: &mut [f64]) {
         (**self).eval(s, order, out)
+    }
+    fn eval_derivatives(&self, s: f64, first: &mut [f64], second: &mut [f64]) {
+        (**self).eval_derivatives(s, first, second)
     }
     fn breakpoints(&self) -> Vec<f64> {
         (**self).breakpoints()

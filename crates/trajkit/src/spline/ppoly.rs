@@ -249,6 +249,45 @@ impl PiecewisePolynomial {
         self.eval_piece(i, s, order, out);
     }
 
+    /// Writes the first derivative at `s` (clamped) into `first[..dim]` and the second into
+    /// `second[..dim]`, with one piece search and one pass over each component's coefficients;
+    /// the values are those of [`PiecewisePolynomial::eval`] with orders 1 and 2.
+    pub fn eval_derivatives(&self, s: f64, first: &mut [f64], second: &mut [f64]) {
+        let dim = self.dim;
+        let (first, second) = (&mut first[..dim], &mut second[..dim]);
+        let k = self.degree + 1;
+        if s.is_nan() || !(3..=16).contains(&k) {
+            self.eval(s, 1, first);
+            self.eval(s, 2, second);
+            return;
+        }
+        let s = self.clamp(s);
+        let i = self.piece_index(s);
+        let h = s - self.breaks[i];
+        let base = i * dim * k;
+        let block = &self.coeffs[base..base + dim * k];
+        // The factors j and j·(j − 1), as `eval_piece` uses them.
+        let mut f1 = [0.0; 16];
+        let mut f2 = [0.0; 16];
+        for j in 1..k {
+            f1[j] = j as f64;
+            f2[j] = (j * (j - 1)) as f64;
+        }
+        for ((d1, d2), c) in first
+            .iter_mut()
+            .zip(second.iter_mut())
+            .zip(block.chunks_exact(k))
+        {
+            let (mut a1, mut a2) = (0.0, 0.0);
+            for j in (2..k).rev() {
+                a1 = a1 * h + c[j] * f1[j];
+                a2 = a2 * h + c[j] * f2[j];
+            }
+            *d1 = a1 * h + c[1];
+            *d2 = a2;
+        }
+    }
+
     /// Clamps `s` to the interval (NaN stays NaN).
     #[inline]
     pub(crate) fn clamp(&self, s: f64) -> f64 {
@@ -367,6 +406,9 @@ impl crate::Path for PiecewisePolynomial {
     fn eval(&self, s: f64, order: usize, out: &mut [f64]) {
         PiecewisePolynomial::eval(self, s, order, out)
     }
+    fn eval_derivatives(&self, s: f64, first: &mut [f64], second: &mut [f64]) {
+        PiecewisePolynomial::eval_derivatives(self, s, first, second)
+    }
     fn breakpoints(&self) -> Vec<f64> {
         self.breaks.clone()
     }
@@ -408,6 +450,30 @@ mod tests {
             // within piece 0 where the antiderivative of the derivative is exact.
             if s <= 1.0 {
                 assert!((a[0] - v0[0] - b[0]).abs() < 1e-12, "s={s}");
+            }
+        }
+    }
+
+    #[test]
+    fn derivative_pair_equals_single_evaluations() {
+        let mut rng = crate::rng::SplitMix64::new(11);
+        for degree in 0..=7usize {
+            let breaks = vec![-1.0, 0.25, 0.5, 2.0];
+            let dim = 3;
+            let coeffs: Vec<f64> = (0..3 * dim * (degree + 1))
+                .map(|_| rng.uniform(-5.0, 5.0))
+                .collect();
+            let pp = PiecewisePolynomial::new(breaks, dim, degree, coeffs).unwrap();
+            let (mut d1, mut d2, mut e1, mut e2) = ([0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]);
+            for s in [-2.0, -1.0, -0.3, 0.25, 0.4, 1.9, 2.0, 3.0, f64::NAN] {
+                pp.eval_derivatives(s, &mut d1, &mut d2);
+                pp.eval(s, 1, &mut e1);
+                pp.eval(s, 2, &mut e2);
+                for j in 0..dim {
+                    // Bitwise: the same operations in the same order.
+                    assert_eq!(d1[j].to_bits(), e1[j].to_bits(), "degree {degree}, s = {s}");
+                    assert_eq!(d2[j].to_bits(), e2[j].to_bits(), "degree {degree}, s = {s}");
+                }
             }
         }
     }

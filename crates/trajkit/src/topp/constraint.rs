@@ -47,6 +47,9 @@ pub struct PathPoint<'a> {
 pub struct ConstraintRows {
     /// Half-planes (α, β, γ): α·u + β·x ≤ γ.
     pub(crate) rows: Vec<[f64; 3]>,
+    /// Where this point's rows start in `rows` (the solver lets every point append to one
+    /// buffer).
+    pub(crate) start: usize,
     /// Lower bound on x.
     pub(crate) x_min: f64,
     /// Upper bound on x.
@@ -60,6 +63,7 @@ impl ConstraintRows {
     pub fn new() -> Self {
         ConstraintRows {
             rows: Vec::new(),
+            start: 0,
             x_min: 0.0,
             x_max: f64::INFINITY,
             broken: None,
@@ -68,6 +72,13 @@ impl ConstraintRows {
 
     pub(crate) fn clear(&mut self) {
         self.rows.clear();
+        self.clear_bounds();
+    }
+
+    /// Starts a new point: resets the bounds on x and the broken flag, keeping earlier points'
+    /// rows in the buffer.
+    pub(crate) fn clear_bounds(&mut self) {
+        self.start = self.rows.len();
         self.x_min = 0.0;
         self.x_max = f64::INFINITY;
         self.broken = None;
@@ -75,7 +86,7 @@ impl ConstraintRows {
 
     /// The half-planes written so far, `(α, β, γ)` meaning `α·u + β·x ≤ γ`.
     pub fn half_planes(&self) -> &[[f64; 3]] {
-        &self.rows
+        &self.rows[self.start..]
     }
 
     /// The bounds on x = ṡ² written so far (`[0, ∞)` when none).
@@ -108,6 +119,33 @@ impl ConstraintRows {
         }
         if lo > f64::NEG_INFINITY {
             self.half_plane(-a, -b, c - lo);
+        }
+    }
+
+    /// Adds `lo[j] ≤ a[j]·u + b[j]·x ≤ hi[j]` for every j: the same rows as
+    /// [`ConstraintRows::interval`] with `c = 0`, in one pass (joint accelerations write
+    /// this at every gridpoint).
+    pub fn intervals(&mut self, a: &[f64], b: &[f64], lo: &[f64], hi: &[f64]) {
+        let n = a.len().min(b.len()).min(lo.len()).min(hi.len());
+        self.rows.reserve(2 * n);
+        for j in 0..n {
+            let (aj, bj, l, h) = (a[j], b[j], lo[j], hi[j]);
+            if aj.is_nan() || bj.is_nan() || l.is_nan() || h.is_nan() {
+                self.broken = Some("produced a NaN coefficient");
+                return;
+            }
+            if aj == 0.0 && bj == 0.0 {
+                if h < 0.0 || l > 0.0 {
+                    self.broken = Some("cannot hold at any velocity");
+                }
+                continue;
+            }
+            if h < f64::INFINITY {
+                self.rows.push([aj, bj, h]);
+            }
+            if l > f64::NEG_INFINITY {
+                self.rows.push([-aj, -bj, -l]);
+            }
         }
     }
 
@@ -356,9 +394,7 @@ impl Constraint for JointAcceleration {
         self.hi.len()
     }
     fn write(&self, p: &PathPoint<'_>, out: &mut ConstraintRows) {
-        for j in 0..self.hi.len() {
-            out.interval(p.dq[j], p.ddq[j], 0.0, self.lo[j], self.hi[j]);
-        }
+        out.intervals(p.dq, p.ddq, &self.lo, &self.hi);
     }
     fn uses_position(&self) -> bool {
         false
@@ -532,6 +568,29 @@ impl<J: Jacobian> Constraint for EndEffectorSpeed<J> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn bulk_intervals_equal_single_intervals() {
+        let a = [1.0, 0.0, -2.0, 0.0, 0.5];
+        let b = [0.5, 0.0, 0.0, 3.0, -1.0];
+        let lo = [-1.0, -2.0, f64::NEG_INFINITY, -4.0, 0.0];
+        let hi = [2.0, 1.0, 3.0, f64::INFINITY, 0.0];
+        let mut bulk = ConstraintRows::new();
+        bulk.intervals(&a, &b, &lo, &hi);
+        let mut one = ConstraintRows::new();
+        for j in 0..a.len() {
+            one.interval(a[j], b[j], 0.0, lo[j], hi[j]);
+        }
+        assert_eq!(bulk.half_planes(), one.half_planes());
+        assert!(bulk.broken.is_none());
+        // A static joint whose range excludes zero cannot hold; a NaN is reported.
+        let mut r = ConstraintRows::new();
+        r.intervals(&[0.0], &[0.0], &[0.5], &[1.0]);
+        assert!(r.broken.is_some());
+        let mut r = ConstraintRows::new();
+        r.intervals(&[f64::NAN], &[0.0], &[-1.0], &[1.0]);
+        assert!(r.broken.is_some());
+    }
 
     #[test]
     fn rows_from_acceleration_and_velocity() {

@@ -24,6 +24,26 @@ pub trait HalfPlanes {
     fn count(&self) -> usize;
     /// Half-plane `k` (`k < count()`).
     fn get(&self, k: usize) -> [f64; 3];
+
+    /// The first half-plane `k ≥ from` that `v` violates by more than `tol` (measured as in the
+    /// module's precision contract: `a·v − b > tol·(|a0| + |a1|)`, NaN counting as violated).
+    /// Override when the rows can be scanned faster than through [`HalfPlanes::get`].
+    #[inline]
+    fn first_violated(&self, from: usize, v: [f64; 2], tol: f64) -> Option<usize> {
+        (from..self.count()).find(|&k| violates(self.get(k), v, tol))
+    }
+}
+
+/// Whether `v` violates the half-plane `r` by more than `tol` (scaled by the 1-norm of the
+/// row's normal). NaN counts as a violation.
+#[inline]
+pub fn violates(r: [f64; 3], v: [f64; 2], tol: f64) -> bool {
+    let lhs = r[0] * v[0] + r[1] * v[1];
+    let rhs = r[2] + tol * (r[0].abs() + r[1].abs());
+    !matches!(
+        lhs.partial_cmp(&rhs),
+        Some(std::cmp::Ordering::Less | std::cmp::Ordering::Equal)
+    )
 }
 
 impl HalfPlanes for [[f64; 3]] {
@@ -94,7 +114,7 @@ pub fn maximize<R: HalfPlanes + ?Sized>(
     }
     let mut active = [BOX, BOX];
     let m = rows.count();
-    // Processing order: the (valid, distinct) hints first, then every other row in index order.
+    // Processing order: the (valid, distinct) hints first, then every row in index order.
     let mut hints = [BOX; 2];
     let mut nh = 0;
     for h in hint {
@@ -103,83 +123,97 @@ pub fn maximize<R: HalfPlanes + ?Sized>(
             nh += 1;
         }
     }
-    let is_hint = |j: usize| j == hints[0] || j == hints[1];
-    for pos in 0..nh + m {
-        let k = if pos < nh { hints[pos] } else { pos - nh };
-        if pos >= nh && is_hint(k) {
-            continue;
+    // The hints are met again in index order; they hold then (the optimum respects every row
+    // processed so far), so they cost one test each and need no skipping.
+    for pos in 0..nh {
+        let k = hints[pos];
+        if violates(rows.get(k), v, tol) {
+            (v, active) = on_line(c, rows, k, &hints[..pos], 0, lo, hi, tol)?;
         }
-        let r = rows.get(k);
-        let rn = r[0].abs() + r[1].abs();
-        if r[0] * v[0] + r[1] * v[1] <= r[2] + tol * rn {
-            continue;
-        }
-        // New optimum on the line r0·v0 + r1·v1 = r2: v = p + t·d.
-        let f = r[2] / (r[0] * r[0] + r[1] * r[1]);
-        let p = [r[0] * f, r[1] * f];
-        let d = [-r[1], r[0]];
-        // Parameter tolerance matching a distance tol along the line.
-        let ttol = tol / rn;
-        let mut tlo = f64::NEG_INFINITY;
-        let mut thi = f64::INFINITY;
-        let mut alo = BOX;
-        let mut ahi = BOX;
-        // Box sides.
-        for q in 0..2 {
-            if d[q].abs() > 1e-14 * rn {
-                let t1 = (lo[q] - p[q]) / d[q];
-                let t2 = (hi[q] - p[q]) / d[q];
-                let (a, b) = if d[q] > 0.0 { (t1, t2) } else { (t2, t1) };
-                if a > tlo {
-                    tlo = a;
-                }
-                if b < thi {
-                    thi = b;
-                }
-            } else if p[q] < lo[q] - tol || p[q] > hi[q] + tol {
-                return None;
-            }
-        }
-        // Every row processed before this one.
-        let (before_hints, before_rows) = if pos < nh { (pos, 0) } else { (nh, k) };
-        let prev = hints[..before_hints]
-            .iter()
-            .copied()
-            .chain((0..before_rows).filter(|&j| !is_hint(j)));
-        for j in prev {
-            let s = rows.get(j);
-            let sn = s[0].abs() + s[1].abs();
-            let ad = s[0] * d[0] + s[1] * d[1];
-            let rhs = s[2] - (s[0] * p[0] + s[1] * p[1]);
-            if ad.abs() <= 1e-14 * sn * rn {
-                if rhs < -tol * sn {
-                    return None;
-                }
-            } else if ad > 0.0 {
-                let t = rhs / ad;
-                if t < thi {
-                    thi = t;
-                    ahi = j;
-                }
-            } else {
-                let t = rhs / ad;
-                if t > tlo {
-                    tlo = t;
-                    alo = j;
-                }
-            }
-        }
-        if tlo > thi + ttol {
-            return None;
-        }
-        let cd = c[0] * d[0] + c[1] * d[1];
-        let (t, a) = if cd > 0.0 { (thi, ahi) } else { (tlo, alo) };
-        // When tlo and thi cross by less than tol, take their midpoint.
-        let t = if tlo > thi { 0.5 * (tlo + thi) } else { t };
-        v = [p[0] + t * d[0], p[1] + t * d[1]];
-        active = [k, a];
+    }
+    let mut from = 0;
+    while let Some(k) = rows.first_violated(from, v, tol) {
+        (v, active) = on_line(c, rows, k, &hints[..nh], k, lo, hi, tol)?;
+        from = k + 1;
     }
     Some(LpSolution { v, active })
+}
+
+/// The optimum on the boundary line of row `k` (which the current optimum violates), subject
+/// to the box, the rows `hints` and the rows `0..before_rows`: a one-variable program.
+#[allow(clippy::too_many_arguments)]
+#[inline]
+fn on_line<R: HalfPlanes + ?Sized>(
+    c: [f64; 2],
+    rows: &R,
+    k: usize,
+    hints: &[usize],
+    before_rows: usize,
+    lo: [f64; 2],
+    hi: [f64; 2],
+    tol: f64,
+) -> Option<([f64; 2], [usize; 2])> {
+    let r = rows.get(k);
+    let rn = r[0].abs() + r[1].abs();
+    // New optimum on the line r0·v0 + r1·v1 = r2: v = p + t·d.
+    let f = r[2] / (r[0] * r[0] + r[1] * r[1]);
+    let p = [r[0] * f, r[1] * f];
+    let d = [-r[1], r[0]];
+    // Parameter tolerance matching a distance tol along the line.
+    let ttol = tol / rn;
+    let mut tlo = f64::NEG_INFINITY;
+    let mut thi = f64::INFINITY;
+    let mut alo = BOX;
+    let mut ahi = BOX;
+    // Box sides.
+    for q in 0..2 {
+        if d[q].abs() > 1e-14 * rn {
+            let t1 = (lo[q] - p[q]) / d[q];
+            let t2 = (hi[q] - p[q]) / d[q];
+            let (a, b) = if d[q] > 0.0 { (t1, t2) } else { (t2, t1) };
+            if a > tlo {
+                tlo = a;
+            }
+            if b < thi {
+                thi = b;
+            }
+        } else if p[q] < lo[q] - tol || p[q] > hi[q] + tol {
+            return None;
+        }
+    }
+    // Every row processed before this one.
+    let prev = hints.iter().copied().chain(0..before_rows);
+    for j in prev {
+        let s = rows.get(j);
+        let sn = s[0].abs() + s[1].abs();
+        let ad = s[0] * d[0] + s[1] * d[1];
+        let rhs = s[2] - (s[0] * p[0] + s[1] * p[1]);
+        if ad.abs() <= 1e-14 * sn * rn {
+            if rhs < -tol * sn {
+                return None;
+            }
+        } else if ad > 0.0 {
+            let t = rhs / ad;
+            if t < thi {
+                thi = t;
+                ahi = j;
+            }
+        } else {
+            let t = rhs / ad;
+            if t > tlo {
+                tlo = t;
+                alo = j;
+            }
+        }
+    }
+    if tlo > thi + ttol {
+        return None;
+    }
+    let cd = c[0] * d[0] + c[1] * d[1];
+    let (t, a) = if cd > 0.0 { (thi, ahi) } else { (tlo, alo) };
+    // When tlo and thi cross by less than tol, take their midpoint.
+    let t = if tlo > thi { 0.5 * (tlo + thi) } else { t };
+    Some(([p[0] + t * d[0], p[1] + t * d[1]], [k, a]))
 }
 
 #[cfg(test)]

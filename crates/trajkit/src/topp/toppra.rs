@@ -263,6 +263,8 @@ struct Workspace {
     xlo: Vec<f64>,
     xhi: Vec<f64>,
     xhi_by: Vec<usize>,
+    /// Whether every row at the gridpoint holds at rest (right-hand side ≥ 0).
+    rests: Vec<bool>,
     nc: usize,
     /// Controllable sets.
     klo: Vec<f64>,
@@ -293,19 +295,39 @@ impl Workspace {
         self.q.resize(n, 0.0);
         self.dq.resize(n, 0.0);
         self.ddq.resize(n, 0.0);
-        self.rows.clear();
         self.off.clear();
         self.xlo.clear();
         self.xhi.clear();
         self.xhi_by.clear();
+        self.rests.clear();
+        self.rests.reserve(grid.len());
+        self.off.reserve((nc + 1) * grid.len());
+        self.xlo.reserve(grid.len());
+        self.xhi.reserve(grid.len());
+        self.xhi_by.reserve(grid.len());
+        // The constraints append straight to the workspace's rows (no copy per gridpoint):
+        // lend them to the collector for the pass and take them back afterwards.
+        let own = std::mem::replace(&mut self.cr.rows, std::mem::take(&mut self.rows));
+        self.cr.rows.clear();
+        let result = self.evaluate_rows(path, cons, grid);
+        self.rows = std::mem::replace(&mut self.cr.rows, own);
+        result
+    }
+
+    fn evaluate_rows<P: Path>(
+        &mut self,
+        path: &P,
+        cons: &[Box<dyn Constraint + '_>],
+        grid: &[f64],
+    ) -> Result<()> {
+        let nc = cons.len();
         let need_q = cons.iter().any(|c| c.uses_position());
         self.q.iter_mut().for_each(|v| *v = 0.0);
         for &s in grid {
             if need_q {
                 path.eval(s, 0, &mut self.q);
             }
-            path.eval(s, 1, &mut self.dq);
-            path.eval(s, 2, &mut self.ddq);
+            path.eval_derivatives(s, &mut self.dq, &mut self.ddq);
             check_path_values(s, &self.q, &self.dq, &self.ddq)?;
             let p = PathPoint {
                 s,
@@ -314,9 +336,10 @@ impl Workspace {
                 ddq: &self.ddq,
             };
             let (mut lo, mut hi, mut by) = (0.0f64, f64::INFINITY, usize::MAX);
+            let first = self.cr.rows.len();
             for (k, c) in cons.iter().enumerate() {
-                self.off.push(self.rows.len());
-                self.cr.clear();
+                self.off.push(self.cr.rows.len());
+                self.cr.clear_bounds();
                 c.write(&p, &mut self.cr);
                 if let Some(why) = self.cr.broken {
                     return Err(Error::Infeasible(format!(
@@ -324,21 +347,19 @@ impl Workspace {
                         c.name()
                     )));
                 }
-                self.rows.extend_from_slice(&self.cr.rows);
                 lo = lo.max(self.cr.x_min);
                 if self.cr.x_max < hi {
                     hi = self.cr.x_max;
                     by = k;
                 }
             }
-            self.off.push(self.rows.len());
+            self.rests
+                .push(self.cr.rows[first..].iter().all(|r| r[2] >= 0.0));
+            self.off.push(self.cr.rows.len());
             if self.off.len() == nc + 1 {
                 // Every gridpoint usually has as many rows as the first: reserve once.
-                self.rows.reserve(self.rows.len() * grid.len());
-                self.off.reserve((nc + 1) * grid.len());
-                self.xlo.reserve(grid.len());
-                self.xhi.reserve(grid.len());
-                self.xhi_by.reserve(grid.len());
+                let per_point = self.cr.rows.len();
+                self.cr.rows.reserve(per_point * grid.len());
             }
             if lo > hi * (1.0 + 1e-12) {
                 return Err(Error::Infeasible(format!(
@@ -419,25 +440,26 @@ impl Workspace {
         for i in (0..n).rev() {
             let delta = grid[i + 1] - grid[i];
             let (klo, khi) = (self.klo[i + 1], self.khi[i + 1]);
-            let stage = self.stage(i, delta, disc, None, khi, klo);
+            let tol = 1e-10 * (1.0 + khi);
+            let stage = &self.stage(i, delta, disc, None, khi, klo);
             let xhi = self.xhi[i].min(X_BIG);
             let xlo = self.xlo[i];
             let lo = [(klo - xhi) / (2.0 * delta), xlo];
             let hi = [(khi - xlo) / (2.0 * delta), xhi];
-            let tol = 1e-10 * (1.0 + khi);
-            let best = lp::maximize([0.0, 1.0], &stage, lo, hi, hint_max, tol);
+            let best = lp::maximize([0.0, 1.0], stage, lo, hi, hint_max, tol);
             // The lowest controllable velocity is often zero (rest is admissible with u = 0):
             // skip the second program then.
             let rest_ok = xlo == 0.0
                 && klo <= 0.0
-                && stage.here.iter().chain(stage.next).all(|r| r[2] >= 0.0);
+                && self.rests[i]
+                && (disc == Discretization::Collocation || self.rests[i + 1]);
             let worst = if rest_ok {
                 best.map(|_| lp::LpSolution {
                     v: [0.0, 0.0],
                     active: hint_min,
                 })
             } else {
-                best.and_then(|_| lp::maximize([0.0, -1.0], &stage, lo, hi, hint_min, tol))
+                best.and_then(|_| lp::maximize([0.0, -1.0], stage, lo, hi, hint_min, tol))
             };
             let (best, worst) = match (best, worst) {
                 (Some(b), Some(w)) => (b, w),
@@ -729,9 +751,36 @@ impl lp::HalfPlanes for Stage<'_> {
             [-self.two_delta, -1.0, -self.klo]
         }
     }
+    /// Scans the two row slices directly (the solver's hot loop).
+    #[inline]
+    fn first_violated(&self, from: usize, v: [f64; 2], tol: f64) -> Option<usize> {
+        let h = self.here.len();
+        let n = self.next.len();
+        if from < h {
+            for (j, &r) in self.here[from..].iter().enumerate() {
+                if lp::violates(r, v, tol) {
+                    return Some(from + j);
+                }
+            }
+        }
+        let start = from.max(h) - h;
+        if start < n {
+            for (j, &[a, b, g]) in self.next[start..].iter().enumerate() {
+                if lp::violates([a + self.two_delta * b, b, g], v, tol) {
+                    return Some(h + start + j);
+                }
+            }
+        }
+        (from.max(h + n)..h + n + 2).find(|&k| lp::violates(self.get(k), v, tol))
+    }
 }
 
 fn check_path_values(s: f64, q: &[f64], dq: &[f64], ddq: &[f64]) -> Result<()> {
+    // x·0 is 0 for finite x and NaN otherwise: one branch-free pass in the common case.
+    let probe = |v: &[f64]| v.iter().fold(0.0, |acc, &x| acc + x * 0.0);
+    if probe(q) + probe(dq) + probe(ddq) == 0.0 {
+        return Ok(());
+    }
     for (name, v) in [
         ("position", q),
         ("first derivative", dq),
@@ -746,4 +795,51 @@ fn check_path_values(s: f64, q: &[f64], dq: &[f64], ddq: &[f64]) -> Result<()> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::SplitMix64;
+
+    /// The stage's direct row scan finds the same violated rows as the generic one, so the
+    /// programs solved through it give the same optimum as on the materialized rows.
+    #[test]
+    fn stage_scan_equals_materialized_rows() {
+        let mut rng = SplitMix64::new(5);
+        for _ in 0..2000 {
+            let row = |rng: &mut SplitMix64| {
+                [
+                    rng.uniform(-3.0, 3.0),
+                    rng.uniform(-3.0, 3.0),
+                    rng.uniform(-1.0, 4.0),
+                ]
+            };
+            let here: Vec<[f64; 3]> = (0..rng.below(6)).map(|_| row(&mut rng)).collect();
+            let next: Vec<[f64; 3]> = (0..rng.below(6)).map(|_| row(&mut rng)).collect();
+            let stage = Stage {
+                here: &here,
+                next: &next,
+                two_delta: rng.uniform(0.001, 0.5),
+                khi: rng.uniform(0.5, 3.0),
+                klo: rng.uniform(-0.5, 0.4),
+            };
+            let rows: Vec<[f64; 3]> = (0..lp::HalfPlanes::count(&stage))
+                .map(|k| lp::HalfPlanes::get(&stage, k))
+                .collect();
+            let v = [rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0)];
+            for from in 0..=rows.len() {
+                assert_eq!(
+                    lp::HalfPlanes::first_violated(&stage, from, v, 1e-10),
+                    lp::HalfPlanes::first_violated(rows.as_slice(), from, v, 1e-10)
+                );
+            }
+            let hint = [rng.below(rows.len() as u64 + 1) as usize, BOX];
+            for c in [[0.0, 1.0], [0.0, -1.0], [1.0, 0.3]] {
+                let a = lp::maximize(c, &stage, [-5.0, 0.0], [5.0, 5.0], hint, 1e-10);
+                let b = lp::maximize(c, rows.as_slice(), [-5.0, 0.0], [5.0, 5.0], hint, 1e-10);
+                assert_eq!(a, b);
+            }
+        }
+    }
 }
