@@ -336,18 +336,25 @@ pub fn plan_waypoints(
         if let Some(model) = &options.torque {
             problem = problem.constraint(JointTorque::from_limits(model.clone(), limits)?)?;
         }
-        let traj = problem.options(opts).solve().map_err(|e| match e {
-            Error::Infeasible(m) => Error::Infeasible(format!(
-                "path piece {} (waypoints {} to {}): {m}",
-                p + 1,
-                kept[c[0]],
-                kept[c[1]]
-            )),
-            e => e,
-        })?;
+        let traj = problem
+            .options(opts)
+            .solve()
+            .map_err(|e| in_piece(e, p, kept[c[0]], kept[c[1]]))?;
         pieces.push(traj);
     }
     Sequence::new(pieces)
+}
+
+/// Says which piece (0-based `p`, between input waypoints `from` and `to`) an infeasibility
+/// belongs to; other errors pass through.
+pub(crate) fn in_piece(e: Error, p: usize, from: usize, to: usize) -> Error {
+    match e {
+        Error::Infeasible(m) => Error::Infeasible(format!(
+            "path piece {} (waypoints {from} to {to}): {m}",
+            p + 1
+        )),
+        e => e,
+    }
 }
 
 fn piece_path(w: &[f64], dim: usize, kind: PathKind) -> Result<PiecePath> {
