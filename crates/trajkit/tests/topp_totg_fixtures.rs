@@ -16,9 +16,9 @@
 mod topp_common;
 
 use serde_json::Value;
-use topp_common::{floats, worst_ratios};
+use topp_common::{floats, worst_for};
 use trajkit::topp::{plan_totg, TotgOptions};
-use trajkit::{Limits, Order, Trajectory};
+use trajkit::{Limits, Trajectory};
 
 fn problems() -> Vec<Value> {
     let p = concat!(
@@ -32,16 +32,6 @@ fn problems() -> Vec<Value> {
 #[test]
 fn trajkit_matches_or_beats_the_original_totg() {
     let lim = Limits::preset("panda").unwrap();
-    let (vlo, vhi): (Vec<f64>, Vec<f64>) = lim
-        .joints()
-        .iter()
-        .map(|j| j.range(Order::Velocity))
-        .unzip();
-    let (alo, ahi): (Vec<f64>, Vec<f64>) = lim
-        .joints()
-        .iter()
-        .map(|j| j.range(Order::Acceleration))
-        .unzip();
     let (mut agree, mut faster, mut failed, mut slower) = (0, 0, 0, 0);
     for p in problems() {
         let name = p["name"].as_str().unwrap();
@@ -56,7 +46,7 @@ fn trajkit_matches_or_beats_the_original_totg() {
             ..Default::default()
         };
         let traj = plan_totg(&w, 7, &lim, &o).unwrap_or_else(|e| panic!("{name}: {e}"));
-        let r = worst_ratios(&traj, &vlo, &vhi, &alo, &ahi, 1e-3);
+        let r = worst_for(&traj, &lim);
         for v in [r.velocity, r.acceleration, r.fd_velocity, r.fd_acceleration] {
             assert!(v <= 1.0 + 1e-6, "{name}: ratio {v}");
         }

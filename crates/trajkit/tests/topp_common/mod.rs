@@ -60,6 +60,21 @@ fn ratio(v: f64, lo: f64, hi: f64) -> f64 {
     }
 }
 
+/// [`worst_ratios`] against the velocity and acceleration limits of `lim`, 1 ms samples.
+pub fn worst_for<T: Trajectory>(traj: &T, lim: &trajkit::Limits) -> Worst {
+    let (vlo, vhi): (Vec<f64>, Vec<f64>) = lim
+        .joints()
+        .iter()
+        .map(|j| j.range(Order::Velocity))
+        .unzip();
+    let (alo, ahi): (Vec<f64>, Vec<f64>) = lim
+        .joints()
+        .iter()
+        .map(|j| j.range(Order::Acceleration))
+        .unzip();
+    worst_ratios(traj, &vlo, &vhi, &alo, &ahi, 1e-3)
+}
+
 pub fn worst_ratios<T: Trajectory>(
     traj: &T,
     vlo: &[f64],
