@@ -29,8 +29,9 @@
 //!    point. Where the constraints do not depend on s (straight segments of
 //!    [`crate::topp::BlendedPath`], [`crate::topp::LinearPath`]), this is the closed-form
 //!    trapezoid/triangle.
-//! 3. **Event check**: every step is checked at interior points; steps where a constraint is
-//!    exceeded by more than 3e-7 relative are cut (as many parts as the excess calls for,
+//! 3. **Event check**: every step is checked at interior points (or, where the path gives one,
+//!    by a rigorous analytic bound, as on the arcs of [`crate::topp::BlendedPath`]); steps where
+//!    a constraint is exceeded by more than 3e-7 relative are cut (as many parts as the excess calls for,
 //!    the excess shrinking with the square of the step) and the problem integrated again, at
 //!    most [`crate::topp::toppra::MAX_REFINE_ROUNDS`] times and up to
 //!    [`crate::topp::toppra::MAX_REFINED_INTERVALS`] knots (TOPP-RA's caps and check points); beyond that the solver returns
@@ -65,6 +66,11 @@ use super::toppra::{
 use super::Toppra;
 use crate::error::{Error, Result};
 use crate::Path;
+
+/// Largest rigorous bound on the excess between knots that is accepted without cutting: a
+/// bound holds everywhere between the knots, and the knots themselves hold to 1e-9, so the
+/// limits hold within 1e-6 relative.
+const BOUND_TOL: f64 = 9e-7;
 
 /// Stand-in for "no finite bound" on x.
 const X_BIG: f64 = 1e30;
@@ -275,7 +281,8 @@ impl Rows {
 /// path's geometry: called with the step's ends `s0`, `s1`, its constant u and the larger x
 /// at its ends; returns an upper bound of the relative excess between the knots beyond what
 /// holds at the knots (0 where the constraints do not vary along the step), or `∞` when
-/// unknown (the step is then checked by sampling).
+/// unknown (the step is then checked by sampling). A finite bound must shrink with the square
+/// of the step: steps above the tolerance are cut by it without sampling.
 pub(crate) type StepBound<'a> = &'a dyn Fn(f64, f64, f64, f64) -> f64;
 
 /// Phase-plane integration on `knots` (strictly increasing, containing every breakpoint of
@@ -333,7 +340,17 @@ pub(crate) fn integrate<P: Path + ?Sized>(
                 let (k0, k1) = (knots[i], knots[i + 1]);
                 let xa = x[j] + 2.0 * u * (k0 - s[j]);
                 let xb = x[j] + 2.0 * u * (k1 - s[j]);
-                if b(k0, k1, u, xa.max(xb).max(0.0)) <= CHECK_TOL {
+                let bound = b(k0, k1, u, xa.max(xb).max(0.0));
+                if bound <= BOUND_TOL {
+                    continue;
+                }
+                if bound.is_finite() {
+                    // A rigorous bound that shrinks with the square of the step: cut by it,
+                    // no sampling needed.
+                    if bound > worst.0 {
+                        worst = (bound, s[j]);
+                    }
+                    parts[i] = parts[i].max(parts_for(bound * CHECK_TOL / BOUND_TOL));
                     continue;
                 }
             }
@@ -350,13 +367,7 @@ pub(crate) fn integrate<P: Path + ?Sized>(
                 if e > worst.0 {
                     worst = (e, s[j]);
                 }
-                let m = (e / (0.5 * CHECK_TOL)).sqrt().ceil();
-                let m = if m.is_finite() {
-                    (m as usize).clamp(2, 64)
-                } else {
-                    64
-                };
-                parts[i] = parts[i].max(m);
+                parts[i] = parts[i].max(parts_for(e));
             }
         }
         if worst.0 == 0.0 {
@@ -387,6 +398,17 @@ pub(crate) fn integrate<P: Path + ?Sized>(
         next.push(knots[n]);
         knots = next;
         round += 1;
+    }
+}
+
+/// Into how many equal parts to cut a step whose excess `e` shrinks with the square of its
+/// length, to bring it a few times below the tolerance.
+fn parts_for(e: f64) -> usize {
+    let m = (e / (0.5 * CHECK_TOL)).sqrt().ceil();
+    if m.is_finite() {
+        (m as usize).clamp(2, 64)
+    } else {
+        64
     }
 }
 

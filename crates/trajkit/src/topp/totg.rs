@@ -10,9 +10,13 @@
 //!   deceleration) curves are straight lines in (s, ṡ²): the switch between them is located in
 //!   closed form. No step size, no check needed: exact.
 //! - **arcs**: the limit curves vary with the angle; the arc is cut into steps of at most
-//!   [`TotgOptions::arc_step`] radians, every step is checked between its knots and cut where
-//!   a limit is exceeded (event location by bisection of the excess), so the limits hold
-//!   between knots without depending on a lucky step.
+//!   [`TotgOptions::arc_step`] radians, and every step is bounded analytically between its
+//!   knots: on an arc of radius r each joint moves as A_j·cos(θ + φ_j), so the second
+//!   derivatives in θ of its acceleration σ′_j·s̈ + σ″_j·ṡ² and of its squared velocity
+//!   σ′_j²·ṡ² are at most A_j(5|s̈| + ṡ²/r) and A_j²(4|s̈|·r + 2ṡ²), and the excess over the
+//!   chord between two knots at most Δθ²/8 of that. Steps whose bound exceeds 9e-7 of the
+//!   limit are cut (event location without sampling) and the arc integrated again, so the
+//!   limits hold between knots by construction, not by a lucky step.
 //! - **switching points** of every kind are where backward integrations start: path
 //!   discontinuities (every segment/arc junction, where σ″ jumps; the knot carries the
 //!   constraints of both sides, so backward integration stops there), tangent points of the
@@ -33,9 +37,9 @@
 //! The result is a [`Profile`] (ṡ² linear in s between knots) composed exactly with the path:
 //! - on straight segments the limits hold exactly (up to rounding) and the timing is the
 //!   closed-form optimum (trapezoid / triangle in ṡ);
-//! - on arcs the limits hold at knots within 1e-9 relative and between knots within 3e-7
-//!   relative at the checked points (the tests check 1e-6 on 1 ms samples, pointwise and by
-//!   finite differences);
+//! - on arcs the limits hold at knots within 1e-9 relative and everywhere between knots
+//!   within 1e-6 relative (the analytic bound above; the tests check 1e-6 on 1 ms samples,
+//!   pointwise and by finite differences);
 //! - the duration equals TOPP-RA's on the same path at fine gridpoints within 0.01% (tested).
 //!
 //! ```
@@ -70,11 +74,11 @@ pub struct TotgOptions {
     pub start_velocity: f64,
     /// Path velocity ṡ at the end (≥ 0). Default 0.
     pub end_velocity: f64,
-    /// Largest angle (radians) of one integration step on an arc. The limits hold whatever
-    /// the step (steps are checked and cut); the duration exceeds the continuous optimum by
-    /// an amount proportional to the step (piecewise-constant s̈ must stay below the limit
-    /// curve): about 0.009% at the default 5e-4 on trajkit's default Panda path, 0.035% at
-    /// 5e-3 (measured; see notes/totg.md), with ten times fewer knots.
+    /// Largest angle (radians) of an initial integration step on an arc. Steps are then cut
+    /// where the analytic bound on the excess between knots calls for it, which also places
+    /// knots where the profile runs close to the limits (where the duration's discretization
+    /// loss comes from). Default 0.02: on trajkit's default Panda path the duration is within
+    /// 0.005% of the optimum (measured; see notes/totg.md).
     pub arc_step: f64,
 }
 
@@ -84,7 +88,7 @@ impl Default for TotgOptions {
             max_deviation: 0.1,
             start_velocity: 0.0,
             end_velocity: 0.0,
-            arc_step: 5e-4,
+            arc_step: 0.02,
         }
     }
 }
@@ -201,24 +205,33 @@ impl Totg {
         let breaks = self.path.breakpoints();
         let path = &self.path;
         let left = |s: f64, order: usize, out: &mut [f64]| path.eval_left(s, order, out);
+        // Per piece: r and the largest amplitude-to-limit ratios over the joints (0 on lines).
         let amplitudes = path.arc_amplitudes();
+        let n = self.vmax.len();
+        let per_piece: Vec<[f64; 3]> = pieces
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                let amp = &amplitudes[k * n..(k + 1) * n];
+                let (mut acc, mut vel) = (0.0f64, 0.0f64);
+                for j in 0..n {
+                    acc = acc.max(amp[j] / self.amin[j]);
+                    vel = vel.max(amp[j] * amp[j] / self.vmax[j]);
+                }
+                [p.2, acc, vel]
+            })
+            .collect();
         let bound = |s0: f64, s1: f64, u: f64, x: f64| -> f64 {
-            let k = crate::traj::find_piece(&breaks, 0.5 * (s0 + s1));
-            let r = pieces[k].2;
+            let [r, acc, vel] = per_piece[crate::traj::find_piece(&breaks, 0.5 * (s0 + s1))];
             if r.is_infinite() {
                 return 0.0;
             }
             let dth = (s1 - s0) / r;
-            let amp = &amplitudes[k * self.vmax.len()..(k + 1) * self.vmax.len()];
-            let mut worst = 0.0f64;
-            for j in 0..amp.len() {
-                // Second derivatives in θ of σ′_j·u + σ″_j·x(θ) and of x(θ)·σ′_j², divided by
-                // the limit; the excess over the chord between the knots is at most Δθ²/8 of it.
-                let acc = amp[j] * (5.0 * u.abs() + x / r) / self.amin[j];
-                let vel = amp[j] * amp[j] * (4.0 * u.abs() * r + 2.0 * x) / self.vmax[j];
-                worst = worst.max(acc).max(vel);
-            }
-            worst * dth * dth / 8.0
+            // |second derivative in θ| of σ′_j·u + σ″_j·x(θ) is at most A_j(5|u| + x/r), of
+            // x(θ)·σ′_j² at most A_j²(4|u|r + 2x) (A_j: the joint's amplitude on the arc);
+            // divided by the limit. The excess over the chord between knots is Δθ²/8 of it.
+            let u = u.abs();
+            (acc * (5.0 * u + x / r)).max(vel * (4.0 * u * r + 2.0 * x)) * dth * dth / 8.0
         };
         integrate(
             path,
