@@ -33,6 +33,12 @@ fn slow_panda() -> Limits {
 
 fn bench(c: &mut Criterion) {
     let w = common::standard_7wp_waypoints();
+    // trajkit's embedded default Panda path (8 waypoints).
+    let default: Vec<f64> = include_str!("../../trajkit-cli/src/default_waypoints.csv")
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with("panda"))
+        .flat_map(|l| l.split(',').map(|v| v.trim().parse::<f64>().unwrap()))
+        .collect();
     let panda = Limits::preset("panda").unwrap();
     let slow = slow_panda();
     let coarse = TotgOptions {
@@ -45,11 +51,17 @@ fn bench(c: &mut Criterion) {
         ("panda_7wp_dev0.1", &panda, TotgOptions::default()),
         ("panda_7wp_dev0.1_10x_slower", &slow, TotgOptions::default()),
         ("panda_7wp_dev0.1_arc_step_5e-3", &panda, coarse),
+        ("default_path_dev0.1", &panda, TotgOptions::default()),
     ] {
-        let t = plan_totg(&w, 7, lim, &opts).unwrap().duration();
+        let w = if name.starts_with("default") {
+            &default
+        } else {
+            &w
+        };
+        let t = plan_totg(w, 7, lim, &opts).unwrap().duration();
         eprintln!("{name}: duration {t:.6} s");
         g.bench_function(name, |b| {
-            b.iter(|| black_box(plan_totg(&w, 7, lim, &opts).unwrap().duration()))
+            b.iter(|| black_box(plan_totg(w, 7, lim, &opts).unwrap().duration()))
         });
     }
     g.finish();
