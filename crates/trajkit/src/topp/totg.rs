@@ -13,8 +13,8 @@
 //!   [`TotgOptions::arc_step`] radians, and every step is bounded analytically between its
 //!   knots: on an arc of radius r each joint moves as A_j·cos(θ + φ_j), so the second
 //!   derivatives in θ of its acceleration σ′_j·s̈ + σ″_j·ṡ² and of its squared velocity
-//!   σ′_j²·ṡ² are at most A_j(5|s̈| + ṡ²/r) and A_j²(4|s̈|·r + 2ṡ²), and the excess over the
-//!   chord between two knots at most Δθ²/8 of that. Steps whose bound exceeds 9e-7 of the
+//!   σ′_j²·ṡ² are at most A_j·√(25s̈² + ṡ⁴/r²) and 2A_j²·√(4s̈²r² + ṡ⁴), and the excess over
+//!   the chord between two knots at most Δθ²/8 of that. Steps whose bound exceeds 9e-7 of the
 //!   limit are cut (event location without sampling) and the arc integrated again, so the
 //!   limits hold between knots by construction, not by a lucky step.
 //! - **switching points** of every kind are where backward integrations start: path
@@ -227,11 +227,14 @@ impl Totg {
                 return 0.0;
             }
             let dth = (s1 - s0) / r;
-            // |second derivative in θ| of σ′_j·u + σ″_j·x(θ) is at most A_j(5|u| + x/r), of
-            // x(θ)·σ′_j² at most A_j²(4|u|r + 2x) (A_j: the joint's amplitude on the arc);
-            // divided by the limit. The excess over the chord between knots is Δθ²/8 of it.
-            let u = u.abs();
-            (acc * (5.0 * u + x / r)).max(vel * (4.0 * u * r + 2.0 * x)) * dth * dth / 8.0
+            // With σ′_j = A_j·cos ψ, σ″_j = −(A_j/r)·sin ψ (ψ = θ + φ_j) and dx/dθ = 2ur, the
+            // second derivative in θ of σ′_j·u + σ″_j·x(θ) is A_j(−5u·cos ψ + (x/r)·sin ψ),
+            // at most A_j·√(25u² + x²/r²); that of x(θ)·σ′_j² is −A_j²(4ur·sin 2ψ + 2x·cos 2ψ),
+            // at most 2A_j²·√(4u²r² + x²). Divided by the limit; the excess over the chord
+            // between two knots is at most Δθ²/8 of it.
+            let a = acc * (25.0 * u * u + x * x / (r * r)).sqrt();
+            let v = vel * 2.0 * (4.0 * u * u * r * r + x * x).sqrt();
+            a.max(v) * dth * dth / 8.0
         };
         integrate(
             path,
