@@ -60,7 +60,7 @@ use super::lp::{self, BOX};
 use super::parametrized::{Parametrized, Profile};
 use super::rescale::Retimed;
 use super::toppra::{
-    check_path_values, largest_step, Stage, MAX_REFINED_INTERVALS as MAX_KNOTS,
+    check_path_values, largest_step, CleanSteps, Stage, MAX_REFINED_INTERVALS as MAX_KNOTS,
     MAX_REFINE_ROUNDS as MAX_ROUNDS, REFINE_POINTS as CHECK_POINTS, REFINE_TOL as CHECK_TOL,
 };
 use super::Toppra;
@@ -312,6 +312,7 @@ pub(crate) fn integrate<P: Path + ?Sized>(
     }
     let mut sc = Scratch::new(path.dim());
     let mut rows = Rows::default();
+    let mut clean = CleanSteps::default();
     let mut round = 0;
     loop {
         rows.evaluate(path, left, cons, &knots, breaks, &mut sc)?;
@@ -326,6 +327,7 @@ pub(crate) fn integrate<P: Path + ?Sized>(
             path, cons, &knots, breaks, &rows, &constant, velocities, &mut sc,
         )?;
         // Event check between knots.
+        clean.start_round();
         let n = knots.len() - 1;
         let mut parts = vec![1usize; n];
         let mut worst = (0.0f64, 0.0f64);
@@ -354,6 +356,10 @@ pub(crate) fn integrate<P: Path + ?Sized>(
                     continue;
                 }
             }
+            let step = [s[j], s[j + 1], x[j], x[j + 1]];
+            if clean.unchanged(step) {
+                continue;
+            }
             let mut e = CHECK_TOL;
             for f in CHECK_POINTS {
                 let si = s[j] + f * d;
@@ -368,6 +374,8 @@ pub(crate) fn integrate<P: Path + ?Sized>(
                     worst = (e, s[j]);
                 }
                 parts[i] = parts[i].max(parts_for(e));
+            } else {
+                clean.mark(step);
             }
         }
         if worst.0 == 0.0 {

@@ -283,10 +283,8 @@ struct Workspace {
     klo: Vec<f64>,
     khi: Vec<f64>,
     cr: ConstraintRows,
-    /// Intervals found within the limits by the last refinement check: (s_i, s_{i+1}, x_i,
-    /// x_{i+1}), in grid order. An interval unchanged since (same ends, x within 1e-9
-    /// relative) is not checked again.
-    clean: Vec<[f64; 4]>,
+    /// Intervals found within the limits by the last refinement check.
+    clean: CleanSteps,
     q: Vec<f64>,
     dq: Vec<f64>,
     ddq: Vec<f64>,
@@ -607,23 +605,10 @@ impl Workspace {
         // For each interval, the number of equal parts to cut it into (1: leave it).
         let mut split: Vec<usize> = vec![1; n];
         let mut any = false;
-        let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
-        let previous = std::mem::take(&mut self.clean);
-        let mut p = 0;
+        self.clean.start_round();
         for i in 0..n {
-            while p < previous.len() && previous[p][0] < grid[i] {
-                p += 1;
-            }
-            if p < previous.len() {
-                let c = previous[p];
-                if c[0] == grid[i]
-                    && c[1] == grid[i + 1]
-                    && same(c[2], x[i])
-                    && same(c[3], x[i + 1])
-                {
-                    self.clean.push([grid[i], grid[i + 1], x[i], x[i + 1]]);
-                    continue;
-                }
+            if self.clean.unchanged([grid[i], grid[i + 1], x[i], x[i + 1]]) {
+                continue;
             }
             let delta = grid[i + 1] - grid[i];
             let u = (x[i + 1] - x[i]) / (2.0 * delta);
@@ -665,7 +650,7 @@ impl Workspace {
                     64
                 };
             } else {
-                self.clean.push([grid[i], grid[i + 1], x[i], x[i + 1]]);
+                self.clean.mark([grid[i], grid[i + 1], x[i], x[i + 1]]);
             }
         }
         let _ = disc;
@@ -688,6 +673,45 @@ impl Workspace {
         let changed = next.len() != grid.len();
         *grid = next;
         changed
+    }
+}
+
+/// Steps (s_i, s_{i+1}, x_i, x_{i+1}) found within the limits by the last check between
+/// gridpoints, in path order. A step unchanged since (same ends, x within 1e-9 relative) is
+/// not checked again.
+#[derive(Default)]
+pub(crate) struct CleanSteps {
+    previous: Vec<[f64; 4]>,
+    current: Vec<[f64; 4]>,
+    p: usize,
+}
+
+impl CleanSteps {
+    /// Starts a check round: the steps marked in the last round become the reference.
+    pub(crate) fn start_round(&mut self) {
+        self.previous = std::mem::take(&mut self.current);
+        self.p = 0;
+    }
+
+    /// Whether `step` was found clean in the last round (it is then marked clean again).
+    /// Steps must be asked in path order.
+    pub(crate) fn unchanged(&mut self, step: [f64; 4]) -> bool {
+        let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
+        while self.p < self.previous.len() && self.previous[self.p][0] < step[0] {
+            self.p += 1;
+        }
+        if let Some(c) = self.previous.get(self.p) {
+            if c[0] == step[0] && c[1] == step[1] && same(c[2], step[2]) && same(c[3], step[3]) {
+                self.current.push(step);
+                return true;
+            }
+        }
+        false
+    }
+
+    /// Records `step` as found within the limits.
+    pub(crate) fn mark(&mut self, step: [f64; 4]) {
+        self.current.push(step);
     }
 }
 
