@@ -111,12 +111,14 @@ pub struct PlanArgs {
     /// Time-parameterization method.
     #[arg(long, value_enum, default_value = "toppra")]
     pub method: Method,
-    /// Path through the waypoints (--method toppra). The robot stops where the path reverses
-    /// exactly (and at every corner of a linear path).
+    /// Path through the waypoints (--method toppra, ni; totg blends straight segments instead,
+    /// see --max-deviation). The robot stops where the path reverses exactly (and at every
+    /// corner of a linear path).
     #[arg(long, value_enum, default_value = "natural")]
     pub path: PathArg,
-    /// TOPP-RA gridpoints per rest-to-rest piece: an interval count, or `auto` (from a 1e-4
-    /// chord tolerance). Limits are also checked between gridpoints and the grid refined there.
+    /// TOPP-RA gridpoints (NI: initial knots) per rest-to-rest piece: an interval count, or
+    /// `auto` (from a 1e-4 chord tolerance). Limits are also checked between gridpoints and the
+    /// grid refined there.
     #[arg(long, value_name = "N|auto", default_value = "1000", value_parser = parse_gridpoints)]
     pub gridpoints: trajkit::topp::Gridpoints,
     /// With --method toppra or ni: keep the raw phase-plane result (piecewise-constant path
