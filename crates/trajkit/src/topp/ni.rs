@@ -640,6 +640,8 @@ fn sweep<P: Path + ?Sized>(
     out.s.push(knots[0]);
     out.x.push(x);
     let mut on_limit = false;
+    // Knot index and kind of the last switching point recorded.
+    let mut last_switch: Option<(usize, SwitchKind)> = None;
     for i in 0..n {
         let delta = knots[i + 1] - knots[i];
         let cap = (rows.xhi[i + 1][1].min(X_BIG) - x) / (2.0 * delta);
@@ -684,12 +686,18 @@ fn sweep<P: Path + ?Sized>(
         // starts (entry into a stretch on the limit curve).
         let touches = next >= back[i + 1] * (1.0 - 1e-12);
         if let (true, Bound::Limit(kind)) = (touches, bound[i + 1]) {
-            if !on_limit && i + 1 < n {
+            // A return to the limit curve two knots after leaving it, of the same kind, is the
+            // same switching point seen through the knots, not a new one.
+            let repeat = last_switch.is_some_and(|(k, what)| what == kind && i < k + 2);
+            if !on_limit && i + 1 < n && !repeat {
                 out.switching.push(SwitchingPoint {
                     s: knots[i + 1],
                     sd: next.sqrt(),
                     kind,
                 });
+            }
+            if !on_limit {
+                last_switch = Some((i + 1, kind));
             }
             on_limit = true;
         } else {
