@@ -26,17 +26,18 @@
 //! 2. **Forward integration** at u_max; where it meets the backward curve inside a step, the
 //!    crossing is located exactly (two straight lines in (s, x)) and becomes a knot, so the
 //!    switch from acceleration to deceleration happens at the right place, not at a grid
-//!    point. Where the constraints do not depend on s (straight segments of
-//!    [`crate::topp::BlendedPath`], [`crate::topp::LinearPath`]), this is the closed-form
-//!    trapezoid/triangle.
+//!    point. Where the caller knows the constraints do not vary along a step (TOTG's straight
+//!    segments of a [`crate::topp::BlendedPath`]), the step is solved in closed form
+//!    (accelerate, cruise on the velocity limit, decelerate: the exact trapezoid/triangle).
 //! 3. **Event check**: every step is checked at interior points (or, where the path gives one,
 //!    by a rigorous analytic bound, as on the arcs of [`crate::topp::BlendedPath`]); steps where
-//!    a constraint is exceeded by more than 3e-7 relative are cut (as many parts as the excess calls for,
-//!    the excess shrinking with the square of the step) and the problem integrated again, at
-//!    most [`crate::topp::toppra::MAX_REFINE_ROUNDS`] times and up to
-//!    [`crate::topp::toppra::MAX_REFINED_INTERVALS`] knots (TOPP-RA's caps and check points); beyond that the solver returns
-//!    [`Error::Infeasible`] saying how far the limits are exceeded: the work is bounded for
-//!    every input.
+//!    a constraint is exceeded by more than 3e-7 relative (bound: 9e-7) are cut (as many parts
+//!    as the excess calls for, the excess shrinking with the square of the step) and the
+//!    problem integrated again, at most [`crate::topp::toppra::MAX_REFINE_ROUNDS`] times and up
+//!    to [`crate::topp::toppra::MAX_REFINED_INTERVALS`] knots (TOPP-RA's caps and check
+//!    points); beyond that the solver returns [`Error::Infeasible`] saying how far the limits
+//!    are exceeded: the work is bounded for every input. Steps found clean and unchanged are
+//!    not checked again.
 //!
 //! The result is a [`Profile`] (x at knots, constant u between), evaluated exactly by
 //! [`crate::topp::Retimed`].
@@ -47,10 +48,11 @@
 //!
 //! # Precision contract
 //! - At every knot, every constraint holds for the step's u on both sides within 1e-9
-//!   relative (the LP tolerance); between knots, at the checked points, within 3e-7 relative
-//!   (the tests check 1e-6 on 1 ms samples, pointwise and by finite differences).
-//! - Where constraints are constant along a stretch of path, the result is exact there (no
-//!   check needed: the rows at both ends are the rows everywhere in between).
+//!   relative (the LP tolerance); between knots, at the checked points, within 3e-7 relative,
+//!   or everywhere within 9e-7 where an analytic bound is used (the tests check 1e-6 on 1 ms
+//!   samples, pointwise and by finite differences).
+//! - On steps whose constraints do not vary (TOTG's straight segments) the result is the
+//!   closed form, exact up to rounding.
 //! - The duration converges to the continuous optimum as the knots are refined; on the same
 //!   path it agrees with TOPP-RA within 0.1% (tested both ways).
 //! - Positive lower bounds on ṡ² from a user constraint are enforced at knots only.

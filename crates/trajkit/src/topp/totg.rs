@@ -31,7 +31,7 @@
 //! `max_deviation`) cannot be blended: [`plan_totg`] splits the waypoints there into
 //! rest-to-rest pieces played as a [`Sequence`] (the robot stops at that waypoint);
 //! [`BlendedPath::new`] refuses them with [`Error::Infeasible`]. The work is bounded for every input
-//! (refinement rounds and knots are capped, see [`crate::topp::ni::MAX_ROUNDS`]).
+//! (refinement rounds and knots are capped, see [`crate::topp::toppra::MAX_REFINE_ROUNDS`]).
 //!
 //! # Precision contract
 //! The result is a [`Profile`] (ṡ² linear in s between knots) composed exactly with the path:
