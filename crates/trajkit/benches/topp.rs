@@ -4,6 +4,8 @@
 //!
 //! Run: `cargo bench -p trajkit --bench topp`.
 
+mod common;
+
 use criterion::{criterion_group, BenchmarkId, Criterion};
 use std::hint::black_box;
 use trajkit::spline::CubicSpline;
@@ -11,23 +13,7 @@ use trajkit::topp::{Gridpoints, Options, Toppra};
 use trajkit::{Limits, Order, Trajectory};
 
 fn standard_path() -> CubicSpline {
-    let p = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/fixtures/topp/toppra_panda.json"
-    );
-    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
-    let prob = v["problems"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|p| p["name"] == "standard_7wp_natural_N1000")
-        .unwrap();
-    let wp: Vec<f64> = prob["waypoints"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .flat_map(|r| r.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()))
-        .collect();
+    let wp = common::standard_7wp_waypoints();
     let n = wp.len() / 7;
     let ss: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
     CubicSpline::natural(&ss, &wp, 7).unwrap()

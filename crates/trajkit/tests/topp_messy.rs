@@ -3,7 +3,7 @@
 mod topp_common;
 
 use std::time::Instant;
-use topp_common::worst_ratios;
+use topp_common::worst_for;
 use trajkit::topp::messy::{plan_waypoints, PathKind, PlanOptions};
 use trajkit::topp::{
     Gridpoints, InverseDynamics, JointAcceleration, JointTorque, JointVelocity, LinearPath,
@@ -16,17 +16,7 @@ fn limits3() -> Limits {
 }
 
 fn check_limits<T: Trajectory>(traj: &T, lim: &Limits) {
-    let (vlo, vhi): (Vec<f64>, Vec<f64>) = lim
-        .joints()
-        .iter()
-        .map(|j| j.range(Order::Velocity))
-        .unzip();
-    let (alo, ahi): (Vec<f64>, Vec<f64>) = lim
-        .joints()
-        .iter()
-        .map(|j| j.range(Order::Acceleration))
-        .unzip();
-    let w = worst_ratios(traj, &vlo, &vhi, &alo, &ahi, 1e-3);
+    let w = worst_for(traj, lim);
     let l = 1.0 + 1e-6;
     assert!(w.velocity <= l && w.acceleration <= l && w.fd_velocity <= l && w.fd_acceleration <= l);
 }

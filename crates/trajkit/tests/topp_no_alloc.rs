@@ -1,5 +1,5 @@
-//! TOPP-RA output, retimed paths, scaled trajectories and rest-to-rest sequences evaluate
-//! without allocating (counting global allocator, as in no_alloc.rs).
+//! TOPP-RA, TOTG and NI output, retimed paths, scaled trajectories and rest-to-rest sequences
+//! evaluate without allocating (counting global allocator, as in no_alloc.rs).
 
 mod alloc_counter;
 use alloc_counter::{allocations, exercise};
@@ -41,7 +41,20 @@ fn topp_outputs_evaluate_without_allocating() {
         },
     )
     .unwrap();
-    for tr in [&traj as &dyn Trajectory, &retimed, &scaled, &seq] {
+    let totg = trajkit::topp::plan_totg(&wp, 7, &lim, &Default::default()).unwrap();
+    let ni_opts = PlanOptions {
+        solver: trajkit::topp::messy::PieceSolver::Ni,
+        ..PlanOptions::default()
+    };
+    let ni = plan_waypoints(&wp, 7, &lim, &ni_opts).unwrap();
+    for tr in [
+        &traj as &dyn Trajectory,
+        &retimed,
+        &scaled,
+        &seq,
+        &totg,
+        &ni,
+    ] {
         let mut s = 0.0;
         let n = allocations(|| s = exercise(tr, 2000));
         assert!(s.is_finite());

@@ -20,6 +20,13 @@ pub enum Method {
     Toppra,
     /// Synchronized polynomial segments between waypoints, each as short as the limits allow.
     Poly,
+    /// Time-optimal trajectory generation (Kunz & Stilman): straight segments joined by circular
+    /// blends within --max-deviation, timed in the phase plane with exact velocity and
+    /// acceleration limits. The blended path is only C¹, so jerk is not bounded.
+    Totg,
+    /// Numerical integration in the phase plane (Bobrow / TOPP-NI) on the same spline path and
+    /// constraints as toppra (--path, --gridpoints as initial knots, --torque-limits).
+    Ni,
 }
 
 /// Geometric path through the waypoints for `--method toppra`.
@@ -92,7 +99,7 @@ pub enum ViaArg {
 /// Arguments of `trajkit plan`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "Examples:\n  trajkit plan                                  # embedded Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits robot.urdf --fill-from panda --out traj.json\n  trajkit plan --method poly --degree septic --via-velocity zero --rate 500 --plot traj.svg\n  trajkit plan --path linear --gridpoints auto\n  trajkit plan --waypoints path.csv --limits robot.urdf --torque-limits"
+    after_help = "Examples:\n  trajkit plan                                  # embedded Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits robot.urdf --fill-from panda --out traj.json\n  trajkit plan --method poly --degree septic --via-velocity zero --rate 500 --plot traj.svg\n  trajkit plan --path linear --gridpoints auto\n  trajkit plan --method totg --max-deviation 0.1 | trajkit check --limits panda\n  trajkit plan --waypoints path.csv --limits robot.urdf --torque-limits"
 )]
 pub struct PlanArgs {
     /// Waypoints: CSV (a row per waypoint, a column per joint, optional header) or JSON.
@@ -104,19 +111,21 @@ pub struct PlanArgs {
     /// Time-parameterization method.
     #[arg(long, value_enum, default_value = "toppra")]
     pub method: Method,
-    /// Path through the waypoints (--method toppra). The robot stops where the path reverses
-    /// exactly (and at every corner of a linear path).
+    /// Path through the waypoints (--method toppra, ni; totg blends straight segments instead,
+    /// see --max-deviation). The robot stops where the path reverses exactly (and at every
+    /// corner of a linear path).
     #[arg(long, value_enum, default_value = "natural")]
     pub path: PathArg,
-    /// TOPP-RA gridpoints per rest-to-rest piece: an interval count, or `auto` (from a 1e-4
-    /// chord tolerance). Limits are also checked between gridpoints and the grid refined there.
+    /// TOPP-RA gridpoints (NI: initial knots) per rest-to-rest piece: an interval count, or
+    /// `auto` (from a 1e-4 chord tolerance). Limits are also checked between gridpoints and the
+    /// grid refined there.
     #[arg(long, value_name = "N|auto", default_value = "1000", value_parser = parse_gridpoints)]
     pub gridpoints: trajkit::topp::Gridpoints,
-    /// With --method toppra: keep TOPP-RA's raw result (piecewise-constant path acceleration,
-    /// unbounded jerk) instead of bounding its jerk.
+    /// With --method toppra or ni: keep the raw phase-plane result (piecewise-constant path
+    /// acceleration, unbounded jerk) instead of bounding its jerk.
     #[arg(long)]
     pub no_jerk_limit: bool,
-    /// With --method toppra: also hold each joint's torque within its `effort` limit, using the
+    /// With --method toppra or ni: also hold each joint's torque within its `effort` limit, using the
     /// rigid-body dynamics of a URDF (see --dynamics). The torque is checked again after jerk
     /// bounding and time is slowed down uniformly (up to 4x) if needed.
     #[arg(long)]
@@ -125,6 +134,10 @@ pub struct PlanArgs {
     /// --limits argument when it is a .urdf file.
     #[arg(long, value_name = "FILE.urdf")]
     pub dynamics: Option<PathBuf>,
+    /// Largest distance (joint units, Euclidean) between a waypoint and the circular blend that
+    /// replaces its corner (--method totg; default 0.1). Must be a finite number > 0.
+    #[arg(long, value_name = "RAD", allow_negative_numbers = true)]
+    pub max_deviation: Option<f64>,
     /// Polynomial degree of each segment (--method poly).
     #[arg(long, value_enum, default_value = "quintic")]
     pub degree: DegreeArg,
@@ -196,9 +209,9 @@ struct TorqueSetup {
 /// Resolves `--torque-limits`: the URDF model (from --dynamics or a .urdf --limits) and every
 /// joint's effort limit.
 fn torque_setup(a: &PlanArgs, limits: &Limits) -> CliResult<TorqueSetup> {
-    if a.method != Method::Toppra {
+    if !matches!(a.method, Method::Toppra | Method::Ni) {
         return Err(CliError(
-            "--torque-limits needs --method toppra".to_string(),
+            "--torque-limits needs --method toppra or ni".to_string(),
         ));
     }
     let spec = &a.limits.limits;
@@ -319,6 +332,33 @@ fn torque_time_scale(
     Ok((Box::new(Scaled::new(traj, hi)?), hi, best.0, best.1))
 }
 
+/// The jerk stage shared by the phase-plane methods: filter the timing law and rescale time
+/// when `limited`, otherwise keep the raw result and say so in `note`.
+fn jerk_stage<P: trajkit::Path + Clone + 'static>(
+    raw: trajkit::topp::messy::Sequence<trajkit::topp::Parametrized<P>>,
+    limits: &Limits,
+    limited: bool,
+    name: &str,
+    note: &mut String,
+) -> CliResult<Box<dyn Trajectory>> {
+    if limited {
+        let jl = trajkit::topp::jerk::limit_jerk_sequence(
+            &raw,
+            limits,
+            &trajkit::topp::jerk::JerkOptions::default(),
+        )?;
+        *note = format!(
+            "jerk: bounded ({name} {:.6} s, filtered and rescaled +{:.2}%)",
+            raw.duration(),
+            100.0 * (jl.duration() / raw.duration() - 1.0)
+        );
+        Ok(Box::new(jl))
+    } else {
+        *note = format!("jerk: not limited (--no-jerk-limit or no jerk limits): {name}'s path acceleration is piecewise constant");
+        Ok(Box::new(raw))
+    }
+}
+
 /// Runs `trajkit plan`.
 pub fn run(a: &PlanArgs) -> CliResult<u8> {
     let (w, src, removed) = load_waypoints(&a.waypoints)?;
@@ -336,13 +376,39 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
     } else {
         None
     };
+    if a.max_deviation.is_some() && a.method != Method::Totg {
+        return Err(CliError(
+            "--max-deviation is used only with --method totg".to_string(),
+        ));
+    }
     let has_jerk = limits.joints().iter().any(|j| j.jerk.is_finite());
-    let jerk_limited = a.method == Method::Toppra && has_jerk && !a.no_jerk_limit;
+    let phase_plane = matches!(a.method, Method::Toppra | Method::Ni | Method::Totg);
+    // TOTG's blended path is only C¹: its curvature jumps where arcs meet segments, so joint
+    // acceleration jumps there at any timing and no retiming bounds jerk.
+    let jerk_limited =
+        matches!(a.method, Method::Toppra | Method::Ni) && has_jerk && !a.no_jerk_limit;
     let mut note = String::new();
     let traj: Box<dyn Trajectory> = match a.method {
-        Method::Toppra => {
-            use trajkit::topp::messy::{plan_waypoints, PlanOptions};
+        Method::Totg => {
+            let opts = trajkit::topp::TotgOptions {
+                max_deviation: a.max_deviation.unwrap_or(0.1),
+                ..Default::default()
+            };
+            let raw = trajkit::topp::plan_totg(w.points(), w.dof(), &limits, &opts)?;
+            note = format!(
+                "jerk: not bounded: the blended path (max deviation {}) is only C¹, joint acceleration jumps where arcs meet segments; checked for velocity and acceleration",
+                opts.max_deviation
+            );
+            Box::new(raw)
+        }
+        Method::Toppra | Method::Ni => {
+            use trajkit::topp::messy::{plan_waypoints, PieceSolver, PlanOptions};
             let opts = PlanOptions {
+                solver: if a.method == Method::Ni {
+                    PieceSolver::Ni
+                } else {
+                    PieceSolver::Toppra
+                },
                 kind: a.path.into(),
                 toppra: trajkit::topp::Options {
                     gridpoints: a.gridpoints.clone(),
@@ -354,22 +420,12 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
                 ..Default::default()
             };
             let raw = plan_waypoints(w.points(), w.dof(), &limits, &opts)?;
-            if jerk_limited {
-                let jl = trajkit::topp::jerk::limit_jerk_sequence(
-                    &raw,
-                    &limits,
-                    &trajkit::topp::jerk::JerkOptions::default(),
-                )?;
-                note = format!(
-                    "jerk: bounded (TOPP-RA {:.6} s, filtered and rescaled +{:.2}%)",
-                    raw.duration(),
-                    100.0 * (jl.duration() / raw.duration() - 1.0)
-                );
-                Box::new(jl)
+            let name = if a.method == Method::Ni {
+                "NI"
             } else {
-                note = "jerk: not limited (--no-jerk-limit or no jerk limits): TOPP-RA's path acceleration is piecewise constant".into();
-                Box::new(raw)
-            }
+                "TOPP-RA"
+            };
+            jerk_stage(raw, &limits, jerk_limited, name, &mut note)?
         }
         Method::Poly => {
             let vel = match a.via_velocity {
@@ -409,9 +465,9 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
     };
     let names: Vec<String> = w.names().to_vec();
     let table = trajkit::sample::sample(&*traj, a.output.rate)?.with_names(names.clone())?;
-    // Raw TOPP-RA is second order (piecewise-constant path acceleration): its verdict leaves
-    // jerk out and says so. Every other result is checked against every limit.
-    let checked_limits = if a.method == Method::Toppra && !jerk_limited {
+    // Raw phase-plane output (TOPP-RA, NI, TOTG) is second order (piecewise-constant path
+    // acceleration): its verdict leaves jerk out and says so. Every other result is checked against every limit.
+    let checked_limits = if phase_plane && !jerk_limited {
         limits
             .clone()
             .with_override(trajkit::Order::Jerk, &[f64::INFINITY])?

@@ -169,6 +169,39 @@ impl ConstraintRows {
         }
     }
 
+    /// An error naming the constraint and the path position when a written row can never
+    /// hold or was NaN.
+    pub(crate) fn check(&self, constraint: &dyn Constraint, s: f64) -> Result<()> {
+        match self.broken {
+            Some(why) => Err(Error::Infeasible(format!(
+                "constraint '{}' at s = {s}: {why}",
+                constraint.name()
+            ))),
+            None => Ok(()),
+        }
+    }
+
+    /// The largest relative excess of these rows at path acceleration `u` and x = ṡ² = `xs`:
+    /// for the velocity bound √(x/x_max) − 1, for each half-plane (α·u + β·x − γ) divided by
+    /// the largest of |γ|, |α·u|, |β·x|. Negative or zero when every row holds.
+    pub(crate) fn relative_excess(&self, u: f64, xs: f64) -> f64 {
+        // ṡ ≤ √x_max: the relative excess of a velocity is that of √x.
+        let mut e = if self.x_max > 0.0 {
+            (xs / self.x_max).sqrt() - 1.0
+        } else if xs > 0.0 {
+            f64::INFINITY
+        } else {
+            0.0
+        };
+        for &[a, b, g] in self.half_planes() {
+            let scale = g.abs().max((a * u).abs()).max((b * xs).abs());
+            if scale > 0.0 {
+                e = e.max((a * u + b * xs - g) / scale);
+            }
+        }
+        e
+    }
+
     /// Requires `x ≤ value` (x = ṡ²).
     pub fn x_at_most(&mut self, value: f64) {
         if value.is_nan() {

@@ -7,7 +7,8 @@
 //!    path turns back on itself, a cusp where the robot must stop) for splines, and every
 //!    corner for piecewise-linear paths (a polyline's velocity jumps at a corner);
 //! 3. each piece becomes a path ([`PathKind`]: a C² cubic spline parameterized by chord length,
-//!    or a polyline) and is timed by TOPP-RA from rest to rest;
+//!    or a polyline) and is timed from rest to rest by TOPP-RA or, with
+//!    [`PlanOptions::solver`], by numerical integration ([`crate::topp::ni`]);
 //! 4. the pieces are played one after the other ([`Sequence`]).
 //!
 //! With [`PlanOptions::torque`] set, every piece is also limited in joint torque
@@ -266,6 +267,19 @@ pub struct PlanOptions {
     /// Joint torque limits: when set, each piece is also held within `±effort` of the limits
     /// (every joint needs an `effort`) for this inverse-dynamics model. Default `None`.
     pub torque: Option<TorqueModel>,
+    /// How each piece is solved (the problem is the same). Default [`PieceSolver::Toppra`].
+    pub solver: PieceSolver,
+}
+
+/// The method that times each piece in [`plan_waypoints`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum PieceSolver {
+    /// TOPP-RA ([`Toppra::solve`]).
+    #[default]
+    Toppra,
+    /// Numerical integration in the phase plane ([`crate::topp::ni::solve`]); the gridpoints
+    /// are its initial knots.
+    Ni,
 }
 
 impl Default for PlanOptions {
@@ -276,6 +290,7 @@ impl Default for PlanOptions {
             reversal_angle: std::f64::consts::PI - 1e-6,
             toppra: Options::default(),
             torque: None,
+            solver: PieceSolver::Toppra,
         }
     }
 }
@@ -336,18 +351,27 @@ pub fn plan_waypoints(
         if let Some(model) = &options.torque {
             problem = problem.constraint(JointTorque::from_limits(model.clone(), limits)?)?;
         }
-        let traj = problem.options(opts).solve().map_err(|e| match e {
-            Error::Infeasible(m) => Error::Infeasible(format!(
-                "path piece {} (waypoints {} to {}): {m}",
-                p + 1,
-                kept[c[0]],
-                kept[c[1]]
-            )),
-            e => e,
-        })?;
+        let problem = problem.options(opts);
+        let traj = match options.solver {
+            PieceSolver::Toppra => problem.solve(),
+            PieceSolver::Ni => super::ni::solve(problem),
+        }
+        .map_err(|e| in_piece(e, p, kept[c[0]], kept[c[1]]))?;
         pieces.push(traj);
     }
     Sequence::new(pieces)
+}
+
+/// Says which piece (0-based `p`, between input waypoints `from` and `to`) an infeasibility
+/// belongs to; other errors pass through.
+pub(crate) fn in_piece(e: Error, p: usize, from: usize, to: usize) -> Error {
+    match e {
+        Error::Infeasible(m) => Error::Infeasible(format!(
+            "path piece {} (waypoints {from} to {to}): {m}",
+            p + 1
+        )),
+        e => e,
+    }
 }
 
 fn piece_path(w: &[f64], dim: usize, kind: PathKind) -> Result<PiecePath> {

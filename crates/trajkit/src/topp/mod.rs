@@ -1,4 +1,4 @@
-//! Time-optimal path parameterization (TOPP-RA) and time rescaling.
+//! Time-optimal path parameterization (TOPP-RA, TOTG, numerical integration) and time rescaling.
 //!
 //! Keep a path's geometry σ(s), choose its timing s(t) so that every instant respects the
 //! robot's limits, as fast as possible. The pieces mirror the algorithm:
@@ -11,6 +11,10 @@
 //! - [`parametrized`]: the solved [`Profile`] and the exact output trajectory;
 //! - [`rescale`]: any path composed with any timing law, uniform time scaling;
 //! - [`paths`]: piecewise-linear paths;
+//! - [`blend`]: TOTG's path, straight segments joined by circular blends;
+//! - [`ni`]: numerical integration in the phase plane (Bobrow / TOPP-NI) on any path, with the
+//!   same constraints;
+//! - [`totg`]: time-optimal trajectory generation (Kunz & Stilman) on a blended path;
 //! - [`messy`]: planner output as it comes: duplicates, reversals, rest-to-rest pieces.
 //!
 //! ```
@@ -34,16 +38,20 @@
 //! # Ok::<(), trajkit::Error>(())
 //! ```
 
+pub mod blend;
 pub mod constraint;
 pub mod grid;
 pub mod jerk;
 pub mod lp;
 pub mod messy;
+pub mod ni;
 pub mod parametrized;
 pub mod paths;
 pub mod rescale;
 pub mod toppra;
+pub mod totg;
 
+pub use blend::BlendedPath;
 pub use constraint::{
     Constraint, ConstraintRows, EndEffectorSpeed, InverseDynamics, Jacobian, JointAcceleration,
     JointTorque, JointVelocity, PathPoint,
@@ -53,3 +61,4 @@ pub use parametrized::{Parametrized, Profile};
 pub use paths::LinearPath;
 pub use rescale::{min_time_scale, LinearLaw, QuinticLaw, Retimed, Scaled, TimeLaw};
 pub use toppra::{Discretization, Options, Toppra};
+pub use totg::{plan_totg, Totg, TotgOptions};

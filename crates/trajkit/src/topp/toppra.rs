@@ -64,13 +64,13 @@ pub const MAX_REFINE_ROUNDS: usize = 8;
 pub const MAX_REFINED_INTERVALS: usize = 1 << 22;
 
 /// Relative excess between gridpoints that triggers refinement.
-const REFINE_TOL: f64 = 3e-7;
+pub(crate) const REFINE_TOL: f64 = 3e-7;
 
 /// Where each interval is checked (fractions of its length): the midpoint and points
 /// approaching both ends geometrically (4⁻¹ … 4⁻⁷ from each end). A constraint active at a
 /// gridpoint can be exceeded just inside the interval, in a bump whose peak lies at some
 /// distance d from the end; the nearest point between d/4 and d sees at least 7/16 of its height.
-const REFINE_POINTS: [f64; 15] = [
+pub(crate) const REFINE_POINTS: [f64; 15] = [
     1.0 / 16384.0,
     1.0 / 4096.0,
     1.0 / 1024.0,
@@ -192,6 +192,21 @@ impl<'c, P: Path> Toppra<'c, P> {
         &self.path
     }
 
+    /// The options.
+    pub fn options_ref(&self) -> &Options {
+        &self.options
+    }
+
+    /// The constraints, in the order they were added.
+    pub fn constraints_ref(&self) -> &[Box<dyn Constraint + 'c>] {
+        &self.constraints
+    }
+
+    /// Gives the path back.
+    pub fn into_path(self) -> P {
+        self.path
+    }
+
     /// Solves and returns the timing only.
     pub fn solve_profile(&self) -> Result<Profile> {
         let o = &self.options;
@@ -270,10 +285,8 @@ struct Workspace {
     klo: Vec<f64>,
     khi: Vec<f64>,
     cr: ConstraintRows,
-    /// Intervals found within the limits by the last refinement check: (s_i, s_{i+1}, x_i,
-    /// x_{i+1}), in grid order. An interval unchanged since (same ends, x within 1e-9
-    /// relative) is not checked again.
-    clean: Vec<[f64; 4]>,
+    /// Intervals found within the limits by the last refinement check.
+    clean: CleanSteps,
     q: Vec<f64>,
     dq: Vec<f64>,
     ddq: Vec<f64>,
@@ -341,12 +354,7 @@ impl Workspace {
                 self.off.push(self.cr.rows.len());
                 self.cr.clear_bounds();
                 c.write(&p, &mut self.cr);
-                if let Some(why) = self.cr.broken {
-                    return Err(Error::Infeasible(format!(
-                        "constraint '{}' at s = {s}: {why}",
-                        c.name()
-                    )));
-                }
+                self.cr.check(&**c, s)?;
                 lo = lo.max(self.cr.x_min);
                 if self.cr.x_max < hi {
                     hi = self.cr.x_max;
@@ -491,23 +499,18 @@ impl Workspace {
         for i in 0..n {
             let delta = grid[i + 1] - grid[i];
             let xi = x[i];
-            let mut u = (self.khi[i + 1] - xi) / (2.0 * delta);
-            let mut bound = |a: f64, rhs: f64| {
-                if a > 0.0 {
-                    let v = rhs / a;
-                    if v < u {
-                        u = v;
-                    }
-                }
+            let next_rows: &[[f64; 3]] = if disc == Discretization::Interpolation {
+                self.rows_at(i + 1)
+            } else {
+                &[]
             };
-            for &[a, b, g] in self.rows_at(i) {
-                bound(a, g - b * xi);
-            }
-            if disc == Discretization::Interpolation {
-                for &[a, b, g] in self.rows_at(i + 1) {
-                    bound(a + 2.0 * delta * b, g - b * xi);
-                }
-            }
+            let u = largest_step(
+                self.rows_at(i),
+                next_rows,
+                2.0 * delta,
+                xi,
+                (self.khi[i + 1] - xi) / (2.0 * delta),
+            );
             let next = (xi + 2.0 * delta * u).clamp(self.klo[i + 1], self.khi[i + 1]);
             x[i + 1] = next;
             if next <= 0.0 && xi <= 0.0 {
@@ -624,23 +627,10 @@ impl Workspace {
         // For each interval, the number of equal parts to cut it into (1: leave it).
         let mut split: Vec<usize> = vec![1; n];
         let mut any = false;
-        let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
-        let previous = std::mem::take(&mut self.clean);
-        let mut p = 0;
+        self.clean.start_round();
         for i in 0..n {
-            while p < previous.len() && previous[p][0] < grid[i] {
-                p += 1;
-            }
-            if p < previous.len() {
-                let c = previous[p];
-                if c[0] == grid[i]
-                    && c[1] == grid[i + 1]
-                    && same(c[2], x[i])
-                    && same(c[3], x[i + 1])
-                {
-                    self.clean.push([grid[i], grid[i + 1], x[i], x[i + 1]]);
-                    continue;
-                }
+            if self.clean.unchanged([grid[i], grid[i + 1], x[i], x[i + 1]]) {
+                continue;
             }
             let delta = grid[i + 1] - grid[i];
             let u = (x[i + 1] - x[i]) / (2.0 * delta);
@@ -665,21 +655,7 @@ impl Workspace {
                 for c in cons {
                     self.cr.clear();
                     c.write(&p, &mut self.cr);
-                    // ṡ ≤ √x_max: the relative excess of a velocity is that of √x.
-                    let ex = if self.cr.x_max > 0.0 {
-                        (xs / self.cr.x_max).sqrt() - 1.0
-                    } else if xs > 0.0 {
-                        f64::INFINITY
-                    } else {
-                        0.0
-                    };
-                    let mut e = ex;
-                    for &[a, b, g] in &self.cr.rows {
-                        let scale = g.abs().max((a * u).abs()).max((b * xs).abs());
-                        if scale > 0.0 {
-                            e = e.max((a * u + b * xs - g) / scale);
-                        }
-                    }
+                    let e = self.cr.relative_excess(u, xs);
                     if e > worst {
                         worst = e;
                         any = true;
@@ -696,7 +672,7 @@ impl Workspace {
                     64
                 };
             } else {
-                self.clean.push([grid[i], grid[i + 1], x[i], x[i + 1]]);
+                self.clean.mark([grid[i], grid[i + 1], x[i], x[i + 1]]);
             }
         }
         let _ = disc;
@@ -722,14 +698,53 @@ impl Workspace {
     }
 }
 
+/// Steps (s_i, s_{i+1}, x_i, x_{i+1}) found within the limits by the last check between
+/// gridpoints, in path order. A step unchanged since (same ends, x within 1e-9 relative) is
+/// not checked again.
+#[derive(Default)]
+pub(crate) struct CleanSteps {
+    previous: Vec<[f64; 4]>,
+    current: Vec<[f64; 4]>,
+    p: usize,
+}
+
+impl CleanSteps {
+    /// Starts a check round: the steps marked in the last round become the reference.
+    pub(crate) fn start_round(&mut self) {
+        self.previous = std::mem::take(&mut self.current);
+        self.p = 0;
+    }
+
+    /// Whether `step` was found clean in the last round (it is then marked clean again).
+    /// Steps must be asked in path order.
+    pub(crate) fn unchanged(&mut self, step: [f64; 4]) -> bool {
+        let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
+        while self.p < self.previous.len() && self.previous[self.p][0] < step[0] {
+            self.p += 1;
+        }
+        if let Some(c) = self.previous.get(self.p) {
+            if c[0] == step[0] && c[1] == step[1] && same(c[2], step[2]) && same(c[3], step[3]) {
+                self.current.push(step);
+                return true;
+            }
+        }
+        false
+    }
+
+    /// Records `step` as found within the limits.
+    pub(crate) fn mark(&mut self, step: [f64; 4]) {
+        self.current.push(step);
+    }
+}
+
 /// The half-planes of one stage, computed on the fly from the gridpoint rows: the rows at s_i,
 /// the rows at s_{i+1} with x_{i+1} = x + 2Δu substituted, and x_{i+1} ∈ [klo, khi].
-struct Stage<'a> {
-    here: &'a [[f64; 3]],
-    next: &'a [[f64; 3]],
-    two_delta: f64,
-    khi: f64,
-    klo: f64,
+pub(crate) struct Stage<'a> {
+    pub(crate) here: &'a [[f64; 3]],
+    pub(crate) next: &'a [[f64; 3]],
+    pub(crate) two_delta: f64,
+    pub(crate) khi: f64,
+    pub(crate) klo: f64,
 }
 
 impl lp::HalfPlanes for Stage<'_> {
@@ -775,7 +790,35 @@ impl lp::HalfPlanes for Stage<'_> {
     }
 }
 
-fn check_path_values(s: f64, q: &[f64], dq: &[f64], ddq: &[f64]) -> Result<()> {
+/// The largest constant path acceleration u ≤ `cap` on an interval of length Δ (`two_delta` =
+/// 2Δ) from x = `x` at its start, holding the rows `here` at the start (a·u + b·x ≤ g) and
+/// `next` at the end, where x becomes x + 2Δu. Only rows that bound u from above are used.
+pub(crate) fn largest_step(
+    here: &[[f64; 3]],
+    next: &[[f64; 3]],
+    two_delta: f64,
+    x: f64,
+    cap: f64,
+) -> f64 {
+    let mut u = cap;
+    let mut bound = |a: f64, rhs: f64| {
+        if a > 0.0 {
+            let v = rhs / a;
+            if v < u {
+                u = v;
+            }
+        }
+    };
+    for &[a, b, g] in here {
+        bound(a, g - b * x);
+    }
+    for &[a, b, g] in next {
+        bound(a + two_delta * b, g - b * x);
+    }
+    u
+}
+
+pub(crate) fn check_path_values(s: f64, q: &[f64], dq: &[f64], ddq: &[f64]) -> Result<()> {
     // x·0 is 0 for finite x and NaN otherwise: one branch-free pass in the common case.
     let probe = |v: &[f64]| v.iter().fold(0.0, |acc, &x| acc + x * 0.0);
     if probe(q) + probe(dq) + probe(ddq) == 0.0 {

@@ -60,6 +60,21 @@ fn ratio(v: f64, lo: f64, hi: f64) -> f64 {
     }
 }
 
+/// [`worst_ratios`] against the velocity and acceleration limits of `lim`, 1 ms samples.
+pub fn worst_for<T: Trajectory>(traj: &T, lim: &trajkit::Limits) -> Worst {
+    let (vlo, vhi): (Vec<f64>, Vec<f64>) = lim
+        .joints()
+        .iter()
+        .map(|j| j.range(Order::Velocity))
+        .unzip();
+    let (alo, ahi): (Vec<f64>, Vec<f64>) = lim
+        .joints()
+        .iter()
+        .map(|j| j.range(Order::Acceleration))
+        .unzip();
+    worst_ratios(traj, &vlo, &vhi, &alo, &ahi, 1e-3)
+}
+
 pub fn worst_ratios<T: Trajectory>(
     traj: &T,
     vlo: &[f64],
@@ -107,3 +122,24 @@ pub fn worst_ratios<T: Trajectory>(
     }
     w
 }
+
+/// A two-link arm moving in the vertical x-z plane (joint axes y, gravity −z).
+pub const ARM: &str = r#"<robot name="arm">
+  <link name="base"/>
+  <link name="upper">
+    <inertial><origin xyz="0.3 0 0"/><mass value="2"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.04" iyz="0" izz="0.04"/></inertial>
+  </link>
+  <link name="fore">
+    <inertial><origin xyz="0.25 0 0"/><mass value="1.5"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.02"/></inertial>
+  </link>
+  <joint name="shoulder" type="revolute">
+    <parent link="base"/><child link="upper"/><origin xyz="0 0 0.4"/><axis xyz="0 1 0"/>
+    <limit lower="-3" upper="3" velocity="5" effort="24"/>
+  </joint>
+  <joint name="elbow" type="revolute">
+    <parent link="upper"/><child link="fore"/><origin xyz="0.7 0 0"/><axis xyz="0 1 0"/>
+    <limit lower="-3" upper="3" velocity="5" effort="6"/>
+  </joint>
+</robot>"#;

@@ -1,0 +1,91 @@
+#!/usr/bin/env python3
+"""Times the original TOTG (PyPI tesseract-robotics 0.5.1, TimeOptimalTrajectoryGeneration)
+on trajkit's TOTG benchmark inputs (crates/trajkit/benches/totg.rs), for BENCHMARKS.md:
+
+- the 7 waypoints of the `standard_7wp_natural_N1000` TOPP-RA fixture problem, Panda velocity
+  and acceleration limits, max deviation 0.1;
+- the same with velocity limits / 10 and acceleration limits / 100 (10x longer motion);
+- trajkit's embedded default Panda path (8 waypoints).
+
+It times compute() on a fresh InstructionsTrajectory each repeat (building the instruction
+list is outside the timing) and prints the median, minimum and the resulting duration.
+Uses the virtualenv of tools/totg_fixtures.py (created on first run).
+
+Usage: python3 tools/bench_totg_peer.py [repeats]
+"""
+import json
+import os
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+VENV = os.path.join(HERE, ".venv-totg")
+PY = os.path.join(VENV, "bin", "python")
+FIX = os.path.join(HERE, "..", "crates", "trajkit", "tests", "fixtures", "topp", "toppra_panda.json")
+DEFAULT = os.path.join(HERE, "..", "crates", "trajkit-cli", "src", "default_waypoints.csv")
+
+
+def ensure_venv():
+    if os.path.realpath(sys.prefix) == os.path.realpath(VENV):
+        return
+    if not os.path.exists(PY):
+        subprocess.check_call([sys.executable, "-m", "venv", VENV])
+        subprocess.check_call([PY, "-m", "pip", "install", "-q", "tesseract-robotics==0.5.1", "numpy"])
+    os.execv(PY, [PY] + sys.argv)
+
+
+ensure_venv()
+
+import numpy as np  # noqa: E402
+from tesseract_robotics import tesseract_command_language as cl  # noqa: E402
+from tesseract_robotics import tesseract_time_parameterization as tp  # noqa: E402
+
+VMAX = np.array([2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61])
+AMAX = np.array([15.0, 7.5, 10.0, 12.5, 15.0, 20.0, 20.0])
+JMAX = np.array([7500.0, 3750.0, 5000.0, 6250.0, 7500.0, 10000.0, 10000.0])
+
+
+def trajectory(waypoints):
+    names = [f"panda_joint{i + 1}" for i in range(7)]
+    prog = cl.CompositeInstruction("DEFAULT")
+    for w in waypoints:
+        sw = cl.StateWaypoint(names, np.array(w, dtype=float))
+        mi = cl.MoveInstruction(
+            cl.StateWaypointPoly_wrap_StateWaypoint(sw), cl.MoveInstructionType_FREESPACE, "DEFAULT"
+        )
+        prog.appendMoveInstruction(cl.MoveInstructionPoly_wrap_MoveInstruction(mi))
+    return prog, tp.InstructionsTrajectory(prog)
+
+
+def bench(name, waypoints, vmax, amax, repeats):
+    v = np.column_stack([-vmax, vmax])
+    a = np.column_stack([-amax, amax])
+    j = np.column_stack([-JMAX, JMAX])
+    totg = tp.TimeOptimalTrajectoryGeneration(0.1, 0.001)
+    times, duration = [], None
+    for _ in range(repeats):
+        prog, traj = trajectory(waypoints)
+        t0 = time.perf_counter()
+        ok = totg.compute(traj, v, a, j)
+        times.append(time.perf_counter() - t0)
+        duration = traj.getTimeFromStart(traj.size() - 1) if ok else float("nan")
+    times.sort()
+    print(
+        f"{name:32s} median {1e3 * times[len(times) // 2]:8.3f} ms  min {1e3 * times[0]:8.3f} ms  duration {duration:.6f} s"
+    )
+
+
+def main():
+    repeats = int(sys.argv[1]) if len(sys.argv) > 1 else 50
+    fix = json.load(open(FIX))
+    prob = next(p for p in fix["problems"] if p["name"] == "standard_7wp_natural_N1000")
+    w7 = prob["waypoints"]
+    default = np.loadtxt(DEFAULT, delimiter=",", comments="#", skiprows=3).tolist()
+    bench("panda_7wp_dev0.1", w7, VMAX, AMAX, repeats)
+    bench("panda_7wp_dev0.1_10x_slower", w7, VMAX / 10, AMAX / 100, max(5, repeats // 5))
+    bench("default_path_dev0.1", default, VMAX, AMAX, repeats)
+
+
+if __name__ == "__main__":
+    main()
