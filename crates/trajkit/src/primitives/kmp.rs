@@ -17,8 +17,8 @@
 //! within `via_tolerance`, otherwise they are inserted; the model is then refitted.
 //!
 //! [`Kmp::fit`] factors `K + λ_c Σ` once (Cholesky) and solves `(K + λΣ) α = μ` by conjugate
-//! gradients preconditioned with that factor (stored in `f32` for the preconditioner, which
-//! halves its memory traffic; a direct solve is the fallback), to a relative residual of 1e-14.
+//! gradients preconditioned with that factor (a direct solve is the fallback), to a relative
+//! residual of 1e-14.
 //! `α` is cached, so a mean query costs `O(N·d)`. For the covariance, the fit also expands the
 //! kernel vector in Chebyshev polynomials of time over the reference span (degree `p` chosen by
 //! an a-priori error bound, 47 for `h = 6` over 2 s) and caches the `d(d+1)/2` matrices
@@ -553,66 +553,6 @@ impl Kmp {
     }
 }
 
-/// A lower factor with its entries rounded to `f32`, packed row by row: `M = (L̃ L̃ᵀ)⁻¹` is an
-/// exactly symmetric positive definite operator within ~6e-8 (relative) of `(L Lᵀ)⁻¹`, applied
-/// in `f64` arithmetic while reading half the memory of the `f64` factor. Only a
-/// preconditioner: the residuals conjugate gradients drive to 1e-14 are computed with the
-/// exact operator.
-struct PackedF32 {
-    n: usize,
-    l: Vec<f32>,
-}
-
-impl PackedF32 {
-    fn new(c: &Cholesky) -> Self {
-        let n = c.n();
-        let src = c.l();
-        let mut l = Vec::with_capacity(n * (n + 1) / 2);
-        for i in 0..n {
-            l.extend(src[i * n..i * n + i + 1].iter().map(|&v| v as f32));
-        }
-        PackedF32 { n, l }
-    }
-
-    /// `b ← (L̃ L̃ᵀ)⁻¹ b`.
-    fn solve_in_place(&self, b: &mut [f64]) {
-        let n = self.n;
-        let row = |i: usize| &self.l[i * (i + 1) / 2..i * (i + 1) / 2 + i + 1];
-        for i in 0..n {
-            let r = row(i);
-            let (done, rest) = b.split_at_mut(i);
-            rest[0] = (rest[0] - dot_f32(&r[..i], done)) / r[i] as f64;
-        }
-        for i in (0..n).rev() {
-            let r = row(i);
-            let (head, rest) = b.split_at_mut(i);
-            rest[0] /= r[i] as f64;
-            let bi = rest[0];
-            for (h, &v) in head.iter_mut().zip(&r[..i]) {
-                *h -= bi * v as f64;
-            }
-        }
-    }
-}
-
-/// `Σ a_k b_k` with `a` in `f32`, accumulated in `f64` with independent accumulators.
-fn dot_f32(a: &[f32], b: &[f64]) -> f64 {
-    let mut acc = [0.0f64; 4];
-    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
-    let tail: f64 = ca
-        .remainder()
-        .iter()
-        .zip(cb.remainder())
-        .map(|(&x, y)| x as f64 * y)
-        .sum();
-    for (x, y) in ca.zip(cb) {
-        for q in 0..4 {
-            acc[q] += x[q] as f64 * y[q];
-        }
-    }
-    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
-}
-
 /// Preconditioned conjugate gradients for `(K + λΣ) α = μ` (point-major), preconditioner
 /// `(K + λ_c Σ)⁻¹` from its joint-major Cholesky factor. `None` if it does not reach a relative
 /// residual of 1e-14 within 1000 iterations.
@@ -647,7 +587,6 @@ fn pcg_mean(r: &KmpReference, cfg: &KmpConfig, pre: &Cholesky) -> Option<Vec<f64
         }
     };
     let mut tmp = vec![0.0; nd];
-    let pre = PackedF32::new(pre);
     let mut precond = |x: &[f64], z: &mut [f64]| {
         for m in 0..n {
             for a in 0..d {

@@ -41,7 +41,7 @@ pub(crate) const TOL: f64 = 1e-16;
 pub(crate) const MAX_DEGREE: usize = 95;
 
 /// Right-hand-side columns per register block of the forward substitution.
-const CB: usize = 8;
+const CB: usize = 4;
 
 /// The precomputed expansion: `C_ab` for `a ≥ b`.
 #[derive(Debug, Clone)]
