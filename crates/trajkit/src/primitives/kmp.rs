@@ -317,7 +317,8 @@ pub struct Kmp {
 }
 
 impl Kmp {
-    /// Fits the KMP: one Cholesky per system, cached.
+    /// Fits the KMP: one Cholesky factor of `K + λ_c Σ`, the mean weights `α` (conjugate
+    /// gradients), and the covariance's expansion in time, all cached (see the module docs).
     pub fn fit(reference: &KmpReference, cfg: &KmpConfig) -> Result<Kmp> {
         reference.validate()?;
         crate::error::positive(|| "kernel_h".into(), cfg.kernel_h)?;
