@@ -93,9 +93,11 @@ pub(crate) fn degree(h: f64, half: f64) -> Option<usize> {
 }
 
 /// Solves `L X = B` in place for the rows `start..n` of a row-major `n × n` lower factor `l`,
-/// where `B` (and so `X`) is zero above row `start`; `x` holds rows `start..n`, `mp` columns
-/// (a multiple of [`CB`]). Two rows × [`CB`] columns per register block.
-fn forward_block(l: &[f64], n: usize, start: usize, x: &mut [f64], mp: usize) {
+/// where `B` (and so `X`) is zero above row `start`. `x` holds rows `start..n` of `nblk`
+/// column blocks of [`CB`] columns, block-major (block `q`, row `r`, column `c` at
+/// `(q·rows + r)·CB + c`), so that each pass over the solved rows reads contiguous memory.
+/// Two rows × [`CB`] columns per register block.
+fn forward_block(l: &[f64], n: usize, start: usize, x: &mut [f64], nblk: usize) {
     let rows = n - start;
     let mut i = 0;
     while i < rows {
@@ -113,21 +115,20 @@ fn forward_block(l: &[f64], n: usize, start: usize, x: &mut [f64], mp: usize) {
         } else {
             (0.0, 0.0)
         };
-        let (done, rest) = x.split_at_mut(i * mp);
-        for c0 in (0..mp).step_by(CB) {
+        for blk in x.chunks_exact_mut(rows * CB).take(nblk) {
+            let (done, rest) = blk.split_at_mut(i * CB);
             let mut acc = [[0.0f64; CB]; 2];
-            for ((xr, &a0), &a1) in done.chunks_exact(mp).zip(li).zip(li1) {
-                let xv = &xr[c0..c0 + CB];
+            for ((xr, &a0), &a1) in done.chunks_exact(CB).zip(li).zip(li1) {
                 for c in 0..CB {
-                    acc[0][c] += a0 * xv[c];
-                    acc[1][c] += a1 * xv[c];
+                    acc[0][c] += a0 * xr[c];
+                    acc[1][c] += a1 * xr[c];
                 }
             }
             for c in 0..CB {
-                let xi = (rest[c0 + c] - acc[0][c]) * d0;
-                rest[c0 + c] = xi;
+                let xi = (rest[c] - acc[0][c]) * d0;
+                rest[c] = xi;
                 if two {
-                    rest[mp + c0 + c] = (rest[mp + c0 + c] - acc[1][c] - l10 * xi) * d1;
+                    rest[CB + c] = (rest[CB + c] - acc[1][c] - l10 * xi) * d1;
                 }
             }
         }
@@ -135,23 +136,28 @@ fn forward_block(l: &[f64], n: usize, start: usize, x: &mut [f64], mp: usize) {
     }
 }
 
-/// `out[k][k'] += Σ_r a[r][k] b[r][k']` for `k < p1` (two at a time) and `k' < p1` ([`CB`] at
-/// a time), rows of width `mp`, `out` row-major `p1 × p1`.
-fn gram_block(a: &[f64], b: &[f64], mp: usize, p1: usize, out: &mut [f64]) {
+/// `out[k][k'] += Σ_r a[r][k] b[r][k']` for `k, k' < p1`, with `a` and `b` block-major as in
+/// [`forward_block`] (`ra`, `rb` rows per block; `b`'s rows `off..off + ra` pair with `a`'s),
+/// two `k` × [`CB`] `k'` per register block; `out` row-major `p1 × p1`.
+fn gram_block(a: &[f64], ra: usize, b: &[f64], rb: usize, off: usize, p1: usize, out: &mut [f64]) {
+    let nblk = p1.div_ceil(CB);
     for k in (0..p1).step_by(2) {
-        for c0 in (0..p1).step_by(CB) {
+        let (ka, kk) = (k / CB, k % CB);
+        let ablk = &a[ka * ra * CB..(ka + 1) * ra * CB];
+        for q in 0..nblk {
+            let bblk = &b[(q * rb + off) * CB..(q * rb + off + ra) * CB];
             let mut acc = [[0.0f64; CB]; 2];
-            for (ar, br) in a.chunks_exact(mp).zip(b.chunks_exact(mp)) {
-                let x = &ar[k..k + 2];
-                let y = &br[c0..c0 + CB];
+            for (ar, br) in ablk.chunks_exact(CB).zip(bblk.chunks_exact(CB)) {
+                let x = &ar[kk..kk + 2];
                 for s in 0..2 {
                     for c in 0..CB {
-                        acc[s][c] += x[s] * y[c];
+                        acc[s][c] += x[s] * br[c];
                     }
                 }
             }
+            let c0 = q * CB;
+            let end = (c0 + CB).min(p1);
             for s in 0..2.min(p1 - k) {
-                let end = (c0 + CB).min(p1);
                 for (o, v) in out[(k + s) * p1 + c0..(k + s) * p1 + end]
                     .iter_mut()
                     .zip(acc[s])
@@ -205,12 +211,19 @@ impl ChebCov {
                 }
             }
         }
-        // W_a = L⁻¹ (e_a ⊗ [c_k]) from row a·N on.
+        // W_a = L⁻¹ (e_a ⊗ [c_k]) from row a·N on, block-major.
+        let nblk = mp / CB;
         let mut w: Vec<Vec<f64>> = Vec::with_capacity(d);
         for a in 0..d {
-            let mut x = vec![0.0; (nd - a * n) * mp];
-            x[..n * mp].copy_from_slice(&coef);
-            forward_block(l, nd, a * n, &mut x, mp);
+            let rows = nd - a * n;
+            let mut x = vec![0.0; rows * mp];
+            for q in 0..nblk {
+                for m in 0..n {
+                    x[(q * rows + m) * CB..(q * rows + m + 1) * CB]
+                        .copy_from_slice(&coef[m * mp + q * CB..m * mp + (q + 1) * CB]);
+                }
+            }
+            forward_block(l, nd, a * n, &mut x, nblk);
             w.push(x);
         }
         // C_ab = W_aᵀ W_b over the rows where both are non-zero (from a·N, a ≥ b).
@@ -218,8 +231,16 @@ impl ChebCov {
         for a in 0..d {
             for b in 0..=a {
                 let off = (a * (a + 1) / 2 + b) * p1 * p1;
-                let wb = &w[b][(a - b) * n * mp..];
-                gram_block(&w[a], wb, mp, p1, &mut c[off..off + p1 * p1]);
+                let (ra, rb) = (nd - a * n, nd - b * n);
+                gram_block(
+                    &w[a],
+                    ra,
+                    &w[b],
+                    rb,
+                    (a - b) * n,
+                    p1,
+                    &mut c[off..off + p1 * p1],
+                );
             }
         }
         Some(ChebCov {
