@@ -190,3 +190,158 @@ fn bad_input_is_typed() {
         }])
         .is_err());
 }
+
+/// The covariance straight from its definition: dense point-major `A = K ⊗ I + λ_c Σ`,
+/// `X = A⁻¹ K*ᵀ` by LU, `Σ(s) = (N/λ_c)(k(s,s) I − K* X)` (`order` 0 or 1).
+fn dense_covariance(r: &KmpReference, cfg: &KmpConfig, s: f64, order: usize) -> Vec<f64> {
+    let (n, d) = (r.t.len(), r.dof);
+    let nd = n * d;
+    let h = cfg.kernel_h;
+    let mut a = vec![0.0; nd * nd];
+    for i in 0..n {
+        for j in 0..n {
+            let x = r.t[i] - r.t[j];
+            for c in 0..d {
+                a[(i * d + c) * nd + j * d + c] = (-h * x * x).exp();
+            }
+        }
+        for b in 0..d {
+            for c in 0..d {
+                a[(i * d + b) * nd + i * d + c] += cfg.lambda_c * r.cov[i * d * d + b * d + c];
+            }
+        }
+    }
+    let lu = trajkit::linalg::Lu::factor(&a, nd).unwrap();
+    let kv = |tm: f64| {
+        let x = s - tm;
+        let k = (-h * x * x).exp();
+        if order == 0 {
+            k
+        } else {
+            -2.0 * h * x * k
+        }
+    };
+    let kss = if order == 0 { 1.0 } else { 2.0 * h };
+    let mut out = vec![0.0; d * d];
+    for b in 0..d {
+        let mut col = vec![0.0; nd];
+        for (m, &tm) in r.t.iter().enumerate() {
+            col[m * d + b] = kv(tm);
+        }
+        lu.solve_in_place(&mut col);
+        for a in 0..d {
+            let q: f64 =
+                r.t.iter()
+                    .enumerate()
+                    .map(|(m, &tm)| kv(tm) * col[m * d + a])
+                    .sum();
+            out[a * d + b] = n as f64 / cfg.lambda_c * (if a == b { kss } else { 0.0 } - q);
+        }
+    }
+    out
+}
+
+/// Largest covariance entry error relative to the largest entry, over times across the span
+/// (both ends included), for positions and velocities.
+/// Also returns the same measure for the exact per-query substitution, whose distance from
+/// the dense formula is the problem's own rounding level.
+fn covariance_error_vs_dense(
+    r: &KmpReference,
+    kmp: &Kmp,
+    cfg: &KmpConfig,
+    times: usize,
+) -> (f64, f64) {
+    let d = r.dof;
+    let span = r.t[r.t.len() - 1] - r.t[0];
+    let (mut worst, mut worst_exact): (f64, f64) = (0.0, 0.0);
+    let (mut c, mut ce) = (vec![0.0; d * d], vec![0.0; d * d]);
+    for k in 0..=times {
+        let s = span * k as f64 / times as f64;
+        for (o, order) in [Order::Position, Order::Velocity].into_iter().enumerate() {
+            kmp.covariance(s, order, &mut c);
+            kmp.covariance_exact(s, order, &mut ce);
+            let dense = dense_covariance(r, cfg, r.t[0] + s, o);
+            let scale = dense.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let err = |c: &[f64]| {
+                c.iter()
+                    .zip(&dense)
+                    .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+            };
+            worst = worst.max(err(&c) / scale);
+            worst_exact = worst_exact.max(err(&ce) / scale);
+        }
+    }
+    (worst, worst_exact)
+}
+
+#[test]
+fn covariance_expansion_equals_the_dense_formula() {
+    // Correlated joints (sample covariance of 4 demonstrations, 1e-4 on the diagonal).
+    let (t, qs) = demos(4, 40, 3, 5);
+    expansion_matches_dense(&t, &qs, 3, 1e-4, 37, "small problem");
+}
+
+/// Fits a KMP to the sample reference of `qs` (with `reg` on the covariance diagonal) and
+/// asserts that its expanded covariance is within 1e-9 (relative) of the dense formula.
+fn expansion_matches_dense(
+    t: &[f64],
+    qs: &[Vec<f64>],
+    dof: usize,
+    reg: f64,
+    times: usize,
+    label: &str,
+) {
+    let refs: Vec<&[f64]> = qs.iter().map(|q| q.as_slice()).collect();
+    let r = KmpReference::from_aligned_samples(t, &refs, dof, reg).unwrap();
+    let cfg = KmpConfig::default();
+    let kmp = Kmp::fit(&r, &cfg).unwrap();
+    let p = kmp
+        .covariance_expansion_degree()
+        .expect("expansion in time");
+    let (e, ex) = covariance_error_vs_dense(&r, &kmp, &cfg, times);
+    eprintln!("{label}: degree {p}, relative error {e:.2e} (exact substitution {ex:.2e})");
+    assert!(e < 1e-9, "{e}");
+}
+
+#[test]
+fn long_span_falls_back_to_exact_substitution() {
+    // 30 s with kernel width h = 6: too many kernel widths for the expansion.
+    let t: Vec<f64> = (0..40).map(|i| 30.0 * i as f64 / 39.0).collect();
+    let r = KmpReference {
+        dof: 1,
+        mean: t.iter().map(|s| s.sin()).collect(),
+        cov: t.iter().map(|s| 0.01 + 0.005 * s.cos()).collect(),
+        t,
+    };
+    let cfg = KmpConfig::default();
+    let kmp = Kmp::fit(&r, &cfg).unwrap();
+    assert!(kmp.covariance_expansion_degree().is_none());
+    let (e, ex) = covariance_error_vs_dense(&r, &kmp, &cfg, 23);
+    assert_eq!(e, ex);
+    assert!(e < 1e-9, "{e}");
+}
+
+/// The benchmark's problem (7 joints, 200 reference points over 2 s, sample covariance of 10
+/// demonstrations + 1e-6): the expansion against the dense formula. Long in debug builds.
+#[test]
+#[ignore]
+fn covariance_expansion_equals_the_dense_formula_at_benchmark_size() {
+    let q = |m: usize, j: usize, s: f64| {
+        let mj = 10.0 * s.powi(3) - 15.0 * s.powi(4) + 6.0 * s.powi(5);
+        let amp = 0.5 + 0.1 * j as f64 + 0.02 * m as f64;
+        0.1 * j as f64 - 0.3
+            + amp * mj
+            + 0.2
+                * (std::f64::consts::PI * s).sin().powi(2)
+                * (3.0 * s + j as f64 + 0.1 * m as f64).sin()
+    };
+    let t: Vec<f64> = (0..200).map(|k| 2.0 * k as f64 / 199.0).collect();
+    let qs: Vec<Vec<f64>> = (0..10)
+        .map(|m| {
+            t.iter()
+                .flat_map(|&tk| (0..7).map(move |j| q(m, j, tk / 2.0)))
+                .collect()
+        })
+        .collect();
+    expansion_matches_dense(&t, &qs, 7, 1e-6, 9, "benchmark size");
+}

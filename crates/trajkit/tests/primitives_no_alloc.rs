@@ -1,5 +1,5 @@
 //! Evaluating a movement primitive's trajectory (DMP rollout, ProMP mean and samples, KMP
-//! mean) allocates nothing, under a counting global allocator.
+//! mean) and a KMP covariance query allocate nothing, under a counting global allocator.
 
 use trajkit::primitives::{
     Demo, Dmp, DmpConfig, Kmp, KmpConfig, KmpReference, ProMp, ProMpConfig, RolloutOptions,
@@ -33,6 +33,16 @@ fn primitive_trajectories_evaluate_without_allocating() {
     let subs: Vec<&[f64]> = sub.iter().map(|q| q.as_slice()).collect();
     let r = KmpReference::from_aligned_samples(&tk, &subs, 2, 1e-4).unwrap();
     let kmp = Kmp::fit(&r, &KmpConfig::default()).unwrap();
+    // KMP covariance queries (positions and velocities) too.
+    let mut cov = [0.0; 4];
+    let n = allocations(|| {
+        for k in 0..=50 {
+            kmp.covariance(k as f64 / 50.0, trajkit::Order::Position, &mut cov);
+            kmp.covariance(k as f64 / 50.0, trajkit::Order::Velocity, &mut cov);
+            std::hint::black_box(cov[0]);
+        }
+    });
+    assert_eq!(n, 0);
     for tr in [&roll as &dyn Trajectory, &promp, &sample, &kmp] {
         let n = allocations(|| {
             std::hint::black_box(exercise(tr, 500));

@@ -24,7 +24,7 @@
 
 use crate::error::{Error, Result};
 use crate::primitives::basis::GaussianBasis;
-use crate::primitives::dmp::{check_demo, derivative, ridge_fit, DmpRollout};
+use crate::primitives::dmp::{check_demo, derivative_rows, ridge_fit, DmpRollout};
 use crate::traj::{Order, Trajectory};
 
 /// Quaternion product `a ∗ b` (`[w, x, y, z]`).
@@ -197,13 +197,7 @@ impl QuaternionDmp {
             }
         }
         let mut domega = vec![0.0; rows * 3];
-        let mut col = vec![0.0; rows];
-        for c in 0..3 {
-            derivative(&ts, &omega, 3, c, &mut col);
-            for k in 0..rows {
-                domega[k * 3 + c] = col[k];
-            }
-        }
+        derivative_rows(&ts, &omega, 3, &mut domega);
         let goal = qs[rows - 1];
         let (az, bz) = (cfg.alpha_z, cfg.beta_z);
         let nb = basis.len();

@@ -345,58 +345,49 @@ pub struct Dmp {
     weights: Vec<f64>,
 }
 
-/// Second-order finite-difference derivative on a possibly non-uniform grid.
 /// Velocities and accelerations (row-major, like `q`) of a demonstration sampled at times
-/// `ts`, by [`derivative`] applied twice, joint by joint.
+/// `ts`, by [`derivative_rows`] applied twice.
 pub(crate) fn demo_derivatives(ts: &[f64], q: &[f64], dof: usize) -> (Vec<f64>, Vec<f64>) {
-    let rows = ts.len();
-    let mut vel = vec![0.0; rows * dof];
-    let mut acc = vec![0.0; rows * dof];
-    let mut col = vec![0.0; rows];
-    for j in 0..dof {
-        derivative(ts, q, dof, j, &mut col);
-        for k in 0..rows {
-            vel[k * dof + j] = col[k];
-        }
-    }
-    for j in 0..dof {
-        derivative(ts, &vel, dof, j, &mut col);
-        for k in 0..rows {
-            acc[k * dof + j] = col[k];
-        }
-    }
+    let mut vel = vec![0.0; ts.len() * dof];
+    let mut acc = vec![0.0; ts.len() * dof];
+    derivative_rows(ts, q, dof, &mut vel);
+    derivative_rows(ts, &vel, dof, &mut acc);
     (vel, acc)
 }
 
-pub(crate) fn derivative(t: &[f64], y: &[f64], stride: usize, col: usize, out: &mut [f64]) {
+/// Second-order finite-difference derivative on a possibly non-uniform grid of every column of
+/// the row-major `t.len() × cols` table `y` into `out` (same layout): at each sample, the
+/// derivative of the parabola through it and its neighbours (one-sided at the ends; a straight
+/// line for two samples). The three weights are computed once per sample for all columns.
+pub(crate) fn derivative_rows(t: &[f64], y: &[f64], cols: usize, out: &mut [f64]) {
     let n = t.len();
-    let v = |k: usize| y[k * stride + col];
     if n == 2 {
-        let d = (v(1) - v(0)) / (t[1] - t[0]);
-        out[0] = d;
-        out[1] = d;
+        let inv = 1.0 / (t[1] - t[0]);
+        for c in 0..cols {
+            let d = (y[cols + c] - y[c]) * inv;
+            out[c] = d;
+            out[cols + c] = d;
+        }
         return;
     }
-    let three = |ta: f64, tb: f64, tc: f64, ya: f64, yb: f64, yc: f64, at: f64| {
-        // Derivative at `at` of the parabola through the three points.
+    for k in 0..n {
+        // Parabola through samples b, b+1, b+2, differentiated at t[k].
+        let b = k.clamp(1, n - 2) - 1;
+        let (ta, tb, tc, at) = (t[b], t[b + 1], t[b + 2], t[k]);
         let la = (2.0 * at - tb - tc) / ((ta - tb) * (ta - tc));
         let lb = (2.0 * at - ta - tc) / ((tb - ta) * (tb - tc));
         let lc = (2.0 * at - ta - tb) / ((tc - ta) * (tc - tb));
-        la * ya + lb * yb + lc * yc
-    };
-    out[0] = three(t[0], t[1], t[2], v(0), v(1), v(2), t[0]);
-    for k in 1..n - 1 {
-        out[k] = three(t[k - 1], t[k], t[k + 1], v(k - 1), v(k), v(k + 1), t[k]);
+        let (ya, rest) = y[b * cols..].split_at(cols);
+        let (yb, yc) = rest.split_at(cols);
+        for (((o, &va), &vb), &vc) in out[k * cols..(k + 1) * cols]
+            .iter_mut()
+            .zip(ya)
+            .zip(yb)
+            .zip(&yc[..cols])
+        {
+            *o = la * va + lb * vb + lc * vc;
+        }
     }
-    out[n - 1] = three(
-        t[n - 3],
-        t[n - 2],
-        t[n - 1],
-        v(n - 3),
-        v(n - 2),
-        v(n - 1),
-        t[n - 1],
-    );
 }
 
 fn check_vec(what: &str, v: &[f64], dof: usize) -> Result<()> {
@@ -491,19 +482,19 @@ impl Dmp {
             })
             .collect();
 
-        // Forcing targets F (rows × dof) and the design matrix Φ (rows × nb).
+        // Forcing targets F and the design rows Φ (each row's span of non-zero basis values),
+        // streamed into the regression's normal equations.
         let (az, bz) = (cfg.alpha_z, cfg.beta_z);
-        let mut phi = vec![0.0; rows * nb];
-        let mut targets = vec![0.0; rows * dof];
+        let mut ridge = RidgeAccumulator::new(nb, dof);
+        let mut target = vec![0.0; dof];
+        let mut buf = [0.0f64; crate::primitives::basis::BLOCK];
+        let mut dense = vec![0.0; if nb > buf.len() { nb } else { 0 }];
         for k in 0..rows {
             let x = (-cfg.alpha_x * ts[k] / tau).exp();
-            let row = &mut phi[k * nb..(k + 1) * nb];
-            basis.activations(x, 0, row);
-            row.iter_mut().for_each(|v| *v *= x);
             for j in 0..dof {
                 let (y, v, a) = (q[k * dof + j], vel[k * dof + j], acc[k * dof + j]);
                 let spring = az * (bz * (goal[j] - y) - tau * v);
-                targets[k * dof + j] = match cfg.scaling {
+                target[j] = match cfg.scaling {
                     ForcingScaling::Hoffmann2009 => {
                         tau * tau * a - spring + az * bz * (goal[j] - start[j]) * x
                     }
@@ -517,8 +508,19 @@ impl Dmp {
                     }
                 };
             }
+            if dense.is_empty() {
+                let (lo, hi) = basis.window(x, &mut buf);
+                let row = &mut buf[lo..hi];
+                let scale = x / row.iter().sum::<f64>();
+                row.iter_mut().for_each(|v| *v *= scale);
+                ridge.add_row(lo, row, &target);
+            } else {
+                basis.activations(x, 0, &mut dense);
+                dense.iter_mut().for_each(|v| *v *= x);
+                ridge.add_row(0, &dense, &target);
+            }
         }
-        let weights = ridge_fit(&phi, rows, nb, &targets, dof, cfg.ridge, true)?;
+        let weights = ridge.solve(cfg.ridge, true)?;
         Ok(Dmp {
             cfg: cfg.clone(),
             basis,
@@ -701,9 +703,6 @@ impl Dmp {
         let mut x = 1.0;
         let mut xs = [0.0f64; 4];
         let mut scratch = vec![0.0; dof];
-        let mut a_now = vec![0.0; dof];
-        let mut dummy = vec![0.0; dof];
-        let mut dummy_g = vec![0.0; dof];
         self.forcing(1.0, &scale, &mut f_cur);
         let mut f_stage = vec![0.0; dof];
         let mut t = 0.0;
@@ -716,6 +715,8 @@ impl Dmp {
                 }
                 next_change += 1;
             }
+            // The first RK4 stage is the state's own derivative: it also gives the
+            // acceleration stored for the dense output.
             ctx.deriv(
                 t,
                 x,
@@ -724,14 +725,14 @@ impl Dmp {
                 &g,
                 &target,
                 &f_cur,
-                &mut dummy,
-                &mut a_now,
-                &mut dummy_g,
+                &mut k[0].0,
+                &mut k[0].1,
+                &mut k[0].2,
             );
             ts.push(t);
             ys.extend_from_slice(&y);
             vs.extend_from_slice(&v);
-            accs.extend_from_slice(&a_now);
+            accs.extend_from_slice(&k[0].1);
             if step == nsteps {
                 break;
             }
@@ -753,18 +754,6 @@ impl Dmp {
             } else {
                 0.0
             };
-            ctx.deriv(
-                t,
-                x,
-                &y,
-                &v,
-                &g,
-                &target,
-                &f_cur,
-                &mut k[0].0,
-                &mut k[0].1,
-                &mut k[0].2,
-            );
             for stage in 1..4 {
                 let c = if stage == 3 { hs } else { 0.5 * hs };
                 let (prev, rest) = k.split_at_mut(stage);
@@ -901,7 +890,8 @@ impl Ctx<'_, '_> {
 
 /// Solves the ridge regression `(ΦᵀΦ + λ' I) W = Φᵀ F` for `W` (`nb × cols`), returned
 /// row-major `cols × nb` (one row per joint). `λ' = λ s` with `s` the mean diagonal of `ΦᵀΦ`
-/// when `relative`, else `λ' = λ`.
+/// when `relative`, else `λ' = λ`. Each row of `phi` is passed to a [`RidgeAccumulator`] as
+/// its span of non-zero entries.
 pub(crate) fn ridge_fit(
     phi: &[f64],
     rows: usize,
@@ -911,66 +901,170 @@ pub(crate) fn ridge_fit(
     ridge: f64,
     relative: bool,
 ) -> Result<Vec<f64>> {
-    // Column-major copies so that every Gram entry is one long dot product over the rows
-    // where both basis functions are non-zero (each column's support is contiguous in time).
-    let mut pt = vec![0.0; nb * rows];
-    for (k, r) in phi.chunks_exact(nb).take(rows).enumerate() {
-        for (i, &v) in r.iter().enumerate() {
-            pt[i * rows + k] = v;
+    let mut acc = RidgeAccumulator::new(nb, cols);
+    for (r, f) in phi
+        .chunks_exact(nb)
+        .zip(targets.chunks_exact(cols))
+        .take(rows)
+    {
+        let lo = r.iter().position(|&v| v != 0.0).unwrap_or(0);
+        let hi = r.iter().rposition(|&v| v != 0.0).map_or(lo, |p| p + 1);
+        acc.add_row(lo, &r[lo..hi], f);
+    }
+    acc.solve(ridge, relative)
+}
+
+/// Rows of the ridge regression's design matrix buffered per flush.
+const RB: usize = 32;
+
+/// Accumulates `ΦᵀΦ` (lower triangle) and `ΦᵀF` from design rows given as their span of
+/// non-zero entries, [`RB`] rows at a time: each flush adds a rank-`RB` update over the union
+/// of the buffered spans with a 2 × 4 register-blocked kernel, so the Gram matrix is read and
+/// written once per `RB` rows and no `rows × nb` matrix is ever stored.
+pub(crate) struct RidgeAccumulator {
+    nb: usize,
+    cols: usize,
+    gram: Vec<f64>,
+    rhs: Vec<f64>,
+    /// Buffered rows, row `r` at `r·(nb + 4)` (zero outside its span and in the padding).
+    p: Vec<f64>,
+    /// Buffered targets, row `r` at `r·(cols + 4)` (zero padding).
+    f: Vec<f64>,
+    count: usize,
+    lo: usize,
+    hi: usize,
+}
+
+/// `out[s][c] = Σ_r a[r·sa + i + s] · b[r·sb + j + c]` over the [`RB`] buffered rows, for
+/// `s < 2`, `c < 4`: two entries of `a`'s rows against four of `b`'s, so that the
+/// accumulators are whole vectors and the loop vectorizes without shuffles.
+#[inline(always)]
+fn kernel_2x4(a: &[f64], sa: usize, i: usize, b: &[f64], sb: usize, j: usize) -> [[f64; 4]; 2] {
+    let mut acc = [[0.0f64; 4]; 2];
+    for (ar, br) in a.chunks_exact(sa).zip(b.chunks_exact(sb)).take(RB) {
+        let x = &ar[i..i + 2];
+        let y = &br[j..j + 4];
+        for s in 0..2 {
+            for c in 0..4 {
+                acc[s][c] += x[s] * y[c];
+            }
         }
     }
-    let mut ft = vec![0.0; cols * rows];
-    for (k, r) in targets.chunks_exact(cols).take(rows).enumerate() {
-        for (j, &v) in r.iter().enumerate() {
-            ft[j * rows + k] = v;
+    acc
+}
+
+impl RidgeAccumulator {
+    /// An empty accumulator for `nb` basis functions and `cols` target columns.
+    pub(crate) fn new(nb: usize, cols: usize) -> Self {
+        RidgeAccumulator {
+            nb,
+            cols,
+            gram: vec![0.0; nb * nb],
+            rhs: vec![0.0; nb * cols],
+            p: vec![0.0; (nb + 4) * RB],
+            f: vec![0.0; (cols + 4) * RB],
+            count: 0,
+            lo: nb,
+            hi: 0,
         }
     }
-    let support: Vec<(usize, usize)> = pt
-        .chunks_exact(rows)
-        .map(|c| {
-            let lo = c.iter().position(|&v| v != 0.0).unwrap_or(rows);
-            let hi = c.iter().rposition(|&v| v != 0.0).map_or(lo, |p| p + 1);
-            (lo, hi.max(lo))
-        })
-        .collect();
-    let mut gram = vec![0.0; nb * nb];
-    let mut rhs = vec![0.0; nb * cols];
-    for i in 0..nb {
-        let ci = &pt[i * rows..(i + 1) * rows];
-        for j in 0..=i {
-            let a = support[i].0.max(support[j].0);
-            let b = support[i].1.min(support[j].1);
-            let v = if a < b {
-                crate::linalg::dot(&ci[a..b], &pt[j * rows + a..j * rows + b])
-            } else {
-                0.0
-            };
-            gram[i * nb + j] = v;
-            gram[j * nb + i] = v;
+
+    /// Adds the design row whose non-zero entries are `phi` at basis indices `lo..lo +
+    /// phi.len()`, with targets `f` (`cols` entries).
+    pub(crate) fn add_row(&mut self, lo: usize, phi: &[f64], f: &[f64]) {
+        let r = self.count;
+        let (sp, sf) = (self.nb + 4, self.cols + 4);
+        self.p[r * sp + lo..r * sp + lo + phi.len()].copy_from_slice(phi);
+        self.f[r * sf..r * sf + self.cols].copy_from_slice(&f[..self.cols]);
+        if !phi.is_empty() {
+            self.lo = self.lo.min(lo);
+            self.hi = self.hi.max(lo + phi.len());
         }
-        let (a, b) = support[i];
-        for c in 0..cols {
-            rhs[i * cols + c] = crate::linalg::dot(&ci[a..b], &ft[c * rows + a..c * rows + b]);
+        self.count += 1;
+        if self.count == RB {
+            self.flush();
         }
     }
-    let s = (0..nb).map(|i| gram[i * nb + i]).sum::<f64>() / nb as f64;
-    let lam = if relative && s > 0.0 {
-        ridge * s
-    } else {
-        ridge
-    };
-    for i in 0..nb {
-        gram[i * nb + i] += lam;
-    }
-    let c = Cholesky::factor_regularized(&gram, nb)?;
-    c.solve_matrix_in_place(&mut rhs, cols);
-    let mut w = vec![0.0; cols * nb];
-    for i in 0..nb {
-        for j in 0..cols {
-            w[j * nb + i] = rhs[i * cols + j];
+
+    fn flush(&mut self) {
+        let (nb, cols) = (self.nb, self.cols);
+        let (sp, sf) = (nb + 4, cols + 4);
+        let (lo, hi) = (self.lo, self.hi);
+        let (p, f) = (&self.p, &self.f);
+        // Two Gram rows at a time, four columns at a time (entries above the diagonal of the
+        // last column block are computed and dropped).
+        let mut i = lo;
+        while i < hi {
+            let rows = (hi - i).min(2);
+            let mut j = lo;
+            while j < i + rows {
+                let d = kernel_2x4(p, sp, i, p, sp, j);
+                for s in 0..rows {
+                    let end = (j + 4).min(i + s + 1);
+                    let g = &mut self.gram[(i + s) * nb..(i + s) * nb + end];
+                    for (g, v) in g[j..].iter_mut().zip(d[s]) {
+                        *g += v;
+                    }
+                }
+                j += 4;
+            }
+            let mut c = 0;
+            while c < cols {
+                let d = kernel_2x4(p, sp, i, f, sf, c);
+                let end = (c + 4).min(cols);
+                for s in 0..rows {
+                    let r = &mut self.rhs[(i + s) * cols..(i + s) * cols + end];
+                    for (r, v) in r[c..].iter_mut().zip(d[s]) {
+                        *r += v;
+                    }
+                }
+                c += 4;
+            }
+            i += 2;
         }
+        if lo < hi {
+            for r in 0..self.count {
+                self.p[r * sp + lo..r * sp + hi]
+                    .iter_mut()
+                    .for_each(|v| *v = 0.0);
+            }
+        }
+        self.f.iter_mut().for_each(|v| *v = 0.0);
+        self.count = 0;
+        self.lo = nb;
+        self.hi = 0;
     }
-    Ok(w)
+
+    /// Solves `(ΦᵀΦ + λ' I) W = Φᵀ F` as [`ridge_fit`] describes; `W` row-major `cols × nb`.
+    pub(crate) fn solve(mut self, ridge: f64, relative: bool) -> Result<Vec<f64>> {
+        self.flush();
+        let (nb, cols) = (self.nb, self.cols);
+        let mut gram = self.gram;
+        for i in 0..nb {
+            for j in 0..i {
+                gram[j * nb + i] = gram[i * nb + j];
+            }
+        }
+        let s = (0..nb).map(|i| gram[i * nb + i]).sum::<f64>() / nb as f64;
+        let lam = if relative && s > 0.0 {
+            ridge * s
+        } else {
+            ridge
+        };
+        for i in 0..nb {
+            gram[i * nb + i] += lam;
+        }
+        let c = Cholesky::factor_regularized(&gram, nb)?;
+        let mut rhs = self.rhs;
+        c.solve_matrix_in_place(&mut rhs, cols);
+        let mut w = vec![0.0; cols * nb];
+        for i in 0..nb {
+            for j in 0..cols {
+                w[j * nb + i] = rhs[i * cols + j];
+            }
+        }
+        Ok(w)
+    }
 }
 
 /// A DMP rollout: the integrated states, dense via quintic Hermite interpolation.

@@ -19,6 +19,7 @@ pub mod cartesian_dmp;
 pub mod dmp;
 pub mod gmm;
 pub mod kmp;
+mod kmp_cov;
 pub mod promp;
 pub mod rhythmic;
 
