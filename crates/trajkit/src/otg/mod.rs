@@ -37,6 +37,8 @@
 //! [`roots`] scalar root finding · [`input`], [`result`], [`trajectory`], [`generator`].
 
 pub mod brake;
+mod families;
+mod families_gen;
 pub mod generator;
 pub mod input;
 pub mod problem;

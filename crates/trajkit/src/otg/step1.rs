@@ -31,9 +31,11 @@
 //! order moves at the velocity limit. The velocity interface uses the fastest velocity change.
 
 use super::brake::brake;
+use super::families::two_changes;
+use super::families_gen::{s1_acc0, s1_acc01, s1_acc1, s1_none};
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
-use super::roots::{find_roots_coarse, MAX_ROOTS};
+use super::roots::{find_roots_coarse, MAX_POLY, MAX_ROOTS};
 use super::velocity_change::{fastest, VelChange};
 
 /// Largest number of candidate durations kept per degree of freedom.
@@ -280,17 +282,37 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
             if !cruise && rest_to_rest_peak(dof, col) {
                 return;
             }
+            let moving = dof.vf != 0.0 || dof.af != 0.0;
+            for mirror in [false, true] {
+                let q = if mirror { dof.mirrored() } else { *dof };
+                closed_families(&q, mirror, col);
+                // The up-down-up-down shapes (two velocity changes in the same direction).
+                // Towards a target at rest they are never faster than the families above
+                // (checked against rsruckig on every random category), so they are only
+                // needed when the target moves (where their durations bound the blocked
+                // intervals).
+                if moving {
+                    let (vlo, vhi) = velocity_window(&q);
+                    two_changes(&q, 1.0, 1.0, None, vlo, vhi, &mut |pr| {
+                        let mut pr = *pr;
+                        if mirror {
+                            pr.mirror();
+                        }
+                        col.offer(&pr);
+                        false
+                    });
+                }
+            }
+            if col.best.is_some() {
+                return;
+            }
+            // Fallback for degenerate cases the closed forms miss: the bracketing solver on
+            // the same families, and the peak family over the whole velocity range.
             for mirror in [false, true] {
                 let q = if mirror { dof.mirrored() } else { *dof };
                 third_families(&q, mirror, col);
             }
-            // The peak family adds the up-down-up-down shapes. Towards a target at rest they are
-            // never faster than the families above (checked against rsruckig on every random
-            // category), so they are only needed when nothing was found or when the target
-            // moves (where their durations bound the blocked intervals).
-            if col.best.is_none() || dof.vf != 0.0 || dof.af != 0.0 {
-                peak_family(dof, col);
-            }
+            peak_family(dof, col);
         }
     }
 }
@@ -491,6 +513,25 @@ impl Seq {
         self.j[self.n] = j;
         self.n += 1;
     }
+    /// Offers the sequence, started from `q`'s start state (mirrored back when `mirror`), to
+    /// the collector unless it cannot matter.
+    fn offer(&self, q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
+        if !col.wants(self.d[..self.n].iter().sum()) {
+            return;
+        }
+        let mut pr = Profile::new(State1 {
+            p: q.p0,
+            v: q.v0,
+            a: q.a0,
+        });
+        for k in 0..self.n {
+            pr.push(self.d[k], self.j[k]);
+        }
+        if mirror {
+            pr.mirror();
+        }
+        col.offer(&pr);
+    }
     #[inline]
     fn displacement(&self, v0: f64, a0: f64) -> f64 {
         let (mut p, mut v, mut a) = (0.0, v0, a0);
@@ -536,7 +577,121 @@ fn vel_family(q: &Dof1, mirror: bool, col: &mut Collector<'_>) -> bool {
     false
 }
 
-/// The third-order families in the positive direction of the (possibly mirrored) problem `q`.
+/// The range of cruise velocities worth considering for `q`: its velocity limits, or the caps
+/// of [`velocity_cap`] where they are infinite.
+pub(crate) fn velocity_window(q: &Dof1) -> (f64, f64) {
+    let hi = velocity_cap(
+        q,
+        State1 {
+            p: q.p0,
+            v: q.v0,
+            a: q.a0,
+        },
+    );
+    let lo = -velocity_cap(
+        &q.mirrored(),
+        State1 {
+            p: -q.p0,
+            v: -q.v0,
+            a: -q.a0,
+        },
+    );
+    (lo, hi)
+}
+
+/// The families a₀ ↗ α₁ ↘ α₂ ↗ a_f (with or without plateaus at a_max and a_min) in the
+/// positive direction of the (possibly mirrored) problem `q`, each from the roots of its
+/// position polynomial (see [`super::families`]).
+fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
+    let j = q.jmax;
+    let (a0, v0, af, vf) = (q.a0, q.v0, q.af, q.vf);
+    let (amax, amin) = (q.amax, q.amin);
+    let dv = vf - v0;
+    let d = q.pf - q.p0;
+    let tol = 1e-12 * (amax - amin);
+    if a0 > amax + tol || !(amax.is_finite() && amin.is_finite()) {
+        return;
+    }
+    let a0c = a0.min(amax);
+    let emit = |seq: &Seq, col: &mut Collector<'_>| seq.offer(q, mirror, col);
+    // Durations may come out negative at round-off level on a family's edge.
+    let okd = |x: f64, scale: f64| x >= -1e-12 * scale.max(1e-300);
+    let mut roots = [0.0; MAX_POLY];
+    // none: s = α₁, α₂ = w.
+    let r = s1_none(a0, af, v0, vf, d, j);
+    let n = r.roots(a0c - tol, amax + tol, &mut roots);
+    for &x in &roots[..n] {
+        let al2 = r.w_at(x);
+        if al2 > x + tol || al2 > af + tol || al2 < amin - tol {
+            continue;
+        }
+        let mut s = Seq::new();
+        s.add((x - a0) / j, j);
+        s.add((x - al2) / j, -j);
+        s.add((af - al2) / j, j);
+        emit(&s, col);
+    }
+    // acc0: s = α₂, plateau τ₁ at a_max.
+    let c0 = amax * amax + (af * af - a0 * a0) / 2.0 - j * dv;
+    let r = s1_acc0(a0, af, v0, vf, d, j, amax);
+    let n = r.roots(amin - tol, amax.min(af) + tol, &mut roots);
+    for &x in &roots[..n] {
+        let t1 = (x * x - c0) / (j * amax);
+        if !okd(t1, (amax - amin) / j) {
+            continue;
+        }
+        let mut s = Seq::new();
+        s.add((amax - a0) / j, j);
+        s.add(t1, 0.0);
+        s.add((amax - x) / j, -j);
+        s.add((af - x) / j, j);
+        emit(&s, col);
+    }
+    if af < amin - tol {
+        return;
+    }
+    // acc1: s = α₁, plateau τ₂ at a_min.
+    let t2_of =
+        |x: f64| ((2.0 * x * x - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j) - dv) / -amin;
+    let r = s1_acc1(a0, af, v0, vf, d, j, amin);
+    let n = r.roots(a0c - tol, amax + tol, &mut roots);
+    for &x in &roots[..n] {
+        let t2 = t2_of(x);
+        if !okd(t2, (amax - amin) / j) {
+            continue;
+        }
+        let mut s = Seq::new();
+        s.add((x - a0) / j, j);
+        s.add((x - amin) / j, -j);
+        s.add(t2, 0.0);
+        s.add((af - amin) / j, j);
+        emit(&s, col);
+    }
+    // acc0_acc1: s = τ₁.
+    let r = s1_acc01(a0, af, v0, vf, d, j, amax, amin);
+    let (vlo, vhi) = velocity_window(q);
+    let t1_hi = ((vhi - vlo).abs() + dv.abs()) / amax;
+    let n = r.roots(0.0, t1_hi, &mut roots);
+    for &x in &roots[..n] {
+        let t2 = ((2.0 * amax * amax - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j)
+            + amax * x
+            - dv)
+            / -amin;
+        if !okd(t2, (amax - amin) / j) {
+            continue;
+        }
+        let mut s = Seq::new();
+        s.add((amax - a0) / j, j);
+        s.add(x, 0.0);
+        s.add((amax - amin) / j, -j);
+        s.add(t2, 0.0);
+        s.add((af - amin) / j, j);
+        emit(&s, col);
+    }
+}
+
+/// The third-order families in the positive direction of the (possibly mirrored) problem `q`,
+/// by bracketing (the fallback of [`closed_families`]).
 fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     let j = q.jmax;
     let (a0, v0, af, vf) = (q.a0, q.v0, q.af, q.vf);
@@ -557,23 +712,7 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
         )
     };
     let tol = 1e-12 * (amax + a2);
-    let emit = |seq: &Seq, col: &mut Collector<'_>| {
-        if !col.wants(seq.d[..seq.n].iter().sum()) {
-            return;
-        }
-        let mut pr = Profile::new(State1 {
-            p: q.p0,
-            v: v0,
-            a: a0,
-        });
-        for k in 0..seq.n {
-            pr.push(seq.d[k], seq.j[k]);
-        }
-        if mirror {
-            pr.mirror();
-        }
-        col.offer(&pr);
-    };
+    let emit = |seq: &Seq, col: &mut Collector<'_>| seq.offer(q, mirror, col);
     let mut roots = [0.0; MAX_ROOTS];
     if a0 > amax + tol {
         return;
