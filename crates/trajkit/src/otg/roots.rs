@@ -288,6 +288,9 @@ pub fn poly_roots(c: &[f64], lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -> usi
         len -= 1;
     }
     let c = &c[..len];
+    if len >= 4 && !may_have_roots(c, lo, hi) {
+        return 0;
+    }
     let mut n = 0;
     let mut push = |x: f64, out: &mut [f64; MAX_POLY]| {
         if x >= lo && x <= hi && n < MAX_POLY && (n == 0 || x > out[n - 1]) {
@@ -326,7 +329,7 @@ pub fn poly_roots(c: &[f64], lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -> usi
                 if fb == 0.0 {
                     push(b, out);
                 } else if fa != 0.0 && (fa < 0.0) != (fb < 0.0) {
-                    push(monotone_root(c, a, b, fa), out);
+                    push(monotone_root(c, a, b, fa, fb), out);
                 } else if k < nc && fb.abs() <= 1e-13 * big {
                     // Tangent root at a critical point.
                     push(b, out);
@@ -339,11 +342,51 @@ pub fn poly_roots(c: &[f64], lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -> usi
     n
 }
 
+/// Budan–Fourier test: false only when `c` certainly has no root in `[lo, hi]`, i.e. the sign
+/// variations of (p, p′, p″, …) are the same at both ends, no value is zero, and no value is
+/// small enough for round-off to have flipped its sign.
+fn may_have_roots(c: &[f64], lo: f64, hi: f64) -> bool {
+    let var = |x: f64| -> Option<u32> {
+        // Taylor coefficients at x by repeated synthetic division; the same on |c| at |x|
+        // bounds the size of the terms each one sums (for the round-off test).
+        let n = c.len();
+        let mut t = [0.0; MAX_POLY + 1];
+        let mut m = [0.0; MAX_POLY + 1];
+        for i in 0..n {
+            t[i] = c[i];
+            m[i] = c[i].abs();
+        }
+        let ax = x.abs();
+        for k in 0..n {
+            for i in (k..n - 1).rev() {
+                t[i] += x * t[i + 1];
+                m[i] += ax * m[i + 1];
+            }
+        }
+        let mut count = 0;
+        for k in 0..n {
+            if t[k].abs() <= 1e-12 * m[k] {
+                return None;
+            }
+            if k > 0 && (t[k - 1] < 0.0) != (t[k] < 0.0) {
+                count += 1;
+            }
+        }
+        Some(count)
+    };
+    match (var(lo), var(hi)) {
+        (Some(a), Some(b)) => a != b,
+        _ => true,
+    }
+}
+
 /// The root of `c` in `[a, b]` where it is monotone with a sign change (f(a) = `fa`): Newton
-/// steps from the secant point, bisection whenever a step leaves the bracket.
-fn monotone_root(c: &[f64], mut a: f64, mut b: f64, fa: f64) -> f64 {
+/// steps from the secant point (f(b) = `fb`), bisection whenever a step leaves the bracket.
+fn monotone_root(c: &[f64], mut a: f64, mut b: f64, fa: f64, fb: f64) -> f64 {
     let neg = fa < 0.0;
-    let mut x = 0.5 * (a + b);
+    // Start at the secant point, kept off the bracket's ends.
+    let w = b - a;
+    let mut x = (a + w * (fa / (fa - fb))).clamp(a + w / 64.0, b - w / 64.0);
     for _ in 0..100 {
         let (f, df) = horner_d(c, x);
         if f == 0.0 {
@@ -427,6 +470,12 @@ mod tests {
         let n = poly_roots(&[-1.0, 2.0, 0.0, 1e-30], -1.0, 1.0, &mut out);
         assert_eq!(n, 1);
         assert_eq!(out[0], 0.5);
+        // Same sign at both ends with roots inside (the Budan–Fourier pre-test must not skip
+        // it), and a window without roots.
+        let c = from_roots(&[1.0, 2.0, 3.0, 4.0], 1.0);
+        assert_eq!(poly_roots(&c, 0.5, 4.5, &mut out), 4);
+        assert!(!may_have_roots(&c, 4.5, 10.0));
+        assert_eq!(poly_roots(&c, 4.5, 10.0, &mut out), 0);
         // No roots, constant, zero polynomial.
         assert_eq!(poly_roots(&[1.0, 0.0, 1.0], -3.0, 3.0, &mut out), 0);
         assert_eq!(poly_roots(&[2.0], -3.0, 3.0, &mut out), 0);

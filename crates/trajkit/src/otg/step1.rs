@@ -291,7 +291,13 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
                 // (checked against rsruckig on every random category), so they are only
                 // needed when the target moves (where their durations bound the blocked
                 // intervals).
-                if moving {
+                // Both changes go up only when v_c can lie between the velocity where the
+                // start's acceleration reaches zero and the one from which the target's is
+                // reached: at most one of the two directions qualifies.
+                let k0 = kink(ProfileOrder::Third, q.v0, q.a0, q.jmax, 1.0);
+                let kf = kink(ProfileOrder::Third, q.vf, q.af, q.jmax, -1.0);
+                let slack = 1e-9 * (k0.abs() + kf.abs()) + 1e-300;
+                if moving && k0 <= kf + slack {
                     let (vlo, vhi) = velocity_window(&q);
                     two_changes(&q, 1.0, 1.0, None, vlo, vhi, &mut |pr| {
                         let mut pr = *pr;
