@@ -41,8 +41,6 @@ pub struct Scratch {
     pub(crate) sync: bool,
     /// The time-optimal profile of step 1.
     pub(crate) step1: Profile,
-    /// The profile of the duration being tried.
-    pub(crate) trial: Profile,
 }
 
 impl Default for Scratch {
@@ -54,7 +52,6 @@ impl Default for Scratch {
             t_min: 0.0,
             sync: false,
             step1: Profile::default(),
-            trial: Profile::default(),
         }
     }
 }
@@ -165,19 +162,26 @@ pub(crate) fn calculate(
                     // last failure and t: bisect for the edge of the feasible range.
                     if let Some(mut lo) = last_fail {
                         let mut hi = t;
+                        let mut last_ok = true;
                         for _ in 0..64 {
                             let mid = disc(0.5 * (lo + hi));
                             if mid <= lo || mid >= hi {
                                 break;
                             }
-                            if try_all(scratch, out, n, mid).is_ok() {
+                            last_ok = try_all(scratch, out, n, mid).is_ok();
+                            if last_ok {
                                 hi = mid;
                             } else {
                                 lo = mid;
                             }
                         }
-                        // `out` holds the profiles of the last success, which is `hi`.
-                        let _ = hi;
+                        // A failed attempt leaves `out` partly written: redo the last success.
+                        if !last_ok && try_all(scratch, out, n, hi).is_err() {
+                            return Err(OtgResult::SynchronizationFailed {
+                                dof: failed,
+                                duration: hi,
+                            });
+                        }
                     }
                     return Ok(duration_of(&out[..n]));
                 }
@@ -229,6 +233,9 @@ fn replan(s: &Scratch, t: f64) -> Option<Profile> {
     if (t - s.t_min).abs() <= 1e-13 * t.max(1.0) {
         return Some(s.step1);
     }
+    if s.step1.brake_duration() == 0.0 {
+        return step2(&s.dof, t);
+    }
     let mut pr = s.step1.brake_part();
     let e = pr.end();
     let mut d = s.dof;
@@ -239,14 +246,9 @@ fn replan(s: &Scratch, t: f64) -> Option<Profile> {
     pr.append(&main).then_some(pr)
 }
 
-/// Step 2 for every synchronized DOF at duration `t`; the failing DOF on error. `out` is
-/// written only when every DOF succeeded.
-fn try_all(
-    scratch: &mut [Scratch],
-    out: &mut [DofTrajectory],
-    n: usize,
-    t: f64,
-) -> Result<(), usize> {
+/// Step 2 for every synchronized DOF at duration `t`, written into `out`; the failing DOF on
+/// error (then the synchronized entries of `out` are partly overwritten).
+fn try_all(scratch: &[Scratch], out: &mut [DofTrajectory], n: usize, t: f64) -> Result<(), usize> {
     for i in 0..n {
         if !scratch[i].sync {
             continue;
@@ -255,13 +257,8 @@ fn try_all(
             return Err(i);
         }
         match replan(&scratch[i], t) {
-            Some(p) => scratch[i].trial = p,
+            Some(p) => out[i].profile = p,
             None => return Err(i),
-        }
-    }
-    for i in 0..n {
-        if scratch[i].sync {
-            out[i].profile = scratch[i].trial;
         }
     }
     Ok(())
@@ -375,7 +372,6 @@ fn phase(
         t_min: s1.t_min(),
         sync: true,
         step1: s1.profile,
-        trial: s1.profile,
     };
     let Some(sp) = replan(&sc, t) else {
         return Ok(false);
