@@ -270,6 +270,16 @@ pub fn quadratic(c0: f64, c1: f64, c2: f64) -> (usize, [f64; 2]) {
 /// negligible on the interval (below 1e-15 of the largest term) are dropped. An identically
 /// zero polynomial has no reported roots.
 pub fn poly_roots(c: &[f64], lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -> usize {
+    poly_roots_with(c, lo, hi, out, true)
+}
+
+/// [`poly_roots`] without the Budan–Fourier pre-test (for the derivatives inside the recursion,
+/// whose pre-test would repeat work already done).
+fn poly_roots_inner(c: &[f64], lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -> usize {
+    poly_roots_with(c, lo, hi, out, false)
+}
+
+fn poly_roots_with(c: &[f64], lo: f64, hi: f64, out: &mut [f64; MAX_POLY], pretest: bool) -> usize {
     if lo.is_nan() || hi.is_nan() || lo > hi || !lo.is_finite() || !hi.is_finite() {
         return 0;
     }
@@ -288,9 +298,26 @@ pub fn poly_roots(c: &[f64], lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -> usi
         len -= 1;
     }
     let c = &c[..len];
-    if len >= 4 && !may_have_roots(c, lo, hi) {
-        return 0;
+    if pretest && len >= 4 {
+        match root_bound(c, lo, hi) {
+            Some(0) => return 0,
+            Some(1) => {
+                // At most one root: when the ends differ in sign it is the only one.
+                let (fa, fb) = (horner_d(c, lo).0, horner_d(c, hi).0);
+                if fa != 0.0 && fb != 0.0 && (fa < 0.0) != (fb < 0.0) {
+                    out[0] = monotone_root(c, lo, hi, fa, fb);
+                    return 1;
+                }
+            }
+            _ => {}
+        }
     }
+    roots_rec(c, big, lo, hi, out)
+}
+
+/// [`poly_roots`] after trimming and the pre-test: the derivative recursion.
+fn roots_rec(c: &[f64], big: f64, lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -> usize {
+    let len = c.len();
     let mut n = 0;
     let mut push = |x: f64, out: &mut [f64; MAX_POLY]| {
         if x >= lo && x <= hi && n < MAX_POLY && (n == 0 || x > out[n - 1]) {
@@ -314,7 +341,7 @@ pub fn poly_roots(c: &[f64], lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -> usi
                 d[k - 1] = c[k] * k as f64;
             }
             let mut crit = [0.0; MAX_POLY];
-            let nc = poly_roots(&d[..len - 1], lo, hi, &mut crit);
+            let nc = poly_roots_inner(&d[..len - 1], lo, hi, &mut crit);
             let mut a = lo;
             let mut fa = horner_d(c, a).0;
             if fa == 0.0 {
@@ -342,10 +369,10 @@ pub fn poly_roots(c: &[f64], lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -> usi
     n
 }
 
-/// Budan–Fourier test: false only when `c` certainly has no root in `[lo, hi]`, i.e. the sign
-/// variations of (p, p′, p″, …) are the same at both ends, no value is zero, and no value is
-/// small enough for round-off to have flipped its sign.
-fn may_have_roots(c: &[f64], lo: f64, hi: f64) -> bool {
+/// Budan–Fourier bound: the number of roots of `c` in `[lo, hi]` is at most the difference of
+/// the sign variations of (p, p′, p″, …) at the two ends. `None` when a value is zero or small
+/// enough for round-off to have flipped its sign (no bound then).
+fn root_bound(c: &[f64], lo: f64, hi: f64) -> Option<u32> {
     let var = |x: f64| -> Option<u32> {
         // Taylor coefficients at x by repeated synthetic division; the same on |c| at |x|
         // bounds the size of the terms each one sums (for the round-off test).
@@ -375,8 +402,8 @@ fn may_have_roots(c: &[f64], lo: f64, hi: f64) -> bool {
         Some(count)
     };
     match (var(lo), var(hi)) {
-        (Some(a), Some(b)) => a != b,
-        _ => true,
+        (Some(a), Some(b)) => Some(a.saturating_sub(b)),
+        _ => None,
     }
 }
 
@@ -474,7 +501,8 @@ mod tests {
         // it), and a window without roots.
         let c = from_roots(&[1.0, 2.0, 3.0, 4.0], 1.0);
         assert_eq!(poly_roots(&c, 0.5, 4.5, &mut out), 4);
-        assert!(!may_have_roots(&c, 4.5, 10.0));
+        assert_eq!(root_bound(&c, 4.5, 10.0), Some(0));
+        assert_eq!(root_bound(&c, 0.5, 1.5), Some(1));
         assert_eq!(poly_roots(&c, 4.5, 10.0, &mut out), 0);
         // No roots, constant, zero polynomial.
         assert_eq!(poly_roots(&[1.0, 0.0, 1.0], -3.0, 3.0, &mut out), 0);
