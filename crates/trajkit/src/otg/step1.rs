@@ -14,9 +14,13 @@
 //! | peak        | fastest to (v_c, 0), fastest to (v_f, a_f) | v_c            |
 //!
 //! In each family the velocity equation gives the second unknown in closed form; the position
-//! equation is a scalar residual in the free parameter whose roots [`super::roots`] finds.
-//! The "peak" family (a velocity extremum with zero acceleration, reached either way) adds
-//! the up-down-up-down shapes. Every root becomes a candidate profile that is **verified by
+//! equation is then a polynomial of degree ≤ 4 in a suitable parameter (see
+//! [`super::families`]), solved by [`super::roots::poly_roots`]. The up-down-up-down shapes
+//! (two velocity changes in the same direction through a velocity extremum with zero
+//! acceleration) come from the same polynomials, tried only in the one direction where the
+//! extremum can lie between the two kinks. When the closed forms give no valid profile, the
+//! families are solved again by bracketing ([`super::roots::find_roots`]) together with the
+//! "peak" family over the whole velocity range (fallback for degenerate cases). Every root becomes a candidate profile that is **verified by
 //! integration** (target within 1e-8 in position and 1e-10 in velocity and acceleration; limits
 //! within 1e-12 relative at segment ends and interior velocity extrema); the fastest valid
 //! candidate is the result, and the durations of all valid candidates are kept as candidate
@@ -143,6 +147,8 @@ pub(crate) fn verify(dof: &Dof1, pr: &Profile) -> bool {
         let Some((_, d, st, j)) = pr.segment(k) else {
             break;
         };
+        // The end state as stored (a closed-form step may have snapped it to its exact
+        // value, removing round-off of the size of the largest velocity passed through).
         let vend = st.v + d * (st.a + d * j / 2.0);
         let aend = st.a + d * j;
         let mut vs = [st.v, st.v, vend];

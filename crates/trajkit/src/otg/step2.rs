@@ -4,8 +4,11 @@
 //! has to be re-planned for a longer duration T. Position interface (second and third order):
 //! the profile changes velocity as fast as possible to a cruise velocity v_c (with zero
 //! acceleration), cruises for τ ≥ 0, and changes as fast as possible to the target velocity and
-//! acceleration; τ = T − t₁(v_c) − t₂(v_c) and the position equation is a scalar residual in
-//! v_c, solved by [`super::roots`]. When no cruise profile fits, the step-1 candidate profiles
+//! acceleration; τ = T − t₁(v_c) − t₂(v_c). For third order the position equation is a
+//! polynomial (degree ≤ 6) per direction and plateau variant of the two changes (see
+//! [`super::families`]); the bracketing solver of [`super::roots`] on the residual in v_c
+//! remains the fallback and serves second order. Then the hold families (a zero-jerk hold at
+//! the peak or the valley of a₀ ↗ α₁ ↘ α₂ ↗ a_f, bracketed). When no cruise profile fits, the step-1 candidate profiles
 //! whose duration equals T are used (the caller tries those first). First order: the constant
 //! velocity D/T. Velocity interface: the acceleration ramps to a level α, holds it, and ramps
 //! to the target acceleration; the residual is the velocity change, free parameter α.
@@ -61,13 +64,23 @@ pub(crate) fn step2(dof: &Dof1, t: f64) -> Option<Profile> {
         (ProfileOrder::Second, ControlInterface::Position) => {
             rest_to_rest(dof, t, &ok).or_else(|| cruise(dof, t, &ok))
         }
-        (ProfileOrder::Third, ControlInterface::Position) => rest_to_rest(dof, t, &ok)
-            .or_else(|| cruise_closed(dof, t, &ok))
-            .or_else(|| hold(dof, t, false, false, &ok))
-            .or_else(|| hold(dof, t, false, true, &ok))
-            .or_else(|| hold(dof, t, true, false, &ok))
-            .or_else(|| hold(dof, t, true, true, &ok))
-            .or_else(|| cruise(dof, t, &ok)),
+        (ProfileOrder::Third, ControlInterface::Position) => {
+            // Early returns rather than an `or_else` chain, which moves the profile through
+            // every remaining stage.
+            if let r @ Some(_) = rest_to_rest(dof, t, &ok) {
+                return r;
+            }
+            if let r @ Some(_) = cruise_closed(dof, t, &ok) {
+                return r;
+            }
+            for (mirror, at_valley) in [(false, false), (false, true), (true, false), (true, true)]
+            {
+                if let r @ Some(_) = hold(dof, t, mirror, at_valley, &ok) {
+                    return r;
+                }
+            }
+            cruise(dof, t, &ok)
+        }
     }
 }
 
