@@ -278,7 +278,12 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
             // Towards a target at rest, a valid cruise at the velocity limit is time-optimal:
             // the other families need not be tried.
             let mut cruise = false;
+            // From rest to rest, a cruise against the displacement never fits (τ < 0).
+            let rest = dof.v0 == 0.0 && dof.a0 == 0.0 && dof.vf == 0.0 && dof.af == 0.0;
             for mirror in [false, true] {
+                if rest && (dof.pf >= dof.p0) == mirror {
+                    continue;
+                }
                 let q = if mirror { dof.mirrored() } else { *dof };
                 cruise |= vel_family(&q, mirror, col);
             }

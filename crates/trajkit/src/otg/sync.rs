@@ -104,20 +104,23 @@ pub(crate) fn calculate(
             continue;
         }
         let s1 = step1(&d).ok_or(OtgResult::CalculationFailed { dof: i })?;
-        out[i] = DofTrajectory {
-            profile: s1.profile,
-            independent_min_duration: s1.t_min(),
-        };
-        scratch[i].cand = s1.cand;
-        scratch[i].ncand = s1.ncand;
-        scratch[i].t_min = s1.t_min();
-        scratch[i].step1 = s1.profile;
-        t_lead = t_lead.max(s1.t_min());
         scratch[i].sync = match opts.synchronization {
             Synchronization::Time | Synchronization::Phase => true,
             Synchronization::TimeIfNecessary => d.vf != 0.0 || d.af != 0.0,
             Synchronization::None => false,
         };
+        // A synchronized DOF's output profile is written by every successful path below
+        // (step 2 or phase synchronization), so the step-1 profile is copied there only for
+        // the others.
+        out[i].independent_min_duration = s1.t_min();
+        if !scratch[i].sync {
+            out[i].profile = s1.profile;
+        }
+        scratch[i].cand = s1.cand;
+        scratch[i].ncand = s1.ncand;
+        scratch[i].t_min = s1.t_min();
+        scratch[i].step1 = s1.profile;
+        t_lead = t_lead.max(s1.t_min());
     }
 
     if opts.synchronization == Synchronization::Phase && phase(view, delta_time, out, scratch)? {
