@@ -373,33 +373,43 @@ fn roots_rec(c: &[f64], big: f64, lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -
 /// the sign variations of (p, p′, p″, …) at the two ends. `None` when a value is zero or small
 /// enough for round-off to have flipped its sign (no bound then).
 fn root_bound(c: &[f64], lo: f64, hi: f64) -> Option<u32> {
+    // One unrolled instance per length (the common ones: quartics and sextics).
+    match c.len() {
+        4 => root_bound_n::<4>(c, lo, hi),
+        5 => root_bound_n::<5>(c, lo, hi),
+        6 => root_bound_n::<6>(c, lo, hi),
+        7 => root_bound_n::<7>(c, lo, hi),
+        _ => None,
+    }
+}
+
+#[inline]
+fn root_bound_n<const N: usize>(c: &[f64], lo: f64, hi: f64) -> Option<u32> {
     let var = |x: f64| -> Option<u32> {
         // Taylor coefficients at x by repeated synthetic division; the same on |c| at |x|
         // bounds the size of the terms each one sums (for the round-off test).
-        let n = c.len();
-        let mut t = [0.0; MAX_POLY + 1];
-        let mut m = [0.0; MAX_POLY + 1];
-        for i in 0..n {
+        let mut t = [0.0; N];
+        let mut m = [0.0; N];
+        for i in 0..N {
             t[i] = c[i];
             m[i] = c[i].abs();
         }
         let ax = x.abs();
-        for k in 0..n {
-            for i in (k..n - 1).rev() {
+        for k in 0..N {
+            for i in (k..N - 1).rev() {
                 t[i] += x * t[i + 1];
                 m[i] += ax * m[i + 1];
             }
         }
         let mut count = 0;
-        for k in 0..n {
-            if t[k].abs() <= 1e-12 * m[k] {
-                return None;
-            }
+        let mut ok = true;
+        for k in 0..N {
+            ok &= t[k].abs() > 1e-12 * m[k];
             if k > 0 && (t[k - 1] < 0.0) != (t[k] < 0.0) {
                 count += 1;
             }
         }
-        Some(count)
+        ok.then_some(count)
     };
     match (var(lo), var(hi)) {
         (Some(a), Some(b)) => Some(a.saturating_sub(b)),
