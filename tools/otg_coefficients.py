@@ -9,7 +9,7 @@ tied to s by the velocity equation). The displacement is integrated symbolically
 are reduced with w² = W(s), and the residual "displacement − d" is written as A(s) + w·B(s).
 The Rust side solves A = 0 (no w) or A² − W·B² = 0 and recovers w = −A/B.
 
-Usage: tools/otg_coefficients.py > crates/trajkit/src/otg/families_gen.rs
+Usage: tools/otg_coefficients.py > crates/trajkit/src/otg/families_gen.rs && cargo fmt --all
 (creates tools/.venv-otgcoeff with sympy on first run unless sympy is importable).
 """
 import os
