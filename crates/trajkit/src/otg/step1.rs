@@ -636,17 +636,24 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     let mut roots = [0.0; MAX_POLY];
     // none: s = α₁, α₂ = w.
     let r = s1_none(a0, af, v0, vf, d, j);
-    let n = r.roots(a0c - tol, amax + tol, &mut roots);
-    for &x in &roots[..n] {
-        let al2 = r.w_at(x);
-        if al2 > x + tol || al2 > af + tol || al2 < amin - tol {
-            continue;
+    // α₂² = α₁² − K with α₂ ∈ [a_min, a_f]: α₁² ∈ [K (+a_f² when a_f < 0), K + max(a_f², a_min²)].
+    let k = j * dv + (a0 * a0 - af * af) / 2.0;
+    let l = k + if af < 0.0 { af * af } else { 0.0 };
+    let af_pos = if af >= 0.0 { af * af } else { 0.0 };
+    let u = k + af_pos.max(amin * amin);
+    for (lo, hi) in square_window(l.max(0.0), u, a0c, amax, true, tol) {
+        let n = r.roots(lo, hi, &mut roots);
+        for &x in &roots[..n] {
+            let al2 = r.w_at(x);
+            if al2 > x + tol || al2 > af + tol || al2 < amin - tol {
+                continue;
+            }
+            let mut s = Seq::new();
+            s.add((x - a0) / j, j);
+            s.add((x - al2) / j, -j);
+            s.add((af - al2) / j, j);
+            emit(&s, col);
         }
-        let mut s = Seq::new();
-        s.add((x - a0) / j, j);
-        s.add((x - al2) / j, -j);
-        s.add((af - al2) / j, j);
-        emit(&s, col);
     }
     // acc0: s = α₂, plateau τ₁ at a_max.
     let c0 = amax * amax + (af * af - a0 * a0) / 2.0 - j * dv;
