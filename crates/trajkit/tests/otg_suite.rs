@@ -294,6 +294,42 @@ fn random_suite_10m() {
     assert!(total >= 10_000_000);
 }
 
+/// A start far beyond the acceleration limit with a small jerk limit: the brake runs for
+/// minutes and passes velocities thousands of times the limit before coming back. The main
+/// profile's velocity ends exactly at the limit (snapped), so round-off of the size of those
+/// velocities must not count as a limit violation (this was the 10⁷ suite's failure class).
+#[test]
+fn start_far_beyond_acceleration_limit_with_small_jerk() {
+    let otg = Otg::<1>::new(0.001);
+    let mut inp = InputParameter::<1>::new();
+    inp.current_position = [-2.271277517936543];
+    inp.current_velocity = [0.04059769825321757];
+    inp.current_acceleration = [11.871460585426213];
+    inp.target_position = [-3.82059826768765];
+    inp.max_velocity = [0.149255093018071];
+    inp.max_acceleration = [8.711757855002897];
+    inp.max_jerk = [0.11825520432530943];
+    let tr = otg.calculate(&inp).expect("solvable");
+    assert!(within_contract(&check(&inp, &tr)), "{:?}", check(&inp, &tr));
+    // The same situation, randomized: both signs, jerk limits from 0.02 to 0.3.
+    let mut r = SplitMix64::new(77);
+    for k in 0..2000 {
+        let s = if k % 2 == 0 { 1.0 } else { -1.0 };
+        inp.max_velocity = [r.uniform(0.05, 1.0)];
+        inp.max_acceleration = [r.uniform(1.0, 10.0)];
+        inp.max_jerk = [r.uniform(0.02, 0.3)];
+        inp.current_position = [r.uniform(-3.0, 3.0)];
+        inp.target_position = [r.uniform(-3.0, 3.0)];
+        inp.current_velocity = [r.uniform(-1.0, 1.0) * inp.max_velocity[0]];
+        inp.current_acceleration = [s * r.uniform(1.05, 1.6) * inp.max_acceleration[0]];
+        let tr = otg
+            .calculate(&inp)
+            .unwrap_or_else(|e| panic!("case {k}: {e}\n{inp:?}"));
+        let w = check(&inp, &tr);
+        assert!(within_contract(&w), "case {k}: {w:?}\n{inp:?}");
+    }
+}
+
 #[test]
 fn velocity_interface_and_phase() {
     let otg = Otg::<2>::new(0.001);

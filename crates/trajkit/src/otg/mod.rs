@@ -34,9 +34,11 @@
 //! [`profile`] the segment list of one DOF · [`velocity_change`] fastest velocity changes ·
 //! [`brake`] the brake pre-profile · [`step1`] time-optimal profile families · [`step2`]
 //! profiles of a given duration · [`sync`] the common duration and phase synchronization ·
-//! [`roots`] scalar root finding · [`input`], [`result`], [`trajectory`], [`generator`].
+//! [`roots`] polynomial and scalar root finding · [`input`], [`result`], [`trajectory`], [`generator`].
 
 pub mod brake;
+mod families;
+mod families_gen;
 pub mod generator;
 pub mod input;
 pub mod problem;

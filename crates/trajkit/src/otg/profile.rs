@@ -125,11 +125,44 @@ impl Profile {
     /// Replaces the end velocity and acceleration by the exact values a closed-form step was
     /// aiming at (removing round-off of order 1e-16 that a long following segment would
     /// otherwise integrate). Only for corrections far below the precision contract.
+    ///
+    /// When the last segment started from a velocity far larger than `v` (a state that began
+    /// far outside the limits), the round-off of integrating it is of the size of that start
+    /// velocity, which can exceed the limit tolerance where the segment lands on a limit. The
+    /// segment is then split: its final piece starts from a state integrated backwards from the
+    /// exact end, so the landing is evaluated at the scale of `v` (the split leaves a
+    /// discontinuity of that round-off, far below the contract, where the velocity is inside).
     pub(crate) fn snap(&mut self, v: f64, a: f64) {
-        if self.n > 0 {
-            self.v[self.n] = v;
-            self.a[self.n] = a;
+        if self.n == 0 {
+            return;
         }
+        let k = self.n - 1;
+        let (vs, d, j) = (self.v[k], self.d[k], self.j[k]);
+        if k >= self.brake && vs.abs() > 256.0 * v.abs() && j != 0.0 && self.n < MAX_SEGMENTS {
+            let tau = if a != 0.0 {
+                v.abs() / a.abs()
+            } else {
+                (2.0 * v.abs() / j.abs()).sqrt()
+            };
+            let tau = tau.min(0.5 * d);
+            if tau > 0.0 {
+                let te = self.t[k + 1];
+                let pe = self.p[k + 1];
+                let (pb, vb, ab) = integrate(pe, v, a, j, -tau);
+                self.d[k] = d - tau;
+                self.t[k + 1] = te - tau;
+                self.p[k + 1] = pb;
+                self.v[k + 1] = vb;
+                self.a[k + 1] = ab;
+                self.j[k + 1] = j;
+                self.d[k + 1] = tau;
+                self.t[k + 2] = te;
+                self.p[k + 2] = pe;
+                self.n += 1;
+            }
+        }
+        self.v[self.n] = v;
+        self.a[self.n] = a;
     }
 
     /// Marks the segments pushed so far as the brake pre-profile.

@@ -8,6 +8,12 @@
 //! variant of regula falsi down to adjacent floating-point numbers, and locates the edges of the
 //! valid domain by bisection so that roots sitting on an edge are not lost.
 //!
+//! [`poly_roots`] finds the real roots of a polynomial of degree ≤ [`MAX_POLY`] in an interval
+//! (closed-form linear and quadratic cases; higher degrees split into monotone pieces at the
+//! roots of the derivative, each solved by Newton's method safeguarded by bisection, so tangent
+//! roots at a critical point are found too). The closed-form profile families use it; the
+//! bracketing solver above stays as the fallback for degenerate cases.
+//!
 //! Precision: a root is returned when its bracket is as narrow as f64 allows (or after 200
 //! iterations); the solver then verifies the resulting profile by integration, so a missed or
 //! imprecise root can cost time-optimality but never correctness.
@@ -222,9 +228,297 @@ fn refine(
     }
 }
 
+/// Highest polynomial degree [`poly_roots`] accepts.
+pub const MAX_POLY: usize = 6;
+
+/// Evaluates the polynomial `c` (lowest order first) and its derivative at `x`.
+#[inline]
+pub fn horner_d(c: &[f64], x: f64) -> (f64, f64) {
+    let mut p = 0.0;
+    let mut dp = 0.0;
+    for &k in c.iter().rev() {
+        dp = dp * x + p;
+        p = p * x + k;
+    }
+    (p, dp)
+}
+
+/// Real roots of the quadratic c₀ + c₁x + c₂x² (c₂ ≠ 0), without cancellation; returns how
+/// many (0 or 2, a double root twice), increasing.
+#[inline]
+pub fn quadratic(c0: f64, c1: f64, c2: f64) -> (usize, [f64; 2]) {
+    let disc = c1 * c1 - 4.0 * c2 * c0;
+    if disc < 0.0 {
+        // Tangent within round-off: report the vertex.
+        if disc >= -1e-14 * (c1 * c1).max((4.0 * c2 * c0).abs()) {
+            let x = -c1 / (2.0 * c2);
+            return (2, [x, x]);
+        }
+        return (0, [0.0; 2]);
+    }
+    let q = -0.5 * (c1 + c1.signum() * disc.sqrt());
+    let (r1, r2) = if q == 0.0 {
+        (0.0, 0.0)
+    } else {
+        (q / c2, c0 / q)
+    };
+    (2, if r1 <= r2 { [r1, r2] } else { [r2, r1] })
+}
+
+/// Real roots of the polynomial `c` (lowest order first, degree ≤ [`MAX_POLY`]) in
+/// `[lo, hi]`, increasing, written to `out`; returns how many. Leading coefficients that are
+/// negligible on the interval (below 1e-15 of the largest term) are dropped. An identically
+/// zero polynomial has no reported roots.
+pub fn poly_roots(c: &[f64], lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -> usize {
+    poly_roots_with(c, lo, hi, out, true)
+}
+
+/// [`poly_roots`] without the Budan–Fourier pre-test (for the derivatives inside the recursion,
+/// whose pre-test would repeat work already done).
+fn poly_roots_inner(c: &[f64], lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -> usize {
+    poly_roots_with(c, lo, hi, out, false)
+}
+
+fn poly_roots_with(c: &[f64], lo: f64, hi: f64, out: &mut [f64; MAX_POLY], pretest: bool) -> usize {
+    if lo.is_nan() || hi.is_nan() || lo > hi || !lo.is_finite() || !hi.is_finite() {
+        return 0;
+    }
+    let r = lo.abs().max(hi.abs()).max(f64::MIN_POSITIVE);
+    let mut len = c.len().min(MAX_POLY + 1);
+    let mut big = 0.0f64;
+    let mut pw = 1.0;
+    for &k in &c[..len] {
+        big = big.max((k * pw).abs());
+        pw *= r;
+    }
+    if !big.is_finite() || big == 0.0 {
+        return 0;
+    }
+    while len > 1 && (c[len - 1] * r.powi(len as i32 - 1)).abs() <= 1e-15 * big {
+        len -= 1;
+    }
+    let c = &c[..len];
+    if pretest && len >= 4 {
+        match root_bound(c, lo, hi) {
+            Some(0) => return 0,
+            Some(1) => {
+                // At most one root: when the ends differ in sign it is the only one.
+                let (fa, fb) = (horner_d(c, lo).0, horner_d(c, hi).0);
+                if fa != 0.0 && fb != 0.0 && (fa < 0.0) != (fb < 0.0) {
+                    out[0] = monotone_root(c, lo, hi, fa, fb);
+                    return 1;
+                }
+            }
+            _ => {}
+        }
+    }
+    roots_rec(c, big, lo, hi, out)
+}
+
+/// [`poly_roots`] after trimming and the pre-test: the derivative recursion.
+fn roots_rec(c: &[f64], big: f64, lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -> usize {
+    let len = c.len();
+    let mut n = 0;
+    let mut push = |x: f64, out: &mut [f64; MAX_POLY]| {
+        if x >= lo && x <= hi && n < MAX_POLY && (n == 0 || x > out[n - 1]) {
+            out[n] = x;
+            n += 1;
+        }
+    };
+    match len {
+        0 | 1 => {}
+        2 => push(-c[0] / c[1], out),
+        3 => {
+            let (k, q) = quadratic(c[0], c[1], c[2]);
+            for &x in &q[..k] {
+                push(x, out);
+            }
+        }
+        _ => {
+            // Critical points split [lo, hi] into monotone pieces.
+            let mut d = [0.0; MAX_POLY];
+            for k in 1..len {
+                d[k - 1] = c[k] * k as f64;
+            }
+            let mut crit = [0.0; MAX_POLY];
+            let nc = poly_roots_inner(&d[..len - 1], lo, hi, &mut crit);
+            let mut a = lo;
+            let mut fa = horner_d(c, a).0;
+            if fa == 0.0 {
+                push(a, out);
+            }
+            for k in 0..=nc {
+                let b = if k < nc { crit[k] } else { hi };
+                if b <= a && k < nc {
+                    continue;
+                }
+                let fb = horner_d(c, b).0;
+                if fb == 0.0 {
+                    push(b, out);
+                } else if fa != 0.0 && (fa < 0.0) != (fb < 0.0) {
+                    push(monotone_root(c, a, b, fa, fb), out);
+                } else if k < nc && fb.abs() <= 1e-13 * big {
+                    // Tangent root at a critical point.
+                    push(b, out);
+                }
+                a = b;
+                fa = fb;
+            }
+        }
+    }
+    n
+}
+
+/// Budan–Fourier bound: the number of roots of `c` in `[lo, hi]` is at most the difference of
+/// the sign variations of (p, p′, p″, …) at the two ends. `None` when a value is zero or small
+/// enough for round-off to have flipped its sign (no bound then).
+fn root_bound(c: &[f64], lo: f64, hi: f64) -> Option<u32> {
+    // One unrolled instance per length (the common ones: quartics and sextics).
+    match c.len() {
+        4 => root_bound_n::<4>(c, lo, hi),
+        5 => root_bound_n::<5>(c, lo, hi),
+        6 => root_bound_n::<6>(c, lo, hi),
+        7 => root_bound_n::<7>(c, lo, hi),
+        _ => None,
+    }
+}
+
+#[inline]
+fn root_bound_n<const N: usize>(c: &[f64], lo: f64, hi: f64) -> Option<u32> {
+    let var = |x: f64| -> Option<u32> {
+        // Taylor coefficients at x by repeated synthetic division; the same on |c| at |x|
+        // bounds the size of the terms each one sums (for the round-off test).
+        let mut t = [0.0; N];
+        let mut m = [0.0; N];
+        for i in 0..N {
+            t[i] = c[i];
+            m[i] = c[i].abs();
+        }
+        let ax = x.abs();
+        for k in 0..N {
+            for i in (k..N - 1).rev() {
+                t[i] += x * t[i + 1];
+                m[i] += ax * m[i + 1];
+            }
+        }
+        let mut count = 0;
+        let mut ok = true;
+        for k in 0..N {
+            ok &= t[k].abs() > 1e-12 * m[k];
+            if k > 0 && (t[k - 1] < 0.0) != (t[k] < 0.0) {
+                count += 1;
+            }
+        }
+        ok.then_some(count)
+    };
+    match (var(lo), var(hi)) {
+        (Some(a), Some(b)) => Some(a.saturating_sub(b)),
+        _ => None,
+    }
+}
+
+/// The root of `c` in `[a, b]` where it is monotone with a sign change (f(a) = `fa`): Newton
+/// steps from the secant point (f(b) = `fb`), bisection whenever a step leaves the bracket.
+fn monotone_root(c: &[f64], mut a: f64, mut b: f64, fa: f64, fb: f64) -> f64 {
+    let neg = fa < 0.0;
+    // Start at the secant point, kept off the bracket's ends.
+    let w = b - a;
+    let mut x = (a + w * (fa / (fa - fb))).clamp(a + w / 64.0, b - w / 64.0);
+    for _ in 0..100 {
+        let (f, df) = horner_d(c, x);
+        if f == 0.0 {
+            return x;
+        }
+        if (f < 0.0) == neg {
+            a = x;
+        } else {
+            b = x;
+        }
+        let mut nx = x - f / df;
+        if !(nx > a && nx < b) {
+            nx = 0.5 * (a + b);
+        }
+        if (nx - x).abs() <= 2.0 * f64::EPSILON * x.abs() || nx == a || nx == b {
+            return nx;
+        }
+        x = nx;
+    }
+    x
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rng::SplitMix64;
+
+    /// Coefficients of the monic polynomial with the given roots times `scale`.
+    fn from_roots(roots: &[f64], scale: f64) -> Vec<f64> {
+        let mut c = vec![scale];
+        for &r in roots {
+            let mut n = vec![0.0; c.len() + 1];
+            for (k, &ck) in c.iter().enumerate() {
+                n[k + 1] += ck;
+                n[k] -= r * ck;
+            }
+            c = n;
+        }
+        c
+    }
+
+    #[test]
+    fn random_polynomials_with_known_roots() {
+        let mut rng = SplitMix64::new(11);
+        for trial in 0..20000 {
+            let deg = 1 + trial % MAX_POLY;
+            let mut roots: Vec<f64> = (0..deg).map(|_| rng.uniform(-10.0, 10.0)).collect();
+            roots.sort_by(f64::total_cmp);
+            // Keep roots apart so that each is well conditioned.
+            if roots.windows(2).any(|w| w[1] - w[0] < 0.2) {
+                continue;
+            }
+            let scale =
+                10f64.powf(rng.uniform(-6.0, 6.0)) * if trial % 2 == 0 { 1.0 } else { -1.0 };
+            let c = from_roots(&roots, scale);
+            let mut out = [0.0; MAX_POLY];
+            let n = poly_roots(&c, -11.0, 11.0, &mut out);
+            assert_eq!(n, deg, "{roots:?} -> {:?}", &out[..n]);
+            for (r, e) in out[..n].iter().zip(&roots) {
+                assert!(
+                    (r - e).abs() < 1e-9 * e.abs().max(1.0),
+                    "{roots:?}: {r} vs {e}"
+                );
+            }
+            // A window holding only some of the roots.
+            let n = poly_roots(&c, 0.0, 11.0, &mut out);
+            assert_eq!(n, roots.iter().filter(|&&r| r >= 0.0).count());
+        }
+    }
+
+    #[test]
+    fn double_roots_and_degenerate_leading_terms() {
+        let mut out = [0.0; MAX_POLY];
+        // (x − 1)²(x + 2): tangent root at 1.
+        let n = poly_roots(&from_roots(&[1.0, 1.0, -2.0], 1.0), -5.0, 5.0, &mut out);
+        assert_eq!(&out[..n], &[-2.0, 1.0]);
+        // Quadratic with a double root.
+        let (k, q) = quadratic(1.0, -2.0, 1.0);
+        assert_eq!((k, q), (2, [1.0, 1.0]));
+        // A leading coefficient at round-off level is ignored: 2x − 1 (+1e-30 x³).
+        let n = poly_roots(&[-1.0, 2.0, 0.0, 1e-30], -1.0, 1.0, &mut out);
+        assert_eq!(n, 1);
+        assert_eq!(out[0], 0.5);
+        // Same sign at both ends with roots inside (the Budan–Fourier pre-test must not skip
+        // it), and a window without roots.
+        let c = from_roots(&[1.0, 2.0, 3.0, 4.0], 1.0);
+        assert_eq!(poly_roots(&c, 0.5, 4.5, &mut out), 4);
+        assert_eq!(root_bound(&c, 4.5, 10.0), Some(0));
+        assert_eq!(root_bound(&c, 0.5, 1.5), Some(1));
+        assert_eq!(poly_roots(&c, 4.5, 10.0, &mut out), 0);
+        // No roots, constant, zero polynomial.
+        assert_eq!(poly_roots(&[1.0, 0.0, 1.0], -3.0, 3.0, &mut out), 0);
+        assert_eq!(poly_roots(&[2.0], -3.0, 3.0, &mut out), 0);
+        assert_eq!(poly_roots(&[0.0, 0.0], -3.0, 3.0, &mut out), 0);
+    }
 
     #[test]
     fn cubic_roots_and_domain_edges() {

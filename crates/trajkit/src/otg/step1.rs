@@ -14,9 +14,13 @@
 //! | peak        | fastest to (v_c, 0), fastest to (v_f, a_f) | v_c            |
 //!
 //! In each family the velocity equation gives the second unknown in closed form; the position
-//! equation is a scalar residual in the free parameter whose roots [`super::roots`] finds.
-//! The "peak" family (a velocity extremum with zero acceleration, reached either way) adds
-//! the up-down-up-down shapes. Every root becomes a candidate profile that is **verified by
+//! equation is then a polynomial of degree ≤ 4 in a suitable parameter (see
+//! [`super::families`]), solved by [`super::roots::poly_roots`]. The up-down-up-down shapes
+//! (two velocity changes in the same direction through a velocity extremum with zero
+//! acceleration) come from the same polynomials, tried only in the one direction where the
+//! extremum can lie between the two kinks. When the closed forms give no valid profile, the
+//! families are solved again by bracketing ([`super::roots::find_roots`]) together with the
+//! "peak" family over the whole velocity range (fallback for degenerate cases). Every root becomes a candidate profile that is **verified by
 //! integration** (target within 1e-8 in position and 1e-10 in velocity and acceleration; limits
 //! within 1e-12 relative at segment ends and interior velocity extrema); the fastest valid
 //! candidate is the result, and the durations of all valid candidates are kept as candidate
@@ -31,9 +35,11 @@
 //! order moves at the velocity limit. The velocity interface uses the fastest velocity change.
 
 use super::brake::brake;
+use super::families::two_changes;
+use super::families_gen::{s1_acc0, s1_acc01, s1_acc1, s1_none};
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
-use super::roots::{find_roots_coarse, MAX_ROOTS};
+use super::roots::{find_roots_coarse, MAX_POLY, MAX_ROOTS};
 use super::velocity_change::{fastest, VelChange};
 
 /// Largest number of candidate durations kept per degree of freedom.
@@ -141,6 +147,8 @@ pub(crate) fn verify(dof: &Dof1, pr: &Profile) -> bool {
         let Some((_, d, st, j)) = pr.segment(k) else {
             break;
         };
+        // The end state as stored (a closed-form step may have snapped it to its exact
+        // value, removing round-off of the size of the largest velocity passed through).
         let vend = st.v + d * (st.a + d * j / 2.0);
         let aend = st.a + d * j;
         let mut vs = [st.v, st.v, vend];
@@ -270,7 +278,12 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
             // Towards a target at rest, a valid cruise at the velocity limit is time-optimal:
             // the other families need not be tried.
             let mut cruise = false;
+            // From rest to rest, a cruise against the displacement never fits (τ < 0).
+            let rest = dof.v0 == 0.0 && dof.a0 == 0.0 && dof.vf == 0.0 && dof.af == 0.0;
             for mirror in [false, true] {
+                if rest && (dof.pf >= dof.p0) == mirror {
+                    continue;
+                }
                 let q = if mirror { dof.mirrored() } else { *dof };
                 cruise |= vel_family(&q, mirror, col);
             }
@@ -280,17 +293,43 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
             if !cruise && rest_to_rest_peak(dof, col) {
                 return;
             }
+            let moving = dof.vf != 0.0 || dof.af != 0.0;
+            for mirror in [false, true] {
+                let q = if mirror { dof.mirrored() } else { *dof };
+                closed_families(&q, mirror, col);
+                // The up-down-up-down shapes (two velocity changes in the same direction).
+                // Towards a target at rest they are never faster than the families above
+                // (checked against rsruckig on every random category), so they are only
+                // needed when the target moves (where their durations bound the blocked
+                // intervals).
+                // Both changes go up only when v_c can lie between the velocity where the
+                // start's acceleration reaches zero and the one from which the target's is
+                // reached: at most one of the two directions qualifies.
+                let k0 = kink(ProfileOrder::Third, q.v0, q.a0, q.jmax, 1.0);
+                let kf = kink(ProfileOrder::Third, q.vf, q.af, q.jmax, -1.0);
+                let slack = 1e-9 * (k0.abs() + kf.abs()) + 1e-300;
+                if moving && k0 <= kf + slack {
+                    let (vlo, vhi) = velocity_window(&q);
+                    two_changes(&q, 1.0, 1.0, None, vlo, vhi, &mut |pr| {
+                        let mut pr = *pr;
+                        if mirror {
+                            pr.mirror();
+                        }
+                        col.offer(&pr);
+                        false
+                    });
+                }
+            }
+            if col.best.is_some() {
+                return;
+            }
+            // Fallback for degenerate cases the closed forms miss: the bracketing solver on
+            // the same families, and the peak family over the whole velocity range.
             for mirror in [false, true] {
                 let q = if mirror { dof.mirrored() } else { *dof };
                 third_families(&q, mirror, col);
             }
-            // The peak family adds the up-down-up-down shapes. Towards a target at rest they are
-            // never faster than the families above (checked against rsruckig on every random
-            // category), so they are only needed when nothing was found or when the target
-            // moves (where their durations bound the blocked intervals).
-            if col.best.is_none() || dof.vf != 0.0 || dof.af != 0.0 {
-                peak_family(dof, col);
-            }
+            peak_family(dof, col);
         }
     }
 }
@@ -491,6 +530,25 @@ impl Seq {
         self.j[self.n] = j;
         self.n += 1;
     }
+    /// Offers the sequence, started from `q`'s start state (mirrored back when `mirror`), to
+    /// the collector unless it cannot matter.
+    fn offer(&self, q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
+        if !col.wants(self.d[..self.n].iter().sum()) {
+            return;
+        }
+        let mut pr = Profile::new(State1 {
+            p: q.p0,
+            v: q.v0,
+            a: q.a0,
+        });
+        for k in 0..self.n {
+            pr.push(self.d[k], self.j[k]);
+        }
+        if mirror {
+            pr.mirror();
+        }
+        col.offer(&pr);
+    }
     #[inline]
     fn displacement(&self, v0: f64, a0: f64) -> f64 {
         let (mut p, mut v, mut a) = (0.0, v0, a0);
@@ -536,7 +594,128 @@ fn vel_family(q: &Dof1, mirror: bool, col: &mut Collector<'_>) -> bool {
     false
 }
 
-/// The third-order families in the positive direction of the (possibly mirrored) problem `q`.
+/// The range of cruise velocities worth considering for `q`: its velocity limits, or the caps
+/// of [`velocity_cap`] where they are infinite.
+pub(crate) fn velocity_window(q: &Dof1) -> (f64, f64) {
+    let hi = velocity_cap(
+        q,
+        State1 {
+            p: q.p0,
+            v: q.v0,
+            a: q.a0,
+        },
+    );
+    let lo = -velocity_cap(
+        &q.mirrored(),
+        State1 {
+            p: -q.p0,
+            v: -q.v0,
+            a: -q.a0,
+        },
+    );
+    (lo, hi)
+}
+
+/// The families a₀ ↗ α₁ ↘ α₂ ↗ a_f (with or without plateaus at a_max and a_min) in the
+/// positive direction of the (possibly mirrored) problem `q`, each from the roots of its
+/// position polynomial (see [`super::families`]).
+fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
+    let j = q.jmax;
+    let (a0, v0, af, vf) = (q.a0, q.v0, q.af, q.vf);
+    let (amax, amin) = (q.amax, q.amin);
+    let dv = vf - v0;
+    let d = q.pf - q.p0;
+    let tol = 1e-12 * (amax - amin);
+    if a0 > amax + tol || !(amax.is_finite() && amin.is_finite()) {
+        return;
+    }
+    let a0c = a0.min(amax);
+    let emit = |seq: &Seq, col: &mut Collector<'_>| seq.offer(q, mirror, col);
+    // Durations may come out negative at round-off level on a family's edge.
+    let okd = |x: f64, scale: f64| x >= -1e-12 * scale.max(1e-300);
+    let mut roots = [0.0; MAX_POLY];
+    // none: s = α₁, α₂ = w.
+    let r = s1_none(a0, af, v0, vf, d, j);
+    // α₂² = α₁² − K with α₂ ∈ [a_min, a_f]: α₁² ∈ [K (+a_f² when a_f < 0), K + max(a_f², a_min²)].
+    let k = j * dv + (a0 * a0 - af * af) / 2.0;
+    let l = k + if af < 0.0 { af * af } else { 0.0 };
+    let af_pos = if af >= 0.0 { af * af } else { 0.0 };
+    let u = k + af_pos.max(amin * amin);
+    for (lo, hi) in square_window(l.max(0.0), u, a0c, amax, true, tol) {
+        let n = r.roots(lo, hi, &mut roots);
+        for &x in &roots[..n] {
+            let al2 = r.w_at(x);
+            if al2 > x + tol || al2 > af + tol || al2 < amin - tol {
+                continue;
+            }
+            let mut s = Seq::new();
+            s.add((x - a0) / j, j);
+            s.add((x - al2) / j, -j);
+            s.add((af - al2) / j, j);
+            emit(&s, col);
+        }
+    }
+    // acc0: s = α₂, plateau τ₁ at a_max.
+    let c0 = amax * amax + (af * af - a0 * a0) / 2.0 - j * dv;
+    let r = s1_acc0(a0, af, v0, vf, d, j, amax);
+    let n = r.roots(amin - tol, amax.min(af) + tol, &mut roots);
+    for &x in &roots[..n] {
+        let t1 = (x * x - c0) / (j * amax);
+        if !okd(t1, (amax - amin) / j) {
+            continue;
+        }
+        let mut s = Seq::new();
+        s.add((amax - a0) / j, j);
+        s.add(t1, 0.0);
+        s.add((amax - x) / j, -j);
+        s.add((af - x) / j, j);
+        emit(&s, col);
+    }
+    if af < amin - tol {
+        return;
+    }
+    // acc1: s = α₁, plateau τ₂ at a_min.
+    let t2_of =
+        |x: f64| ((2.0 * x * x - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j) - dv) / -amin;
+    let r = s1_acc1(a0, af, v0, vf, d, j, amin);
+    let n = r.roots(a0c - tol, amax + tol, &mut roots);
+    for &x in &roots[..n] {
+        let t2 = t2_of(x);
+        if !okd(t2, (amax - amin) / j) {
+            continue;
+        }
+        let mut s = Seq::new();
+        s.add((x - a0) / j, j);
+        s.add((x - amin) / j, -j);
+        s.add(t2, 0.0);
+        s.add((af - amin) / j, j);
+        emit(&s, col);
+    }
+    // acc0_acc1: s = τ₁.
+    let r = s1_acc01(a0, af, v0, vf, d, j, amax, amin);
+    let (vlo, vhi) = velocity_window(q);
+    let t1_hi = ((vhi - vlo).abs() + dv.abs()) / amax;
+    let n = r.roots(0.0, t1_hi, &mut roots);
+    for &x in &roots[..n] {
+        let t2 = ((2.0 * amax * amax - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j)
+            + amax * x
+            - dv)
+            / -amin;
+        if !okd(t2, (amax - amin) / j) {
+            continue;
+        }
+        let mut s = Seq::new();
+        s.add((amax - a0) / j, j);
+        s.add(x, 0.0);
+        s.add((amax - amin) / j, -j);
+        s.add(t2, 0.0);
+        s.add((af - amin) / j, j);
+        emit(&s, col);
+    }
+}
+
+/// The third-order families in the positive direction of the (possibly mirrored) problem `q`,
+/// by bracketing (the fallback of [`closed_families`]).
 fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     let j = q.jmax;
     let (a0, v0, af, vf) = (q.a0, q.v0, q.af, q.vf);
@@ -557,23 +736,7 @@ fn third_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
         )
     };
     let tol = 1e-12 * (amax + a2);
-    let emit = |seq: &Seq, col: &mut Collector<'_>| {
-        if !col.wants(seq.d[..seq.n].iter().sum()) {
-            return;
-        }
-        let mut pr = Profile::new(State1 {
-            p: q.p0,
-            v: v0,
-            a: a0,
-        });
-        for k in 0..seq.n {
-            pr.push(seq.d[k], seq.j[k]);
-        }
-        if mirror {
-            pr.mirror();
-        }
-        col.offer(&pr);
-    };
+    let emit = |seq: &Seq, col: &mut Collector<'_>| seq.offer(q, mirror, col);
     let mut roots = [0.0; MAX_ROOTS];
     if a0 > amax + tol {
         return;

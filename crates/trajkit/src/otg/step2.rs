@@ -4,18 +4,22 @@
 //! has to be re-planned for a longer duration T. Position interface (second and third order):
 //! the profile changes velocity as fast as possible to a cruise velocity v_c (with zero
 //! acceleration), cruises for τ ≥ 0, and changes as fast as possible to the target velocity and
-//! acceleration; τ = T − t₁(v_c) − t₂(v_c) and the position equation is a scalar residual in
-//! v_c, solved by [`super::roots`]. When no cruise profile fits, the step-1 candidate profiles
+//! acceleration; τ = T − t₁(v_c) − t₂(v_c). For third order the position equation is a
+//! polynomial (degree ≤ 6) per direction and plateau variant of the two changes (see
+//! [`super::families`]); the bracketing solver of [`super::roots`] on the residual in v_c
+//! remains the fallback and serves second order. Then the hold families (a zero-jerk hold at
+//! the peak or the valley of a₀ ↗ α₁ ↘ α₂ ↗ a_f, bracketed). When no cruise profile fits, the step-1 candidate profiles
 //! whose duration equals T are used (the caller tries those first). First order: the constant
 //! velocity D/T. Velocity interface: the acceleration ramps to a level α, holds it, and ramps
 //! to the target acceleration; the residual is the velocity change, free parameter α.
 //!
 //! Every profile is verified by integration exactly like step 1, plus |duration − T| ≤ 1e−12·T.
 
+use super::families::two_changes;
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
 use super::roots::{find_roots, find_roots_coarse, MAX_ROOTS};
-use super::step1::{for_each_piece, kink, push_change, velocity_cap, verify};
+use super::step1::{for_each_piece, kink, push_change, velocity_cap, velocity_window, verify};
 use super::velocity_change::{fastest, VelChange};
 
 /// A verified profile for `dof` (whose start state is safe) lasting `t` seconds, if one of the
@@ -60,12 +64,23 @@ pub(crate) fn step2(dof: &Dof1, t: f64) -> Option<Profile> {
         (ProfileOrder::Second, ControlInterface::Position) => {
             rest_to_rest(dof, t, &ok).or_else(|| cruise(dof, t, &ok))
         }
-        (ProfileOrder::Third, ControlInterface::Position) => rest_to_rest(dof, t, &ok)
-            .or_else(|| cruise(dof, t, &ok))
-            .or_else(|| hold(dof, t, false, false, &ok))
-            .or_else(|| hold(dof, t, false, true, &ok))
-            .or_else(|| hold(dof, t, true, false, &ok))
-            .or_else(|| hold(dof, t, true, true, &ok)),
+        (ProfileOrder::Third, ControlInterface::Position) => {
+            // Early returns rather than an `or_else` chain, which moves the profile through
+            // every remaining stage.
+            if let r @ Some(_) = rest_to_rest(dof, t, &ok) {
+                return r;
+            }
+            if let r @ Some(_) = cruise_closed(dof, t, &ok) {
+                return r;
+            }
+            for (mirror, at_valley) in [(false, false), (false, true), (true, false), (true, true)]
+            {
+                if let r @ Some(_) = hold(dof, t, mirror, at_valley, &ok) {
+                    return r;
+                }
+            }
+            cruise(dof, t, &ok)
+        }
     }
 }
 
@@ -136,7 +151,35 @@ fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Pr
     ok(&pr).then_some(pr)
 }
 
-/// Cruise family with a free cruise velocity.
+/// Cruise family with a free cruise velocity (third order), from the roots of its position
+/// polynomials: for each direction of the two velocity changes and each plateau variant
+/// (see [`two_changes`]). The directions that the mean velocity D/t suggests go first; the
+/// first valid profile wins.
+fn cruise_closed(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
+    let j = dof.jmax;
+    let guess = if t > 0.0 { (dof.pf - dof.p0) / t } else { 0.0 };
+    let k0 = kink(ProfileOrder::Third, dof.v0, dof.a0, j, 1.0);
+    let kf = kink(ProfileOrder::Third, dof.vf, dof.af, j, -1.0);
+    let g1 = if guess >= k0 { 1.0 } else { -1.0 };
+    let g2 = if guess <= kf { 1.0 } else { -1.0 };
+    let (vlo, vhi) = velocity_window(dof);
+    let mut best = None;
+    for (d1, d2) in [(g1, g2), (-g1, g2), (g1, -g2), (-g1, -g2)] {
+        if two_changes(dof, d1, d2, Some(t), vlo, vhi, &mut |pr| {
+            let good = ok(pr);
+            if good {
+                best = Some(*pr);
+            }
+            good
+        }) {
+            return best;
+        }
+    }
+    None
+}
+
+/// Cruise family with a free cruise velocity, by bracketing (the fallback of
+/// [`cruise_closed`]; also second order).
 fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
     let order = dof.order();
     let d = dof.pf - dof.p0;

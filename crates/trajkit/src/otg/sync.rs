@@ -41,8 +41,6 @@ pub struct Scratch {
     pub(crate) sync: bool,
     /// The time-optimal profile of step 1.
     pub(crate) step1: Profile,
-    /// The profile of the duration being tried.
-    pub(crate) trial: Profile,
 }
 
 impl Default for Scratch {
@@ -54,7 +52,6 @@ impl Default for Scratch {
             t_min: 0.0,
             sync: false,
             step1: Profile::default(),
-            trial: Profile::default(),
         }
     }
 }
@@ -107,20 +104,23 @@ pub(crate) fn calculate(
             continue;
         }
         let s1 = step1(&d).ok_or(OtgResult::CalculationFailed { dof: i })?;
-        out[i] = DofTrajectory {
-            profile: s1.profile,
-            independent_min_duration: s1.t_min(),
-        };
-        scratch[i].cand = s1.cand;
-        scratch[i].ncand = s1.ncand;
-        scratch[i].t_min = s1.t_min();
-        scratch[i].step1 = s1.profile;
-        t_lead = t_lead.max(s1.t_min());
         scratch[i].sync = match opts.synchronization {
             Synchronization::Time | Synchronization::Phase => true,
             Synchronization::TimeIfNecessary => d.vf != 0.0 || d.af != 0.0,
             Synchronization::None => false,
         };
+        // A synchronized DOF's output profile is written by every successful path below
+        // (step 2 or phase synchronization), so the step-1 profile is copied there only for
+        // the others.
+        out[i].independent_min_duration = s1.t_min();
+        if !scratch[i].sync {
+            out[i].profile = s1.profile;
+        }
+        scratch[i].cand = s1.cand;
+        scratch[i].ncand = s1.ncand;
+        scratch[i].t_min = s1.t_min();
+        scratch[i].step1 = s1.profile;
+        t_lead = t_lead.max(s1.t_min());
     }
 
     if opts.synchronization == Synchronization::Phase && phase(view, delta_time, out, scratch)? {
@@ -165,19 +165,26 @@ pub(crate) fn calculate(
                     // last failure and t: bisect for the edge of the feasible range.
                     if let Some(mut lo) = last_fail {
                         let mut hi = t;
+                        let mut last_ok = true;
                         for _ in 0..64 {
                             let mid = disc(0.5 * (lo + hi));
                             if mid <= lo || mid >= hi {
                                 break;
                             }
-                            if try_all(scratch, out, n, mid).is_ok() {
+                            last_ok = try_all(scratch, out, n, mid).is_ok();
+                            if last_ok {
                                 hi = mid;
                             } else {
                                 lo = mid;
                             }
                         }
-                        // `out` holds the profiles of the last success, which is `hi`.
-                        let _ = hi;
+                        // A failed attempt leaves `out` partly written: redo the last success.
+                        if !last_ok && try_all(scratch, out, n, hi).is_err() {
+                            return Err(OtgResult::SynchronizationFailed {
+                                dof: failed,
+                                duration: hi,
+                            });
+                        }
                     }
                     return Ok(duration_of(&out[..n]));
                 }
@@ -229,6 +236,9 @@ fn replan(s: &Scratch, t: f64) -> Option<Profile> {
     if (t - s.t_min).abs() <= 1e-13 * t.max(1.0) {
         return Some(s.step1);
     }
+    if s.step1.brake_duration() == 0.0 {
+        return step2(&s.dof, t);
+    }
     let mut pr = s.step1.brake_part();
     let e = pr.end();
     let mut d = s.dof;
@@ -239,14 +249,9 @@ fn replan(s: &Scratch, t: f64) -> Option<Profile> {
     pr.append(&main).then_some(pr)
 }
 
-/// Step 2 for every synchronized DOF at duration `t`; the failing DOF on error. `out` is
-/// written only when every DOF succeeded.
-fn try_all(
-    scratch: &mut [Scratch],
-    out: &mut [DofTrajectory],
-    n: usize,
-    t: f64,
-) -> Result<(), usize> {
+/// Step 2 for every synchronized DOF at duration `t`, written into `out`; the failing DOF on
+/// error (then the synchronized entries of `out` are partly overwritten).
+fn try_all(scratch: &[Scratch], out: &mut [DofTrajectory], n: usize, t: f64) -> Result<(), usize> {
     for i in 0..n {
         if !scratch[i].sync {
             continue;
@@ -255,13 +260,8 @@ fn try_all(
             return Err(i);
         }
         match replan(&scratch[i], t) {
-            Some(p) => scratch[i].trial = p,
+            Some(p) => out[i].profile = p,
             None => return Err(i),
-        }
-    }
-    for i in 0..n {
-        if scratch[i].sync {
-            out[i].profile = scratch[i].trial;
         }
     }
     Ok(())
@@ -375,7 +375,6 @@ fn phase(
         t_min: s1.t_min(),
         sync: true,
         step1: s1.profile,
-        trial: s1.profile,
     };
     let Some(sp) = replan(&sc, t) else {
         return Ok(false);
