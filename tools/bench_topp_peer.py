@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Times PyPI toppra on trajkit's TOPP benchmark input, for notes/topp-benchmarks.md.
+"""Times PyPI toppra on trajkit's TOPP benchmark input, for BENCHMARKS.md.
 
 The input is the `standard_7wp_natural_N1000` fixture problem: 7-DOF Panda velocity and
 acceleration limits, natural cubic spline through 7 random waypoints at s = 0, 1/6, ..., 1,
