@@ -331,33 +331,36 @@ pub(crate) fn integrate<P: Path + ?Sized>(
         }
     }
     let mut sc = Scratch::new(path.dim());
-    let mut raw = Rows::default();
-    let mut tight = Rows::default();
+    let mut rows = Rows::default();
+    // The untightened γ of every row and x_max of every knot side, kept while the knots stay.
+    let mut base: (Vec<f64>, Vec<[f64; 2]>) = Default::default();
     let mut clean = CleanSteps::default();
     // Per knot: the relative tightening of its constraints (0 at the ends and at breakpoints,
     // so closed-form steps and junction switching points keep the exact limits), and whether
     // the rows of the current knots are evaluated.
     let mut eps = vec![0.0; knots.len()];
     let mut evaluated = false;
+    // Per knot step: its constraints do not vary along it (closed-form step).
+    let mut constant: Vec<bool> = Vec::new();
     let mut round = 0;
     loop {
         if !evaluated {
-            raw.evaluate(path, left, cons, &knots, breaks, &mut sc)?;
+            rows.evaluate(path, left, cons, &knots, breaks, &mut sc)?;
             evaluated = true;
+            base.0.clear();
+            base.1.clear();
+            constant.clear();
+            match step_bound {
+                Some(b) => {
+                    constant.extend(knots.windows(2).map(|k| b(k[0], k[1], 1.0, 1.0) == 0.0))
+                }
+                None => constant.resize(knots.len() - 1, false),
+            }
         }
-        let rows = if eps.iter().any(|&e| e > 0.0) {
-            raw.tightened(&eps, &mut tight);
-            &tight
-        } else {
-            &raw
-        };
-        let constant: Vec<bool> = match step_bound {
-            Some(b) => knots
-                .windows(2)
-                .map(|k| b(k[0], k[1], 1.0, 1.0) == 0.0)
-                .collect(),
-            None => vec![false; knots.len() - 1],
-        };
+        if eps.iter().any(|&e| e > 0.0) {
+            rows.tighten(&eps, &mut base);
+        }
+        let rows = &rows;
         let sweep = sweep(
             path, cons, &knots, breaks, rows, &constant, velocities, &mut sc,
         )?;
@@ -579,30 +582,27 @@ fn is_break(breaks: &[f64], s: f64) -> bool {
 }
 
 impl Rows {
-    /// Copies `self` into `out` with the limits at knot k tightened by `eps[k]` (relative):
-    /// every row γ → γ − ε·|γ|, x_max → x_max·(1 − ε).
-    fn tightened(&self, eps: &[f64], out: &mut Rows) {
-        out.rows.clear();
-        out.rows.extend_from_slice(&self.rows);
-        out.range.clone_from(&self.range);
-        out.xlo.clone_from(&self.xlo);
-        out.xhi.clone_from(&self.xhi);
+    /// Tightens the limits at knot k by `eps[k]` (relative), in place: every row
+    /// γ → γ₀ − ε·|γ₀|, x_max → x₀·(1 − ε), from the untightened values `base` (saved on the
+    /// first call after an evaluation).
+    fn tighten(&mut self, eps: &[f64], base: &mut (Vec<f64>, Vec<[f64; 2]>)) {
+        if base.0.is_empty() {
+            base.0.extend(self.rows.iter().map(|r| r[2]));
+            base.1.extend_from_slice(&self.xhi);
+        }
         for (k, r) in self.range.iter().enumerate() {
             let e = eps[k];
-            if e == 0.0 {
-                continue;
-            }
             let shared = r[0] == r[2];
             for (a, b) in [(r[0], r[1]), (r[2], r[3])]
                 .into_iter()
                 .take(if shared { 1 } else { 2 })
             {
-                for row in &mut out.rows[a..b] {
-                    row[2] -= e * row[2].abs();
+                for (row, &g) in self.rows[a..b].iter_mut().zip(&base.0[a..b]) {
+                    row[2] = g - e * g.abs();
                 }
             }
             for side in 0..2 {
-                out.xhi[k][side] = (out.xhi[k][side] * (1.0 - e)).max(out.xlo[k][side]);
+                self.xhi[k][side] = (base.1[k][side] * (1.0 - e)).max(self.xlo[k][side]);
             }
         }
     }
