@@ -26,12 +26,19 @@
 //! 2. **Forward integration** at u_max; where it meets the backward curve inside a step, the
 //!    crossing is located exactly (two straight lines in (s, x)) and becomes a knot, so the
 //!    switch from acceleration to deceleration happens at the right place, not at a grid
-//!    point. Where the caller knows the constraints do not vary along a step (TOTG's straight
+//!    point (only where the backward curve is certified at the step's start, i.e. its LP
+//!    reached the next knot's value; below a point of the limit curve the step goes straight
+//!    to the backward curve's next knot, admissible because the admissible s̈ at a knot form
+//!    an interval). Where the caller knows the constraints do not vary along a step (TOTG's straight
 //!    segments of a [`crate::topp::BlendedPath`]), the step is solved in closed form
 //!    (accelerate, cruise on the velocity limit, decelerate: the exact trapezoid/triangle).
 //! 3. **Event check**: every step is checked at interior points (or, where the path gives one,
-//!    by a rigorous analytic bound, as on the arcs of [`crate::topp::BlendedPath`]); steps where
-//!    a constraint is exceeded by more than 3e-7 relative (bound: 9e-7) are cut (as many parts
+//!    by a rigorous analytic bound b on the excess over the chord between knots, as on the arcs
+//!    of [`crate::topp::BlendedPath`]: there the knots' limits are tightened by ε ≥ b, so the
+//!    profile between knots stays within the true limits; knots at breakpoints are not
+//!    tightened and their neighbours take 4b, see [`crate::topp::totg`]); steps where a
+//!    constraint is exceeded by more than 3e-7 relative (bound: 9e-7 beyond the tightening,
+//!    or a bound above 2e-6 of the limits) are cut (as many parts
 //!    as the excess calls for, the excess shrinking with the square of the step) and the
 //!    problem integrated again, at most [`crate::topp::toppra::MAX_REFINE_ROUNDS`] times and up
 //!    to [`crate::topp::toppra::MAX_REFINED_INTERVALS`] knots (TOPP-RA's caps and check
@@ -48,8 +55,9 @@
 //!
 //! # Precision contract
 //! - At every knot, every constraint holds for the step's u on both sides within 1e-9
-//!   relative (the LP tolerance); between knots, at the checked points, within 3e-7 relative,
-//!   or everywhere within 9e-7 where an analytic bound is used (the tests check 1e-6 on 1 ms
+//!   relative (the LP tolerance; tightened knots hold the tightened limits); between knots,
+//!   at the checked points, within 3e-7 relative, or everywhere within 9e-7 where an analytic
+//!   bound is used (the tests check 1e-6 on 1 ms
 //!   samples, pointwise and by finite differences).
 //! - On steps whose constraints do not vary (TOTG's straight segments) the result is the
 //!   closed form, exact up to rounding.
@@ -73,6 +81,16 @@ use crate::Path;
 /// bound holds everywhere between the knots, and the knots themselves hold to 1e-9, so the
 /// limits hold within 1e-6 relative.
 const BOUND_TOL: f64 = 9e-7;
+
+/// Largest relative tightening of a bounded step's limits at its knots; a step whose bound
+/// exceeds it is cut instead (into parts of about [`TIGHTEN_TARGET`]).
+const TIGHTEN_MAX: f64 = 2e-6;
+
+/// The bound aimed at when a bounded step is cut.
+const TIGHTEN_TARGET: f64 = 1e-6;
+
+/// Tightening above the bound, so that the next round's (slightly different) step still fits.
+const TIGHTEN_MARGIN: f64 = 0.02;
 
 /// Stand-in for "no finite bound" on x.
 const X_BIG: f64 = 1e30;
@@ -314,24 +332,45 @@ pub(crate) fn integrate<P: Path + ?Sized>(
     }
     let mut sc = Scratch::new(path.dim());
     let mut rows = Rows::default();
+    // The untightened γ of every row and x_max of every knot side, kept while the knots stay.
+    let mut base: (Vec<f64>, Vec<[f64; 2]>) = Default::default();
     let mut clean = CleanSteps::default();
+    // Per knot: the relative tightening of its constraints (0 at the ends and at breakpoints,
+    // so closed-form steps and junction switching points keep the exact limits), and whether
+    // the rows of the current knots are evaluated.
+    let mut eps = vec![0.0; knots.len()];
+    let mut evaluated = false;
+    // Per knot step: its constraints do not vary along it (closed-form step).
+    let mut constant: Vec<bool> = Vec::new();
     let mut round = 0;
     loop {
-        rows.evaluate(path, left, cons, &knots, breaks, &mut sc)?;
-        let constant: Vec<bool> = match step_bound {
-            Some(b) => knots
-                .windows(2)
-                .map(|k| b(k[0], k[1], 1.0, 1.0) == 0.0)
-                .collect(),
-            None => vec![false; knots.len() - 1],
-        };
+        if !evaluated {
+            rows.evaluate(path, left, cons, &knots, breaks, &mut sc)?;
+            evaluated = true;
+            base.0.clear();
+            base.1.clear();
+            constant.clear();
+            match step_bound {
+                Some(b) => {
+                    constant.extend(knots.windows(2).map(|k| b(k[0], k[1], 1.0, 1.0) == 0.0))
+                }
+                None => constant.resize(knots.len() - 1, false),
+            }
+        }
+        if eps.iter().any(|&e| e > 0.0) {
+            rows.tighten(&eps, &mut base);
+        }
+        let rows = &rows;
         let sweep = sweep(
-            path, cons, &knots, breaks, &rows, &constant, velocities, &mut sc,
+            path, cons, &knots, breaks, rows, &constant, velocities, &mut sc,
         )?;
         // Event check between knots.
         clean.start_round();
         let n = knots.len() - 1;
         let mut parts = vec![1usize; n];
+        let mut next_eps = eps.clone();
+        let mut cut_bound = vec![0.0f64; n];
+        let fixed_knot = |k: usize| k == 0 || k == n || is_break(breaks, knots[k]);
         let mut worst = (0.0f64, 0.0f64);
         let (s, x) = (&sweep.s, &sweep.x);
         for j in 0..s.len() - 1 {
@@ -345,16 +384,39 @@ pub(crate) fn integrate<P: Path + ?Sized>(
                 let xa = x[j] + 2.0 * u * (k0 - s[j]);
                 let xb = x[j] + 2.0 * u * (k1 - s[j]);
                 let bound = b(k0, k1, u, xa.max(xb).max(0.0));
-                if bound <= BOUND_TOL {
+                let (e0, e1) = (eps[i], eps[i + 1]);
+                let excess = excess_between(bound, e0, e1);
+                if excess <= BOUND_TOL {
                     continue;
                 }
                 if bound.is_finite() {
-                    // A rigorous bound that shrinks with the square of the step: cut by it,
-                    // no sampling needed.
-                    if bound > worst.0 {
-                        worst = (bound, s[j]);
+                    // A rigorous bound that shrinks with the square of the step: tighten the
+                    // limits at the step's free knots by it, or cut the step where that would
+                    // cost more than TIGHTEN_MAX of the limits. No sampling needed.
+                    if excess > worst.0 {
+                        worst = (excess, s[j]);
                     }
-                    parts[i] = parts[i].max(parts_for(bound * CHECK_TOL / BOUND_TOL));
+                    let free = [fixed_knot(i), fixed_knot(i + 1)].map(|f| !f);
+                    let need = if free[0] && free[1] {
+                        bound
+                    } else {
+                        4.0 * bound
+                    };
+                    if bound <= TIGHTEN_MAX && (free[0] || free[1]) {
+                        for (k, f) in [(i, free[0]), (i + 1, free[1])] {
+                            if f {
+                                next_eps[k] = next_eps[k].max(need * (1.0 + TIGHTEN_MARGIN));
+                            }
+                        }
+                    } else {
+                        let m = (need / TIGHTEN_TARGET).sqrt().ceil();
+                        parts[i] = parts[i].max(if m.is_finite() {
+                            (m as usize).clamp(2, 64)
+                        } else {
+                            64
+                        });
+                        cut_bound[i] = cut_bound[i].max(bound);
+                    }
                     continue;
                 }
             }
@@ -395,20 +457,47 @@ pub(crate) fn integrate<P: Path + ?Sized>(
                 worst.0, worst.1, knots.len()
             )));
         }
-        let mut next = Vec::with_capacity(total + 1);
-        for i in 0..n {
-            next.push(knots[i]);
-            for k in 1..parts[i] {
-                let si = knots[i] + (knots[i + 1] - knots[i]) * (k as f64 / parts[i] as f64);
-                if si > next[next.len() - 1] && si < knots[i + 1] {
-                    next.push(si);
+        if total > n {
+            // The new knots of a cut step start tightened by its bound shrunk by the square
+            // of the cut (four times that next to a fixed knot).
+            let mut next = Vec::with_capacity(total + 1);
+            let mut next_e = Vec::with_capacity(total + 1);
+            for i in 0..n {
+                next.push(knots[i]);
+                next_e.push(next_eps[i]);
+                let per = cut_bound[i] / (parts[i] * parts[i]) as f64 * (1.0 + TIGHTEN_MARGIN);
+                for k in 1..parts[i] {
+                    let si = knots[i] + (knots[i + 1] - knots[i]) * (k as f64 / parts[i] as f64);
+                    if si > next[next.len() - 1] && si < knots[i + 1] {
+                        let edge =
+                            (k == 1 && fixed_knot(i)) || (k + 1 == parts[i] && fixed_knot(i + 1));
+                        next.push(si);
+                        next_e.push(if edge { 4.0 * per } else { per });
+                    }
                 }
             }
+            next.push(knots[n]);
+            next_e.push(next_eps[n]);
+            knots = next;
+            eps = next_e;
+            evaluated = false;
+        } else {
+            eps = next_eps;
         }
-        next.push(knots[n]);
-        knots = next;
         round += 1;
     }
+}
+
+/// The largest relative excess over the true limits between two knots whose limits are
+/// tightened by `e0` and `e1`, for a step whose excess over the chord is at most `bound`: the
+/// chord sits at −(e0·(1 − t) + e1·t) and the excess over it at most 4·bound·t·(1 − t)
+/// (t ∈ [0, 1] along the step; the largest value of t(1 − t) is 1/4).
+fn excess_between(bound: f64, e0: f64, e1: f64) -> f64 {
+    if bound <= 0.0 {
+        return -e0.min(e1);
+    }
+    let t = ((4.0 * bound + e0 - e1) / (8.0 * bound)).clamp(0.0, 1.0);
+    4.0 * bound * t * (1.0 - t) - e0 * (1.0 - t) - e1 * t
 }
 
 /// Into how many equal parts to cut a step whose excess `e` shrinks with the square of its
@@ -493,6 +582,31 @@ fn is_break(breaks: &[f64], s: f64) -> bool {
 }
 
 impl Rows {
+    /// Tightens the limits at knot k by `eps[k]` (relative), in place: every row
+    /// γ → γ₀ − ε·|γ₀|, x_max → x₀·(1 − ε), from the untightened values `base` (saved on the
+    /// first call after an evaluation).
+    fn tighten(&mut self, eps: &[f64], base: &mut (Vec<f64>, Vec<[f64; 2]>)) {
+        if base.0.is_empty() {
+            base.0.extend(self.rows.iter().map(|r| r[2]));
+            base.1.extend_from_slice(&self.xhi);
+        }
+        for (k, r) in self.range.iter().enumerate() {
+            let e = eps[k];
+            let shared = r[0] == r[2];
+            for (a, b) in [(r[0], r[1]), (r[2], r[3])]
+                .into_iter()
+                .take(if shared { 1 } else { 2 })
+            {
+                for (row, &g) in self.rows[a..b].iter_mut().zip(&base.0[a..b]) {
+                    row[2] = g - e * g.abs();
+                }
+            }
+            for side in 0..2 {
+                self.xhi[k][side] = (base.1[k][side] * (1.0 - e)).max(self.xlo[k][side]);
+            }
+        }
+    }
+
     fn evaluate<P: Path + ?Sized>(
         &mut self,
         path: &P,
@@ -656,7 +770,10 @@ fn sweep<P: Path + ?Sized>(
             xf.max(0.0)
         } else {
             let ub = (back[i + 1] - back[i]) / (2.0 * delta);
-            if uf > ub && x < back[i] {
+            // The backward line from knot i is certified by the LP only where its backward
+            // row is active there (back[i] + 2Δu* = back[i + 1]); below a point of the limit
+            // curve the step is the plain one to back[i + 1], admissible by convexity.
+            if uf > ub && x < back[i] && bound[i] == Bound::Integrated {
                 let tau = (back[i] - x) / (2.0 * (uf - ub));
                 if tau > 1e-9 * delta && tau < delta * (1.0 - 1e-9) {
                     out.s.push(knots[i] + tau);
@@ -708,4 +825,40 @@ fn sweep<P: Path + ?Sized>(
         x = next;
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::excess_between;
+
+    /// The closed form against a dense scan of 4b·t(1 − t) − e₀(1 − t) − e₁·t over t ∈ [0, 1].
+    #[test]
+    fn excess_between_matches_a_scan() {
+        let b = 1e-5;
+        for (e0, e1) in [
+            (0.0, 0.0),
+            (b, b),
+            (0.0, 4.0 * b),
+            (0.0, 2.0 * b),
+            (3e-6, 4e-5),
+            (5e-5, 0.0),
+        ] {
+            let scan = (0..=100_000)
+                .map(|k| {
+                    let t = k as f64 / 100_000.0;
+                    4.0 * b * t * (1.0 - t) - e0 * (1.0 - t) - e1 * t
+                })
+                .fold(f64::NEG_INFINITY, f64::max);
+            let closed = excess_between(b, e0, e1);
+            assert!(
+                (closed - scan).abs() < 1e-14,
+                "{e0} {e1}: {closed} vs {scan}"
+            );
+        }
+        // Equal tightening by the bound leaves no excess; none either next to an untightened
+        // knot when the other takes 4b.
+        assert!(excess_between(b, b, b).abs() < 1e-18);
+        assert!(excess_between(b, 0.0, 4.0 * b) <= 0.0);
+        assert!(excess_between(b, 0.0, b) > 0.0);
+    }
 }
