@@ -6,25 +6,7 @@ mod common;
 use common::trajkit;
 
 /// A two-link arm in the vertical x-z plane, with effort limits that bind.
-const ARM: &str = r#"<robot name="arm">
-  <link name="base"/>
-  <link name="upper">
-    <inertial><origin xyz="0.3 0 0"/><mass value="2"/>
-      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.04" iyz="0" izz="0.04"/></inertial>
-  </link>
-  <link name="fore">
-    <inertial><origin xyz="0.25 0 0"/><mass value="1.5"/>
-      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.02"/></inertial>
-  </link>
-  <joint name="shoulder" type="revolute">
-    <parent link="base"/><child link="upper"/><origin xyz="0 0 0.4"/><axis xyz="0 1 0"/>
-    <limit lower="-3" upper="3" velocity="5" effort="24"/>
-  </joint>
-  <joint name="elbow" type="revolute">
-    <parent link="upper"/><child link="fore"/><origin xyz="0.7 0 0"/><axis xyz="0 1 0"/>
-    <limit lower="-3" upper="3" velocity="5" effort="6"/>
-  </joint>
-</robot>"#;
+const ARM: &str = include_str!("../../trajkit/tests/fixtures/two_link_arm.urdf");
 
 const WAYPOINTS: &str = "q1,q2\n0,0\n1.2,-1.0\n0.3,1.0\n-0.5,0.2\n";
 

@@ -3,7 +3,7 @@
 
 mod topp_common;
 
-use topp_common::worst_ratios;
+use topp_common::worst_for;
 use trajkit::rng::SplitMix64;
 use trajkit::spline::CubicSpline;
 use trajkit::topp::{
@@ -334,16 +334,6 @@ fn coulomb_friction_costs_time() {
 /// Seeded random Panda problems: spline through 3..8 random waypoints; invariants on each.
 fn random_suite(cases: u64) {
     let lim = Limits::preset("panda").unwrap();
-    let (vlo, vhi): (Vec<f64>, Vec<f64>) = lim
-        .joints()
-        .iter()
-        .map(|j| j.range(Order::Velocity))
-        .unzip();
-    let (alo, ahi): (Vec<f64>, Vec<f64>) = lim
-        .joints()
-        .iter()
-        .map(|j| j.range(Order::Acceleration))
-        .unzip();
     for case in 0..cases {
         let mut rng = SplitMix64::new(1000 + case);
         let n = 3 + rng.below(6) as usize;
@@ -361,7 +351,7 @@ fn random_suite(cases: u64) {
             .options(opts(grid))
             .solve()
             .unwrap_or_else(|e| panic!("case {case}: {e}"));
-        let w = worst_ratios(&traj, &vlo, &vhi, &alo, &ahi, 1e-3);
+        let w = worst_for(&traj, &lim);
         let lim1 = 1.0 + 1e-6;
         assert!(
             w.velocity <= lim1 && w.acceleration <= lim1,
@@ -441,16 +431,6 @@ fn bad_input_is_a_typed_error() {
 #[test]
 fn without_refinement_the_excess_between_gridpoints_shrinks_with_n() {
     let lim = Limits::preset("panda").unwrap();
-    let (vlo, vhi): (Vec<f64>, Vec<f64>) = lim
-        .joints()
-        .iter()
-        .map(|j| j.range(Order::Velocity))
-        .unzip();
-    let (alo, ahi): (Vec<f64>, Vec<f64>) = lim
-        .joints()
-        .iter()
-        .map(|j| j.range(Order::Acceleration))
-        .unzip();
     let path = standard_problem();
     let excess = |n: usize| {
         let traj = Toppra::with_limits(&path, &lim)
@@ -461,7 +441,7 @@ fn without_refinement_the_excess_between_gridpoints_shrinks_with_n() {
             })
             .solve()
             .unwrap();
-        let w = worst_ratios(&traj, &vlo, &vhi, &alo, &ahi, 1e-3);
+        let w = worst_for(&traj, &lim);
         w.velocity.max(w.acceleration) - 1.0
     };
     let (e1, e2, e3) = (excess(100), excess(400), excess(1600));

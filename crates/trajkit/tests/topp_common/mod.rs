@@ -123,23 +123,6 @@ pub fn worst_ratios<T: Trajectory>(
     w
 }
 
-/// A two-link arm moving in the vertical x-z plane (joint axes y, gravity −z).
-pub const ARM: &str = r#"<robot name="arm">
-  <link name="base"/>
-  <link name="upper">
-    <inertial><origin xyz="0.3 0 0"/><mass value="2"/>
-      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.04" iyz="0" izz="0.04"/></inertial>
-  </link>
-  <link name="fore">
-    <inertial><origin xyz="0.25 0 0"/><mass value="1.5"/>
-      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.02"/></inertial>
-  </link>
-  <joint name="shoulder" type="revolute">
-    <parent link="base"/><child link="upper"/><origin xyz="0 0 0.4"/><axis xyz="0 1 0"/>
-    <limit lower="-3" upper="3" velocity="5" effort="24"/>
-  </joint>
-  <joint name="elbow" type="revolute">
-    <parent link="upper"/><child link="fore"/><origin xyz="0.7 0 0"/><axis xyz="0 1 0"/>
-    <limit lower="-3" upper="3" velocity="5" effort="6"/>
-  </joint>
-</robot>"#;
+/// A two-link arm moving in the vertical x-z plane (joint axes y, gravity −z), with effort
+/// limits that bind (shared with the CLI's torque tests).
+pub const ARM: &str = include_str!("../fixtures/two_link_arm.urdf");
