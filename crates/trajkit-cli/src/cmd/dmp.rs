@@ -105,6 +105,61 @@ pub fn band_csv(names: &[String], t: &[f64], mean: &[f64], sd: &[f64], k: f64) -
     s
 }
 
+/// Output flags of a probabilistic model (`promp`, `kmp`): the mean table and an optional
+/// ±k·σ band.
+#[derive(Args, Debug)]
+pub struct MeanBandArgs {
+    /// Mean trajectory table (CSV or JSON by extension; '-' for standard output).
+    #[arg(long, short, value_name = "FILE", default_value = "trajectory.csv")]
+    pub out: PathBuf,
+    /// Also write the mean and ±k·σ band of positions as CSV (t, qJ, qJ_lo, qJ_hi).
+    #[arg(long, value_name = "FILE.csv")]
+    pub band: Option<PathBuf>,
+    /// Width of the band in standard deviations.
+    #[arg(
+        long,
+        value_name = "K",
+        default_value_t = 2.0,
+        allow_hyphen_values = true
+    )]
+    pub sigma: f64,
+    #[command(flatten)]
+    pub output: OutputArgs,
+}
+
+impl MeanBandArgs {
+    /// Samples the model's mean, queues table, plot and (with `--band`) the band, whose
+    /// per-joint standard deviations `sd(t, out)` writes, and writes everything. Returns the
+    /// "wrote …" line of the summary.
+    pub fn write(
+        &self,
+        model: &dyn Trajectory,
+        names: &[String],
+        title: String,
+        mut sd: impl FnMut(f64, &mut [f64]),
+    ) -> CliResult<String> {
+        let mut outputs = Outputs::default();
+        let table = queue_table(model, names, &self.out, &self.output, title, &mut outputs)?;
+        if let Some(b) = &self.band {
+            let dof = model.dof();
+            let t = table.times();
+            let mut mean = vec![0.0; t.len() * dof];
+            let mut dev = vec![0.0; t.len() * dof];
+            for (i, &ti) in t.iter().enumerate() {
+                model.eval(ti, Order::Position, &mut mean[i * dof..(i + 1) * dof]);
+                sd(ti, &mut dev[i * dof..(i + 1) * dof]);
+            }
+            outputs.add(b, band_csv(names, t, &mean, &dev, self.sigma));
+        }
+        outputs.commit()?;
+        let mut s = format!("wrote {}", self.out.display());
+        for p in [&self.band, &self.output.plot].into_iter().flatten() {
+            s.push_str(&format!(" and {}", p.display()));
+        }
+        Ok(s)
+    }
+}
+
 /// Samples a trajectory, names its joints and queues table and plot.
 pub fn queue_table(
     traj: &dyn Trajectory,

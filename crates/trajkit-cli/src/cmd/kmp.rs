@@ -1,8 +1,8 @@
 //! `trajkit kmp`: a KMP from demonstrations (GMM/GMR reference), adapted to via points; writes
 //! the mean trajectory and its ±kσ band.
 
-use super::common::{CliError, CliResult, OutputArgs, Outputs};
-use super::dmp::{band_csv, parse_via, queue_table, read_demos};
+use super::common::{CliError, CliResult};
+use super::dmp::{parse_via, read_demos, MeanBandArgs};
 use clap::Args;
 use std::path::PathBuf;
 use trajkit::primitives::{Demo, GmmConfig, Kmp, KmpConfig, KmpReference, KmpVia};
@@ -58,22 +58,8 @@ pub struct KmpArgs {
         allow_hyphen_values = true
     )]
     pub lambda_c: f64,
-    /// Mean trajectory table (CSV or JSON by extension; '-' for standard output).
-    #[arg(long, short, value_name = "FILE", default_value = "trajectory.csv")]
-    pub out: PathBuf,
-    /// Also write the mean and ±k·σ band of positions as CSV (t, qJ, qJ_lo, qJ_hi).
-    #[arg(long, value_name = "FILE.csv")]
-    pub band: Option<PathBuf>,
-    /// Width of the band in standard deviations.
-    #[arg(
-        long,
-        value_name = "K",
-        default_value_t = 2.0,
-        allow_hyphen_values = true
-    )]
-    pub sigma: f64,
     #[command(flatten)]
-    pub output: OutputArgs,
+    pub out: MeanBandArgs,
 }
 
 /// Runs `trajkit kmp`.
@@ -117,31 +103,14 @@ pub fn run(a: &KmpArgs) -> CliResult<u8> {
     if !via.is_empty() {
         kmp = kmp.with_via_points(&via)?;
     }
-    let mut outputs = Outputs::default();
     let title = format!("trajkit kmp — mean of {} demonstrations", demos.len());
-    let table = queue_table(
-        &kmp,
-        &demos[0].names,
-        &a.out,
-        &a.output,
-        title,
-        &mut outputs,
-    )?;
-    if let Some(b) = &a.band {
-        let t = table.times();
-        let mut mean = vec![0.0; t.len() * dof];
-        let mut sd = vec![0.0; t.len() * dof];
-        let mut c = vec![0.0; dof * dof];
-        for (i, &ti) in t.iter().enumerate() {
-            kmp.eval(ti, Order::Position, &mut mean[i * dof..(i + 1) * dof]);
-            kmp.covariance(ti, Order::Position, &mut c);
-            for j in 0..dof {
-                sd[i * dof + j] = c[j * dof + j].max(0.0).sqrt();
-            }
+    let mut c = vec![0.0; dof * dof];
+    let wrote = a.out.write(&kmp, &demos[0].names, title, |t, sd| {
+        kmp.covariance(t, Order::Position, &mut c);
+        for (j, v) in sd.iter_mut().enumerate() {
+            *v = c[j * dof + j].max(0.0).sqrt();
         }
-        outputs.add(b, band_csv(&demos[0].names, t, &mean, &sd, a.sigma));
-    }
-    outputs.commit()?;
+    })?;
     let mut s = format!(
         "demonstrations: {} ({} joints), reference {} points from a {}-component GMM, duration {:.6} s",
         demos.len(),
@@ -152,10 +121,8 @@ pub fn run(a: &KmpArgs) -> CliResult<u8> {
     );
     let points: Vec<(f64, &[f64])> = via.iter().map(|v| (v.t, &v.mean[..])).collect();
     s.push_str(&super::common::via_point_report(&kmp, &points));
-    s.push_str(&format!("\nwrote {}", a.out.display()));
-    for p in [&a.band, &a.output.plot].into_iter().flatten() {
-        s.push_str(&format!(" and {}", p.display()));
-    }
-    super::common::print_summary(&a.out, &s);
+    s.push('\n');
+    s.push_str(&wrote);
+    super::common::print_summary(&a.out.out, &s);
     Ok(0)
 }

@@ -1,8 +1,8 @@
 //! `trajkit promp`: learn a ProMP from several demonstrations, condition it on via points,
 //! write the mean trajectory and its ±kσ band.
 
-use super::common::{CliError, CliResult, OutputArgs, Outputs};
-use super::dmp::{band_csv, parse_via, queue_table, read_demos};
+use super::common::{CliError, CliResult};
+use super::dmp::{parse_via, read_demos, MeanBandArgs};
 use clap::Args;
 use std::path::PathBuf;
 use trajkit::primitives::{Demo, ProMp, ProMpConfig, ViaPoint};
@@ -42,22 +42,8 @@ pub struct PrompArgs {
     /// New duration in seconds (default: the mean of the demonstrations').
     #[arg(long, value_name = "SECONDS", allow_hyphen_values = true)]
     pub duration: Option<f64>,
-    /// Mean trajectory table (CSV or JSON by extension; '-' for standard output).
-    #[arg(long, short, value_name = "FILE", default_value = "trajectory.csv")]
-    pub out: PathBuf,
-    /// Also write the mean and ±k·σ band of positions as CSV (t, qJ, qJ_lo, qJ_hi).
-    #[arg(long, value_name = "FILE.csv")]
-    pub band: Option<PathBuf>,
-    /// Width of the band in standard deviations.
-    #[arg(
-        long,
-        value_name = "K",
-        default_value_t = 2.0,
-        allow_hyphen_values = true
-    )]
-    pub sigma: f64,
     #[command(flatten)]
-    pub output: OutputArgs,
+    pub out: MeanBandArgs,
 }
 
 /// Runs `trajkit promp`.
@@ -92,21 +78,11 @@ pub fn run(a: &PrompArgs) -> CliResult<u8> {
         .map(|s| parse_via(s, dof).map(|(t, q)| ViaPoint::position(t, &q, a.via_variance)))
         .collect::<CliResult<_>>()?;
     let p = p.condition(&via)?;
-    let mut outputs = Outputs::default();
     let title = format!("trajkit promp — mean of {} demonstrations", demos.len());
-    let table = queue_table(&p, &demos[0].names, &a.out, &a.output, title, &mut outputs)?;
-    if let Some(b) = &a.band {
-        let t = table.times();
-        let mut mean = vec![0.0; t.len() * dof];
-        let mut sd = vec![0.0; t.len() * dof];
-        for (i, &ti) in t.iter().enumerate() {
-            p.eval(ti, Order::Position, &mut mean[i * dof..(i + 1) * dof]);
-            p.variance(ti, Order::Position, &mut sd[i * dof..(i + 1) * dof]);
-        }
+    let wrote = a.out.write(&p, &demos[0].names, title, |t, sd| {
+        p.variance(t, Order::Position, sd);
         sd.iter_mut().for_each(|v| *v = v.sqrt());
-        outputs.add(b, band_csv(&demos[0].names, t, &mean, &sd, a.sigma));
-    }
-    outputs.commit()?;
+    })?;
     let mut s = format!(
         "demonstrations: {} ({} joints), duration {:.6} s, {} basis functions per joint",
         demos.len(),
@@ -116,10 +92,8 @@ pub fn run(a: &PrompArgs) -> CliResult<u8> {
     );
     let points: Vec<(f64, &[f64])> = via.iter().map(|v| (v.t, &v.value[..])).collect();
     s.push_str(&super::common::via_point_report(&p, &points));
-    s.push_str(&format!("\nwrote {}", a.out.display()));
-    for p in [&a.band, &a.output.plot].into_iter().flatten() {
-        s.push_str(&format!(" and {}", p.display()));
-    }
-    super::common::print_summary(&a.out, &s);
+    s.push('\n');
+    s.push_str(&wrote);
+    super::common::print_summary(&a.out.out, &s);
     Ok(0)
 }
