@@ -626,6 +626,9 @@ impl Rows {
         self.xlo.clear();
         self.xhi.clear();
         let n = knots.len() - 1;
+        self.range.reserve(knots.len());
+        self.xlo.reserve(knots.len());
+        self.xhi.reserve(knots.len());
         for (k, &s) in knots.iter().enumerate() {
             let a = self.rows.len();
             let (lo, hi) = sc.write(path, None, cons, s, &mut self.rows)?;
@@ -640,7 +643,10 @@ impl Rows {
             self.xlo.push(xlo);
             self.xhi.push(xhi);
             if k == 0 {
-                self.rows.reserve(self.rows.len() * (knots.len() + 8));
+                // Every knot and the left side of every breakpoint: no regrowth (each one
+                // copies all rows so far).
+                self.rows
+                    .reserve(self.rows.len() * (knots.len() + breaks.len()));
             }
         }
         Ok(())
