@@ -256,23 +256,46 @@ impl BlendedPath {
             } => {
                 let (c, x, y, r) = (self.v(*center), self.v(*x), self.v(*y), *radius);
                 let (sn, cs) = (ds / r).sin_cos();
-                // d^k/ds^k of r(cos θ x + sin θ y): the (cos, sin) pair rotates a quarter turn
-                // per derivative and picks up a factor 1/r.
-                let (fx, fy) = match order % 4 {
-                    0 => (cs, sn),
-                    1 => (-sn, cs),
-                    2 => (-cs, -sn),
-                    _ => (sn, -cs),
-                };
-                let scale = r.powi(1 - order as i32);
                 if order == 0 {
                     (0..n).for_each(|j| out[j] = c[j] + r * (cs * x[j] + sn * y[j]));
                 } else {
-                    (0..n).for_each(|j| out[j] = scale * (fx * x[j] + fy * y[j]));
+                    arc_derivative(order, sn, cs, r, x, y, out);
                 }
             }
         }
     }
+
+    /// σ′ and σ″ of piece `k` at `s`: one sin_cos on an arc, the same arithmetic as
+    /// [`BlendedPath::eval_piece`] orders 1 and 2 (so bitwise equal).
+    fn eval_piece_derivatives(&self, k: usize, s: f64, first: &mut [f64], second: &mut [f64]) {
+        let n = self.dim;
+        let (first, second) = (&mut first[..n], &mut second[..n]);
+        match &self.pieces[k] {
+            Piece::Line { dir, .. } => {
+                first.copy_from_slice(self.v(*dir));
+                second.iter_mut().for_each(|v| *v = 0.0);
+            }
+            Piece::Arc { x, y, radius, .. } => {
+                let (x, y, r) = (self.v(*x), self.v(*y), *radius);
+                let (sn, cs) = ((s - self.s[k]) / r).sin_cos();
+                arc_derivative(1, sn, cs, r, x, y, first);
+                arc_derivative(2, sn, cs, r, x, y, second);
+            }
+        }
+    }
+}
+
+/// Writes d^k/ds^k (k ≥ 1) of r(cos θ·x + sin θ·y), θ = s/r, given (sin θ, cos θ): the
+/// (cos, sin) pair rotates a quarter turn per derivative and picks up a factor 1/r.
+fn arc_derivative(order: usize, sn: f64, cs: f64, r: f64, x: &[f64], y: &[f64], out: &mut [f64]) {
+    let (fx, fy) = match order % 4 {
+        0 => (cs, sn),
+        1 => (-sn, cs),
+        2 => (-cs, -sn),
+        _ => (sn, -cs),
+    };
+    let scale = r.powi(1 - order as i32);
+    (0..out.len()).for_each(|j| out[j] = scale * (fx * x[j] + fy * y[j]));
 }
 
 /// The smallest blend radius used: `1e-5·(1 + polyline length)`. A smaller arc is followed at
@@ -403,6 +426,12 @@ impl Path for BlendedPath {
         let k = find_piece(&self.s, s);
         self.eval_piece(k, s, order, out);
     }
+    fn eval_derivatives(&self, s: f64, first: &mut [f64], second: &mut [f64]) {
+        let (a, b) = self.interval();
+        let s = s.clamp(a, b);
+        let k = find_piece(&self.s, s);
+        self.eval_piece_derivatives(k, s, first, second);
+    }
     fn breakpoints(&self) -> Vec<f64> {
         self.s.clone()
     }
@@ -450,5 +479,30 @@ mod tests {
         assert!(e.to_string().contains("max deviation = NaN"), "{e}");
         assert!(BlendedPath::new(&[0.0, 1.0], 1, -1.0).is_err());
         assert!(BlendedPath::new(&[1.0, 1.0], 1, 0.1).is_err());
+    }
+
+    #[test]
+    fn eval_derivatives_is_bitwise_eval_orders_1_and_2() {
+        // A 3-D zig-zag with arcs of several radii; every junction, points inside each piece
+        // and beyond both ends (clamped).
+        let w = [
+            0.0, 0.0, 0.0, 1.0, 0.2, -0.3, 1.5, 1.4, 0.1, 0.2, 2.0, 0.9, 0.4, 0.5, 2.5,
+        ];
+        let p = BlendedPath::new(&w, 3, 0.15).unwrap();
+        assert!(p.arc_radii().len() == 3);
+        let (a, b) = p.interval();
+        let mut ss: Vec<f64> = p.breakpoints();
+        ss.extend((0..=997).map(|i| a + (b - a) * i as f64 / 997.0));
+        ss.extend([a - 1.0, b + 1.0]);
+        let (mut d1, mut d2, mut e1, mut e2) = ([0.0; 3], [0.0; 3], [0.0; 3], [0.0; 3]);
+        for s in ss {
+            p.eval_derivatives(s, &mut d1, &mut d2);
+            p.eval(s, 1, &mut e1);
+            p.eval(s, 2, &mut e2);
+            for j in 0..3 {
+                assert_eq!(d1[j].to_bits(), e1[j].to_bits(), "σ′ at {s}");
+                assert_eq!(d2[j].to_bits(), e2[j].to_bits(), "σ″ at {s}");
+            }
+        }
     }
 }

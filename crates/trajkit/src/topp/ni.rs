@@ -214,13 +214,19 @@ impl Scratch {
         rows: &mut Vec<[f64; 3]>,
     ) -> Result<(f64, f64)> {
         let need_q = cons.iter().any(|c| c.uses_position());
-        for (order, buf) in [(0, &mut self.q), (1, &mut self.dq), (2, &mut self.ddq)] {
-            if order == 0 && !need_q {
-                continue;
+        match left {
+            Some(f) => {
+                if need_q {
+                    f(s, 0, &mut self.q);
+                }
+                f(s, 1, &mut self.dq);
+                f(s, 2, &mut self.ddq);
             }
-            match left {
-                Some(f) => f(s, order, buf),
-                None => path.eval(s, order, buf),
+            None => {
+                if need_q {
+                    path.eval(s, 0, &mut self.q);
+                }
+                path.eval_derivatives(s, &mut self.dq, &mut self.ddq);
             }
         }
         check_path_values(s, &self.q, &self.dq, &self.ddq)?;
@@ -240,8 +246,7 @@ impl Scratch {
     /// Evaluates σ, σ′, σ″ at `s` into the scratch buffers.
     fn at<P: Path + ?Sized>(&mut self, path: &P, s: f64) {
         path.eval(s, 0, &mut self.q);
-        path.eval(s, 1, &mut self.dq);
-        path.eval(s, 2, &mut self.ddq);
+        path.eval_derivatives(s, &mut self.dq, &mut self.ddq);
     }
 
     /// The path point held in the scratch buffers, and the rows buffer.
@@ -621,6 +626,9 @@ impl Rows {
         self.xlo.clear();
         self.xhi.clear();
         let n = knots.len() - 1;
+        self.range.reserve(knots.len());
+        self.xlo.reserve(knots.len());
+        self.xhi.reserve(knots.len());
         for (k, &s) in knots.iter().enumerate() {
             let a = self.rows.len();
             let (lo, hi) = sc.write(path, None, cons, s, &mut self.rows)?;
@@ -635,7 +643,10 @@ impl Rows {
             self.xlo.push(xlo);
             self.xhi.push(xhi);
             if k == 0 {
-                self.rows.reserve(self.rows.len() * (knots.len() + 8));
+                // Every knot and the left side of every breakpoint: no regrowth (each one
+                // copies all rows so far).
+                self.rows
+                    .reserve(self.rows.len() * (knots.len() + breaks.len()));
             }
         }
         Ok(())

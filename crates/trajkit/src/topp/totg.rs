@@ -237,8 +237,24 @@ impl Totg {
                 [p.2, acc, vel]
             })
             .collect();
+        // Steps are mostly visited in path order (either direction): try the previous step's
+        // piece and its neighbours before searching.
+        let hint = std::cell::Cell::new(0usize);
         let bound = |s0: f64, s1: f64, u: f64, x: f64| -> f64 {
-            let [r, acc, vel] = per_piece[crate::traj::find_piece(&breaks, 0.5 * (s0 + s1))];
+            let mid = 0.5 * (s0 + s1);
+            let h = hint.get();
+            let inside = |k: usize| k + 1 < breaks.len() && breaks[k] <= mid && mid < breaks[k + 1];
+            let k = if inside(h) {
+                h
+            } else if inside(h + 1) {
+                h + 1
+            } else if h > 0 && inside(h - 1) {
+                h - 1
+            } else {
+                crate::traj::find_piece(&breaks, mid)
+            };
+            hint.set(k);
+            let [r, acc, vel] = per_piece[k];
             if r.is_infinite() {
                 return 0.0;
             }
