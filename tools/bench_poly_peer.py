@@ -9,20 +9,10 @@ Prints medians in ns per time point (all 7 joints), for position only and for po
 through jerk, to compare with `cargo bench -p trajkit --bench poly_eval`.
 """
 import os
-import subprocess
 import sys
+from pyenv import use_venv
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-VENV = os.path.join(HERE, ".venv-bench")
-
-
-def ensure_venv():
-    py = os.path.join(VENV, "bin", "python")
-    if sys.prefix != VENV:
-        if not os.path.exists(py):
-            subprocess.check_call([sys.executable, "-m", "venv", VENV])
-            subprocess.check_call([py, "-m", "pip", "install", "-q", "numpy==2.*"])
-        os.execv(py, [py] + sys.argv)
 
 
 def main():
@@ -60,5 +50,5 @@ def main():
 
 
 if __name__ == "__main__":
-    ensure_venv()
+    use_venv("bench", ["numpy==2.*"])
     main()

@@ -14,24 +14,13 @@ import os
 import subprocess
 import sys
 import time
+from pyenv import use_venv
 
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("MKL_NUM_THREADS", "1")
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-VENV = os.path.join(ROOT, "tools", ".venv-mp")
-
-
-def ensure_venv():
-    py = os.path.join(VENV, "bin", "python")
-    if os.path.abspath(sys.executable) == os.path.abspath(py):
-        return
-    if not os.path.exists(py):
-        subprocess.check_call([sys.executable, "-m", "venv", VENV])
-        subprocess.check_call([py, "-m", "pip", "install", "-q", "numpy", "scipy",
-                               "pytransform3d", "movement-primitives"])
-    os.execv(py, [py] + sys.argv)
 
 
 def q(m, j, s):
@@ -137,7 +126,7 @@ def fmt(s):
 
 
 if __name__ == "__main__":
-    ensure_venv()
+    use_venv("mp", ["numpy", "scipy", "pytransform3d", "movement-primitives"])
     run_cargo = "--no-cargo" not in sys.argv
     ours = trajkit_medians(run_cargo)
     theirs = peers()

@@ -14,22 +14,12 @@ import statistics
 import subprocess
 import sys
 import time
+from pyenv import use_venv
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-VENV = os.path.join(ROOT, "tools", ".venv-spline")
 
 
-def ensure_venv():
-    if "--no-venv" in sys.argv or os.environ.get("TRAJKIT_IN_VENV"):
-        return
-    py = os.path.join(VENV, "bin", "python")
-    if not os.path.exists(py):
-        subprocess.check_call([sys.executable, "-m", "venv", VENV])
-        subprocess.check_call([py, "-m", "pip", "install", "-q", "numpy", "scipy==1.17.1", "geomdl==5.4.0"])
-    os.execve(py, [py] + sys.argv, dict(os.environ, TRAJKIT_IN_VENV="1"))
-
-
-ensure_venv()
+use_venv("spline", ["numpy", "scipy==1.17.1", "geomdl==5.4.0"])
 
 import numpy as np  # noqa: E402
 import scipy  # noqa: E402

@@ -13,26 +13,15 @@ Usage: python3 tools/bench_topp_peer.py [repeats]
 """
 import json
 import os
-import subprocess
 import sys
 import time
+from pyenv import use_venv
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-VENV = os.path.join(HERE, ".venv-topp")
-PY = os.path.join(VENV, "bin", "python")
 FIX = os.path.join(HERE, "..", "crates", "trajkit", "tests", "fixtures", "topp", "toppra_panda.json")
 
 
-def ensure_venv():
-    if os.path.realpath(sys.prefix) == os.path.realpath(VENV):
-        return
-    if not os.path.exists(PY):
-        subprocess.check_call([sys.executable, "-m", "venv", VENV])
-        subprocess.check_call([PY, "-m", "pip", "install", "-q", "toppra", "numpy", "scipy"])
-    os.execv(PY, [PY] + sys.argv)
-
-
-ensure_venv()
+use_venv("topp", ["toppra", "numpy", "scipy"])
 
 import numpy as np  # noqa: E402
 import toppra as ta  # noqa: E402

@@ -15,27 +15,16 @@ Usage: python3 tools/bench_totg_peer.py [repeats]
 """
 import json
 import os
-import subprocess
 import sys
 import time
+from pyenv import use_venv
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-VENV = os.path.join(HERE, ".venv-totg")
-PY = os.path.join(VENV, "bin", "python")
 FIX = os.path.join(HERE, "..", "crates", "trajkit", "tests", "fixtures", "topp", "toppra_panda.json")
 DEFAULT = os.path.join(HERE, "..", "crates", "trajkit-cli", "src", "default_waypoints.csv")
 
 
-def ensure_venv():
-    if os.path.realpath(sys.prefix) == os.path.realpath(VENV):
-        return
-    if not os.path.exists(PY):
-        subprocess.check_call([sys.executable, "-m", "venv", VENV])
-        subprocess.check_call([PY, "-m", "pip", "install", "-q", "tesseract-robotics==0.5.1", "numpy"])
-    os.execv(PY, [PY] + sys.argv)
-
-
-ensure_venv()
+use_venv("totg", ["tesseract-robotics==0.5.1", "numpy"])
 
 import numpy as np  # noqa: E402
 from tesseract_robotics import tesseract_command_language as cl  # noqa: E402

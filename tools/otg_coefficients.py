@@ -13,28 +13,16 @@ Usage: tools/otg_coefficients.py > crates/trajkit/src/otg/families_gen.rs && car
 (creates tools/.venv-otgcoeff with sympy on first run unless sympy is importable).
 """
 import os
-import subprocess
 import sys
+from pyenv import use_venv
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-VENV = os.path.join(HERE, ".venv-otgcoeff")
 
 
-def ensure_sympy():
-    try:
-        import sympy  # noqa: F401
-        return
-    except ImportError:
-        pass
-    py = os.path.join(VENV, "bin", "python")
-    if sys.prefix != VENV:
-        if not os.path.exists(py):
-            subprocess.check_call([sys.executable, "-m", "venv", VENV])
-            subprocess.check_call([py, "-m", "pip", "install", "-q", "sympy==1.14.*"])
-        os.execv(py, [py] + sys.argv)
-
-
-ensure_sympy()
+try:
+    import sympy  # noqa: F401
+except ImportError:
+    use_venv("otgcoeff", ["sympy==1.14.*"])
 import sympy as sp  # noqa: E402
 
 

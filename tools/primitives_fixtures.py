@@ -18,23 +18,10 @@ Fixtures:
 """
 import json
 import os
-import subprocess
-import sys
+from pyenv import use_venv
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-VENV = os.path.join(ROOT, "tools", ".venv-mp")
 OUT = os.path.join(ROOT, "crates", "trajkit", "tests", "fixtures", "primitives")
-
-
-def ensure_venv():
-    py = os.path.join(VENV, "bin", "python")
-    if os.path.abspath(sys.executable) == os.path.abspath(py):
-        return
-    if not os.path.exists(py):
-        subprocess.check_call([sys.executable, "-m", "venv", VENV])
-        subprocess.check_call([py, "-m", "pip", "install", "-q",
-                               "numpy", "scipy", "pytransform3d", "movement-primitives"])
-    os.execv(py, [py] + sys.argv)
 
 
 def demo(n_steps, dur, n_dims):
@@ -143,7 +130,7 @@ def promp_fixtures():
 
 
 if __name__ == "__main__":
-    ensure_venv()
+    use_venv("mp", ["numpy", "scipy", "pytransform3d", "movement-primitives"])
     os.makedirs(OUT, exist_ok=True)
     dmp_fixtures()
     promp_fixtures()

@@ -11,27 +11,14 @@ Usage: python3 tools/spline_fixtures.py            (creates tools/.venv-spline o
 """
 import json
 import os
-import subprocess
-import sys
+from pyenv import use_venv
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-VENV = os.path.join(ROOT, "tools", ".venv-spline")
 OUT = os.path.join(ROOT, "crates", "trajkit", "tests", "fixtures", "spline")
 PACKAGES = ["numpy", "scipy==1.17.1", "geomdl==5.4.0"]
 
 
-def ensure_venv():
-    if "--no-venv" in sys.argv or os.environ.get("TRAJKIT_IN_VENV"):
-        return
-    py = os.path.join(VENV, "bin", "python")
-    if not os.path.exists(py):
-        subprocess.check_call([sys.executable, "-m", "venv", VENV])
-        subprocess.check_call([py, "-m", "pip", "install", "-q"] + PACKAGES)
-    env = dict(os.environ, TRAJKIT_IN_VENV="1")
-    os.execve(py, [py] + sys.argv, env)
-
-
-ensure_venv()
+use_venv("spline", PACKAGES)
 
 import numpy as np  # noqa: E402
 import scipy  # noqa: E402

@@ -24,26 +24,15 @@ Usage: python3 tools/totg_fixtures.py
 """
 import json
 import os
-import subprocess
 import sys
+from pyenv import use_venv
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-VENV = os.path.join(HERE, ".venv-totg")
-PY = os.path.join(VENV, "bin", "python")
 OUT = os.path.join(HERE, "..", "crates", "trajkit", "tests", "fixtures", "totg", "totg_panda.json")
 DEFAULT = os.path.join(HERE, "..", "crates", "trajkit-cli", "src", "default_waypoints.csv")
 
 
-def ensure_venv():
-    if os.path.realpath(sys.prefix) == os.path.realpath(VENV):
-        return
-    if not os.path.exists(PY):
-        subprocess.check_call([sys.executable, "-m", "venv", VENV])
-        subprocess.check_call([PY, "-m", "pip", "install", "-q", "tesseract-robotics==0.5.1", "numpy"])
-    os.execv(PY, [PY] + sys.argv)
-
-
-ensure_venv()
+use_venv("totg", ["tesseract-robotics==0.5.1", "numpy"])
 
 import multiprocessing as mp  # noqa: E402
 import time  # noqa: E402
