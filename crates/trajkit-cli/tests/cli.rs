@@ -123,24 +123,26 @@ fn poly_move_to_stdout_and_min_duration() {
     assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
 }
 
+/// `trajkit poly` arguments of a move far beyond the Panda's velocity limit (2 rad in 0.2 s
+/// with a cubic), written to `out`.
+fn too_fast_cubic(out: &str) -> [&str; 9] {
+    [
+        "poly",
+        "--from",
+        "0,0,0,-1.5,0,1.5,0",
+        "--to",
+        "2,0,0,-1.5,0,1.5,0",
+        "--duration",
+        "0.2",
+        "--out",
+        out,
+    ]
+}
+
 #[test]
 fn check_fails_on_a_violating_trajectory() {
     let d = scratch("check-fail");
-    // 2 rad in 0.2 s with a cubic: far beyond the Panda's velocity limit.
-    let o = trajkit(
-        &[
-            "poly",
-            "--from",
-            "0,0,0,-1.5,0,1.5,0",
-            "--to",
-            "2,0,0,-1.5,0,1.5,0",
-            "--duration",
-            "0.2",
-            "--out",
-            "fast.csv",
-        ],
-        &d,
-    );
+    let o = trajkit(&too_fast_cubic("fast.csv"), &d);
     assert!(o.status.success());
     let o = trajkit(&["check", "fast.csv"], &d);
     assert_eq!(o.status.code(), Some(1));
@@ -402,5 +404,40 @@ fn plan_toppra_paths_gridpoints_and_messy_waypoints() {
         let o = trajkit(&args, &d);
         assert_eq!(o.status.code(), Some(2), "{args:?}");
         assert!(stderr(&o).contains(want), "{}", stderr(&o));
+    }
+}
+
+#[test]
+fn check_reads_standard_input() {
+    use common::trajkit_stdin;
+    let d = scratch("check-stdin");
+    // `plan --out -` writes the CSV table to standard output; `check` reads it back.
+    let o = trajkit(&["plan", "--out", "-"], &d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(entries(&d).is_empty(), "{:?}", entries(&d));
+    let csv = stdout(&o);
+    let o = trajkit_stdin(&["check", "--limits", "panda"], &d, Some(&csv));
+    assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    assert!(stdout(&o).contains("PASS"), "{}", stdout(&o));
+    // JSON is recognized by its first character; '-' names standard input explicitly.
+    let o = trajkit(&["plan", "--out", "t.json"], &d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json = std::fs::read_to_string(d.join("t.json")).unwrap();
+    let o = trajkit_stdin(&["check", "-", "--json"], &d, Some(&json));
+    assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
+    let v: serde_json::Value = serde_json::from_str(stdout(&o).trim()).unwrap();
+    assert_eq!(v["passes"], true);
+    // A violation read from standard input still exits 1.
+    let o = trajkit(&too_fast_cubic("-"), &d);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = trajkit_stdin(&["check"], &d, Some(&stdout(&o)));
+    assert_eq!(o.status.code(), Some(1), "{}{}", stdout(&o), stderr(&o));
+    // Empty or malformed standard input: exit 2, one line naming <stdin>.
+    for bad in ["", "t,q1\n0,x\n", "{\"t\": [0, 1]"] {
+        let o = trajkit_stdin(&["check"], &d, Some(bad));
+        assert_eq!(o.status.code(), Some(2), "{bad:?}: {}", stderr(&o));
+        let e = stderr(&o);
+        assert_eq!(e.trim().lines().count(), 1, "{e}");
+        assert!(e.contains("<stdin>"), "{e}");
     }
 }

@@ -8,12 +8,13 @@ use trajkit::check::{check_samples, Tolerance};
 /// Arguments of `trajkit check`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "Exit status: 0 within limits, 1 a limit is exceeded beyond the tolerance, 2 bad input.\n\nExamples:\n  trajkit check trajectory.csv                    # against the Panda preset\n  trajkit check other_tool.csv --limits robot.urdf --fill-from panda --json"
+    after_help = "Exit status: 0 within limits, 1 a limit is exceeded beyond the tolerance, 2 bad input.\n\nExamples:\n  trajkit check trajectory.csv                    # against the Panda preset\n  trajkit plan --out - | trajkit check            # standard input\n  trajkit check other_tool.csv --limits robot.urdf --fill-from panda --json"
 )]
 pub struct CheckArgs {
     /// Sampled trajectory: CSV with a 't' column and q1..qn (optionally qd*, qdd*, qddd*), or
-    /// trajkit JSON. A CSV with 't' and other columns is read as positions.
-    #[arg(value_name = "FILE")]
+    /// trajkit JSON. A CSV with 't' and other columns is read as positions. '-' (the default)
+    /// reads standard input, as JSON if it starts with '{' or '[', else as CSV.
+    #[arg(value_name = "FILE", default_value = "-")]
     pub file: PathBuf,
     #[command(flatten)]
     pub limits: LimitsArgs,
@@ -40,11 +41,29 @@ pub fn run(a: &CheckArgs) -> CliResult<u8> {
             )));
         }
     }
-    let table = trajkit::io::table_from_file(&a.file)?;
+    let table = if a.file.as_os_str() == "-" {
+        let mut text = String::new();
+        std::io::Read::read_to_string(&mut std::io::stdin(), &mut text)
+            .map_err(|e| CliError(format!("<stdin>: {e}")))?;
+        if text.trim_start().starts_with(['{', '[']) {
+            trajkit::io::table_from_json(&text, "<stdin>")?
+        } else {
+            trajkit::io::table_from_csv(&text, "<stdin>")?
+        }
+    } else {
+        trajkit::io::table_from_file(&a.file)?
+    };
     let limits = a.limits.load()?;
     limits
         .expect_dof(table.dof(), "the trajectory")
-        .map_err(|e| CliError(format!("{}: {e}", a.file.display())))?;
+        .map_err(|e| {
+            let src = if a.file.as_os_str() == "-" {
+                "<stdin>".to_string()
+            } else {
+                a.file.display().to_string()
+            };
+            CliError(format!("{src}: {e}"))
+        })?;
     let report = check_samples(&table, &limits)?;
     let tol = Tolerance {
         ratio: a.tolerance,

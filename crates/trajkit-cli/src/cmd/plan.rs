@@ -99,7 +99,7 @@ pub enum ViaArg {
 /// Arguments of `trajkit plan`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "Examples:\n  trajkit plan                                  # embedded Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits robot.urdf --fill-from panda --out traj.json\n  trajkit plan --method poly --degree septic --via-velocity zero --rate 500 --plot traj.svg\n  trajkit plan --path linear --gridpoints auto\n  trajkit plan --method totg --max-deviation 0.1 | trajkit check --limits panda\n  trajkit plan --waypoints path.csv --limits robot.urdf --torque-limits"
+    after_help = "Examples:\n  trajkit plan                                  # embedded Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits robot.urdf --fill-from panda --out traj.json\n  trajkit plan --method poly --degree septic --via-velocity zero --rate 500 --plot traj.svg\n  trajkit plan --path linear --gridpoints auto\n  trajkit plan --method totg --max-deviation 0.1 --out - | trajkit check --max-jerk inf\n  trajkit plan --waypoints path.csv --limits robot.urdf --torque-limits"
 )]
 pub struct PlanArgs {
     /// Waypoints: CSV (a row per waypoint, a column per joint, optional header) or JSON.
