@@ -4,7 +4,7 @@
 //!
 //! The Gaussian kernel matrix `K_t` of `N` reference times has a rapidly decaying spectrum: a
 //! pivoted Cholesky factorization `K_t = G Gᵀ + E_t` stopped when every left-out diagonal is at
-//! most [`TOL`] has rank `r` far below `N` (24 for `h = 6` over 2 s, 200 points). With the
+//! most [`TOL`] has rank `r` far below `N` (27 for `h = 6` over 2 s, 200 points). With the
 //! block-diagonal `D = λ Σ` (one `d × d` block per reference point) and `V = G ⊗ I_d`, the
 //! Woodbury identity inverts the neighbouring matrix `Ã = D + V Vᵀ` exactly:
 //!
