@@ -16,9 +16,15 @@
 //! end points ([`Kmp::with_via_points`]) replace the reference point closest in time when it is
 //! within `via_tolerance`, otherwise they are inserted; the model is then refitted.
 //!
-//! [`Kmp::fit`] factors `K + λ_c Σ` once (Cholesky) and solves `(K + λΣ) α = μ` by conjugate
-//! gradients preconditioned with that factor (a direct solve is the fallback), to a relative
-//! residual of 1e-14.
+//! [`Kmp::fit`] needs no `(N·d)³` factorization when the time kernel matrix has a low numerical
+//! rank `r` (≤ `N/2`; 27 for `h = 6` over 2 s): with its pivoted Cholesky factor and the
+//! block-diagonal `λΣ`, the Woodbury identity gives near-exact inverses of both systems (module
+//! `kmp_lowrank`). The mean system `(K + λΣ) α = μ` is solved by conjugate gradients
+//! preconditioned with that inverse (one or two iterations), to a relative residual of 1e-14,
+//! and the covariance expansion's `(K + λ_c Σ)⁻¹ B` by one step of iterative refinement, taken
+//! only when an a-priori bound guarantees its accuracy. Otherwise the fit factors `K + λ_c Σ`
+//! (Cholesky) and preconditions the mean's conjugate gradients with it (a direct solve is the
+//! last fallback).
 //! `α` is cached, so a mean query costs `O(N·d)`. For the covariance, the fit also expands the
 //! kernel vector in Chebyshev polynomials of time over the reference span (degree `p` chosen by
 //! an a-priori error bound, 47 for `h = 6` over 2 s) and caches the `d(d+1)/2` matrices
@@ -35,13 +41,15 @@
 //!   4e-4 and 7e-5 (bound asserted: 1e-3). A via point far outside a very narrow reference
 //!   distribution is not met to that accuracy: widen the reference covariance (e.g.
 //!   [`KmpReference::from_aligned_samples`]' `reg`) if that is what is wanted.
-//! - The systems are solved by Cholesky; if one is not positive definite to working precision
-//!   the smallest sufficient diagonal regularization is added and reported by
-//!   [`Kmp::jitter`].
+//! - Where the fit factors a system (Cholesky) and it is not positive definite to working
+//!   precision, the smallest sufficient diagonal regularization is added and reported by
+//!   [`Kmp::jitter`]. The low-rank path adds none: it requires every `Σ_n` to be positive
+//!   definite and otherwise hands over to the factorization.
 //! - Covariance queries equal the direct formula to rounding: see the contract of the
 //!   expansion (module `kmp_cov`); measured relative error against a dense evaluation 4e-13
-//!   (40 points, 3 joints) and 1.1e-10 (200 points, 7 joints, where the exact substitution
-//!   itself is 5.8e-11 from it); 1e-9 is asserted.
+//!   (40 points, 3 joints, factor path) and 6.6e-11 (200 points, 7 joints, low-rank path,
+//!   where the exact substitution itself is 5.8e-11 from it); 1e-9 is asserted, and the
+//!   low-rank path is also compared with the factor path directly (tests).
 //! - Mean evaluation and covariance queries (with the expansion) allocate nothing; time is
 //!   clamped to the reference's time span.
 
@@ -49,6 +57,7 @@ use crate::error::{Error, Result};
 use crate::linalg::Cholesky;
 use crate::primitives::gmm::{Gmm, GmmConfig};
 use crate::primitives::kmp_cov::ChebCov;
+use crate::primitives::kmp_lowrank::{kernel_matrix, solve_refined, KernelFactor, LowRankInverse};
 use crate::primitives::promp::{Demo, ProMp};
 use crate::traj::{Order, Trajectory};
 
@@ -308,8 +317,9 @@ pub struct Kmp {
     cfg: KmpConfig,
     reference: KmpReference,
     alpha: Vec<f64>,
-    /// Cholesky factor of `K + λ_c Σ` in joint-major order.
-    cov_chol: Cholesky,
+    /// Cholesky factor of `K + λ_c Σ` in joint-major order: built by the fit when it needed
+    /// it, else on the first [`Kmp::covariance_exact`].
+    cov_chol: std::sync::OnceLock<Cholesky>,
     /// Chebyshev expansion of the covariance quadratic forms in time (module `kmp_cov`), when a
     /// degree up to its maximum meets its contract.
     cov_cheb: Option<ChebCov>,
@@ -317,8 +327,9 @@ pub struct Kmp {
 }
 
 impl Kmp {
-    /// Fits the KMP: one Cholesky factor of `K + λ_c Σ`, the mean weights `α` (conjugate
-    /// gradients), and the covariance's expansion in time, all cached (see the module docs).
+    /// Fits the KMP: the mean weights `α` (conjugate gradients) and the covariance's expansion
+    /// in time, by the low-rank inverses or a Cholesky factor of `K + λ_c Σ`, all cached (see
+    /// the module docs).
     pub fn fit(reference: &KmpReference, cfg: &KmpConfig) -> Result<Kmp> {
         reference.validate()?;
         crate::error::positive(|| "kernel_h".into(), cfg.kernel_h)?;
@@ -330,51 +341,79 @@ impl Kmp {
         let (n, d) = (reference.t.len(), reference.dof);
         let nd = n * d;
         // Unknown (point m, joint a) sits at m·d + a (point-major) or a·N + m (joint-major).
-        let build = |lam: f64, joint_major: bool| {
-            let idx = |m: usize, a: usize| if joint_major { a * n + m } else { m * d + a };
-            let mut a = vec![0.0; nd * nd];
-            for i in 0..n {
-                for j in 0..=i {
-                    let r = reference.t[i] - reference.t[j];
-                    let k = (-cfg.kernel_h * r * r).exp();
-                    for c in 0..d {
-                        a[idx(i, c) * nd + idx(j, c)] = k;
-                    }
-                }
-                for b in 0..d {
-                    for c in 0..d {
-                        let (p, q) = (idx(i, b), idx(i, c));
-                        if q <= p {
-                            a[p * nd + q] += lam * reference.cov[i * d * d + b * d + c];
-                        }
-                    }
-                }
-            }
-            a
-        };
         // Joint-major for the covariance system: the kernel row of joint a is zero before a·N,
-        // so a query's forward substitutions start there.
-        let cov_chol = Cholesky::factor_regularized(&build(cfg.lambda_c, true), nd)?;
-        let mut jitter = cov_chol.jitter();
-        // Mean system (K + λΣ) α = μ by conjugate gradients preconditioned with the factor of
-        // K + λ_c Σ: the preconditioned spectrum lies in [min(λ,λ_c)/max(λ,λ_c), 1], so it
-        // converges in O(√(λ_c/λ)) iterations. A direct factorization is the fallback.
-        let alpha = match pcg_mean(reference, cfg, &cov_chol) {
-            Some(a) if cov_chol.jitter() == 0.0 => a,
-            _ => {
-                let chol = Cholesky::factor_regularized(&build(cfg.lambda, false), nd)?;
+        // so a query's forward substitutions start there. Factored only when needed: the
+        // low-rank inverses (module `kmp_lowrank`) serve the fit whenever their bounds allow.
+        let factor_cov =
+            || Cholesky::factor_regularized(&system_matrix(reference, cfg, cfg.lambda_c, true), nd);
+        let mut cov_chol: Option<Cholesky> = None;
+        let kt = kernel_matrix(&reference.t, cfg.kernel_h);
+        let low_rank = KernelFactor::new(&kt, n);
+        let inverse = |lam: f64| {
+            low_rank
+                .as_ref()
+                .and_then(|f| LowRankInverse::new(f, &reference.cov, d, lam).map(|i| (f, i)))
+        };
+        // Mean system (K + λΣ) α = μ by conjugate gradients preconditioned with the low-rank
+        // inverse (a handful of iterations), else with the factor of K + λ_c Σ (spectrum in
+        // [min(λ,λ_c)/max(λ,λ_c), 1]: O(√(λ_c/λ)) iterations). A direct factorization is the
+        // fallback.
+        let mut alpha = inverse(cfg.lambda).and_then(|(f, inv)| {
+            let mut xt = vec![0.0; nd];
+            let mut zt = vec![0.0; nd];
+            let mut w = vec![0.0; f.rank() * d];
+            pcg_mean(reference, cfg, &kt, &mut |x, z| {
+                to_joint_major(x, n, d, &mut xt);
+                inv.apply(f, &xt, 1, &mut zt, &mut w);
+                from_joint_major(&zt, n, d, z);
+            })
+        });
+        if alpha.is_none() {
+            let c = factor_cov()?;
+            if c.jitter() == 0.0 {
+                alpha = pcg_mean(reference, cfg, &kt, &mut chol_precond(reference, &c));
+            }
+            cov_chol = Some(c);
+        }
+        let mut jitter = cov_chol.as_ref().map_or(0.0, Cholesky::jitter);
+        let alpha = match alpha {
+            Some(a) => a,
+            None => {
+                let chol = Cholesky::factor_regularized(
+                    &system_matrix(reference, cfg, cfg.lambda, false),
+                    nd,
+                )?;
                 jitter = jitter.max(chol.jitter());
                 let mut a = reference.mean.clone();
                 chol.solve_in_place(&mut a);
                 a
             }
         };
-        let cov_cheb = ChebCov::new(&reference.t, d, cfg.kernel_h, cov_chol.l());
+        // Covariance expansion: C = Bᵀ (K + λ_c Σ)⁻¹ B by low-rank refinement, else through
+        // the factor; without an expansion, queries substitute through the factor.
+        let mut cov_cheb = inverse(cfg.lambda_c).and_then(|(f, inv)| {
+            ChebCov::from_solver(&reference.t, d, cfg.kernel_h, &mut |b, nc| {
+                solve_refined(f, &inv, &kt, &reference.cov, cfg.lambda_c, b, nc)
+            })
+        });
+        if cov_cheb.is_none() {
+            let c = match cov_chol.take() {
+                Some(c) => c,
+                None => factor_cov()?,
+            };
+            jitter = jitter.max(c.jitter());
+            cov_cheb = ChebCov::new(&reference.t, d, cfg.kernel_h, c.l());
+            cov_chol = Some(c);
+        }
+        let cell = std::sync::OnceLock::new();
+        if let Some(c) = cov_chol {
+            let _ = cell.set(c);
+        }
         Ok(Kmp {
             cfg: cfg.clone(),
             reference: reference.clone(),
             alpha,
-            cov_chol,
+            cov_chol: cell,
             cov_cheb,
             jitter,
         })
@@ -385,7 +424,8 @@ impl Kmp {
         &self.reference
     }
 
-    /// Largest diagonal regularization the factorizations needed (0 normally).
+    /// Largest diagonal regularization the fit's factorizations needed (0 normally, and always
+    /// on the low-rank path).
     pub fn jitter(&self) -> f64 {
         self.jitter
     }
@@ -451,13 +491,27 @@ impl Kmp {
 
     /// [`Kmp::covariance`] by `d` forward substitutions through the cached factor of
     /// `K + λ_c Σ` at every query (no expansion in time): `O((N·d)²)` per query and a
-    /// `dof × N·dof` scratch allocation. The reference the expansion is tested against.
+    /// `dof × N·dof` scratch allocation. The reference the expansion is tested against. When
+    /// the fit took the low-rank path, the first call factors `K + λ_c Σ` (`O((N·d)³)`, with
+    /// the regularization rule of [`Kmp::jitter`]; NaN entries if even that fails).
     ///
     /// # Panics
     /// If `out` has fewer than `dof²` entries.
     pub fn covariance_exact(&self, t: f64, order: Order, out: &mut [f64]) {
         let s = self.clamp(self.reference.t[0] + t);
         self.covariance_substitution(s, order.index().min(1), out);
+    }
+
+    /// The joint-major Cholesky factor of `K + λ_c Σ` (built on first use when the fit did not
+    /// need it); `None` only if it cannot be factored even with regularization.
+    fn cov_factor(&self) -> Option<&Cholesky> {
+        if self.cov_chol.get().is_none() {
+            let nd = self.reference.t.len() * self.reference.dof;
+            let a = system_matrix(&self.reference, &self.cfg, self.cfg.lambda_c, true);
+            let c = Cholesky::factor_regularized(&a, nd).ok()?;
+            let _ = self.cov_chol.set(c);
+        }
+        self.cov_chol.get()
     }
 
     /// The covariance at the clamped reference time `s` by `d` forward substitutions through
@@ -469,7 +523,11 @@ impl Kmp {
         let kss = if o == 0 { 1.0 } else { 2.0 * self.cfg.kernel_h };
         // w_a = L⁻¹ k_aᵀ; k_a has entries k(s, t_m) at joint-major index a·N + m, zeros
         // before a·N, so the forward substitution starts there.
-        let l = self.cov_chol.l();
+        let Some(chol) = self.cov_factor() else {
+            out[..d * d].iter_mut().for_each(|v| *v = f64::NAN);
+            return;
+        };
+        let l = chol.l();
         let mut w = vec![0.0; d * nd];
         for a in 0..d {
             for (m, &tm) in self.reference.t.iter().enumerate() {
@@ -554,28 +612,79 @@ impl Kmp {
     }
 }
 
-/// Preconditioned conjugate gradients for `(K + λΣ) α = μ` (point-major), preconditioner
-/// `(K + λ_c Σ)⁻¹` from its joint-major Cholesky factor. `None` if it does not reach a relative
-/// residual of 1e-14 within 1000 iterations.
-fn pcg_mean(r: &KmpReference, cfg: &KmpConfig, pre: &Cholesky) -> Option<Vec<f64>> {
+/// `K ⊗ I + λ Σ` (lower triangle), unknown (point `m`, joint `a`) at `a·N + m` when
+/// `joint_major`, else at `m·d + a`.
+fn system_matrix(r: &KmpReference, cfg: &KmpConfig, lam: f64, joint_major: bool) -> Vec<f64> {
     let (n, d) = (r.t.len(), r.dof);
     let nd = n * d;
-    let mut kt = vec![0.0; n * n];
+    let idx = |m: usize, a: usize| if joint_major { a * n + m } else { m * d + a };
+    let mut a = vec![0.0; nd * nd];
     for i in 0..n {
-        for j in 0..n {
+        for j in 0..=i {
             let x = r.t[i] - r.t[j];
-            kt[i * n + j] = (-cfg.kernel_h * x * x).exp();
+            let k = (-cfg.kernel_h * x * x).exp();
+            for c in 0..d {
+                a[idx(i, c) * nd + idx(j, c)] = k;
+            }
+        }
+        for b in 0..d {
+            for c in 0..d {
+                let (p, q) = (idx(i, b), idx(i, c));
+                if q <= p {
+                    a[p * nd + q] += lam * r.cov[i * d * d + b * d + c];
+                }
+            }
         }
     }
+    a
+}
+
+/// Point-major `x` (`N × d`) into joint-major `xt` (`d × N`).
+fn to_joint_major(x: &[f64], n: usize, d: usize, xt: &mut [f64]) {
+    for m in 0..n {
+        for a in 0..d {
+            xt[a * n + m] = x[m * d + a];
+        }
+    }
+}
+
+/// Joint-major `xt` (`d × N`) into point-major `x` (`N × d`).
+fn from_joint_major(xt: &[f64], n: usize, d: usize, x: &mut [f64]) {
+    for m in 0..n {
+        for a in 0..d {
+            x[m * d + a] = xt[a * n + m];
+        }
+    }
+}
+
+/// The preconditioner `x ↦ (K + λ_c Σ)⁻¹ x` (point-major vectors) from the joint-major
+/// Cholesky factor of `K + λ_c Σ`.
+fn chol_precond<'a>(r: &KmpReference, pre: &'a Cholesky) -> impl FnMut(&[f64], &mut [f64]) + 'a {
+    let (n, d) = (r.t.len(), r.dof);
+    let mut tmp = vec![0.0; n * d];
+    move |x: &[f64], z: &mut [f64]| {
+        to_joint_major(x, n, d, &mut tmp);
+        pre.solve_in_place(&mut tmp);
+        from_joint_major(&tmp, n, d, z);
+    }
+}
+
+/// Preconditioned conjugate gradients for `(K + λΣ) α = μ` (point-major) with the
+/// preconditioner `precond(x, z)` (an approximation of `z = (K + λΣ)⁻¹ x`). `None` if it does
+/// not reach a relative residual of 1e-14 within 1000 iterations.
+fn pcg_mean(
+    r: &KmpReference,
+    cfg: &KmpConfig,
+    kt: &[f64],
+    precond: &mut dyn FnMut(&[f64], &mut [f64]),
+) -> Option<Vec<f64>> {
+    let (n, d) = (r.t.len(), r.dof);
+    let nd = n * d;
     // (K ⊗ I + λ blockdiag Σ) x: the kernel part as N·d dot products of length N against a
     // joint-major copy of x.
     let mut xt = vec![0.0; nd];
     let mut apply = |x: &[f64], y: &mut [f64]| {
-        for m in 0..n {
-            for a in 0..d {
-                xt[a * n + m] = x[m * d + a];
-            }
-        }
+        to_joint_major(x, n, d, &mut xt);
         for i in 0..n {
             let ki = &kt[i * n..(i + 1) * n];
             let xi = &x[i * d..(i + 1) * d];
@@ -584,20 +693,6 @@ fn pcg_mean(r: &KmpReference, cfg: &KmpConfig, pre: &Cholesky) -> Option<Vec<f64
                 let row = &r.cov[i * d * d + b * d..i * d * d + b * d + d];
                 *yb = crate::linalg::dot(ki, &xt[b * n..(b + 1) * n])
                     + cfg.lambda * crate::linalg::dot(row, xi);
-            }
-        }
-    };
-    let mut tmp = vec![0.0; nd];
-    let mut precond = |x: &[f64], z: &mut [f64]| {
-        for m in 0..n {
-            for a in 0..d {
-                tmp[a * n + m] = x[m * d + a];
-            }
-        }
-        pre.solve_in_place(&mut tmp);
-        for m in 0..n {
-            for a in 0..d {
-                z[m * d + a] = tmp[a * n + m];
             }
         }
     };
@@ -678,16 +773,7 @@ mod tests {
         let (n, d) = (30, 3);
         let t: Vec<f64> = (0..n).map(|i| i as f64 / 10.0).collect();
         let mean: Vec<f64> = (0..n * d).map(|_| rng.normal()).collect();
-        let mut cov = vec![0.0; n * d * d];
-        for m in 0..n {
-            let g: Vec<f64> = (0..d * d).map(|_| 0.1 * rng.normal()).collect();
-            for a in 0..d {
-                for b in 0..d {
-                    let s: f64 = (0..d).map(|c| g[a * d + c] * g[b * d + c]).sum();
-                    cov[m * d * d + a * d + b] = s + if a == b { 1e-3 } else { 0.0 };
-                }
-            }
-        }
+        let cov = crate::primitives::kmp_lowrank::random_cov_blocks(&mut rng, n, d, 1e-3);
         let r = KmpReference {
             dof: d,
             t,
@@ -719,5 +805,54 @@ mod tests {
         for (x, y) in kmp.alpha.iter().zip(&direct) {
             assert!((x - y).abs() < 1e-9 * scale, "{x} vs {y}");
         }
+    }
+
+    #[test]
+    fn low_rank_path_matches_the_factor() {
+        // 80 points over 2 s (kernel rank ~27 < N/2), 3 correlated joints: the fit takes the
+        // low-rank path (no factor built), and its mean and covariance expansion agree with
+        // the direct solve and the exact substitution through the (lazily built) factor.
+        let mut rng = SplitMix64::new(11);
+        let (n, d) = (80, 3);
+        let t: Vec<f64> = (0..n).map(|i| 2.0 * i as f64 / (n - 1) as f64).collect();
+        let qs: Vec<Vec<f64>> = (0..4)
+            .map(|_| {
+                let ph: Vec<f64> = (0..d).map(|_| rng.uniform(0.0, 1.0)).collect();
+                let mut q = Vec::new();
+                for &tk in &t {
+                    for (j, p) in ph.iter().enumerate() {
+                        q.push((1.3 * tk + p + 0.3 * j as f64).sin() + 0.05 * rng.normal());
+                    }
+                }
+                q
+            })
+            .collect();
+        let refs: Vec<&[f64]> = qs.iter().map(|q| q.as_slice()).collect();
+        let r = KmpReference::from_aligned_samples(&t, &refs, d, 1e-4).unwrap();
+        let cfg = KmpConfig::default();
+        let kmp = Kmp::fit(&r, &cfg).unwrap();
+        assert!(kmp.cov_chol.get().is_none(), "fit took the factor path");
+        assert_eq!(kmp.jitter(), 0.0);
+        let mut direct = r.mean.clone();
+        Cholesky::factor(&system_matrix(&r, &cfg, cfg.lambda, false), n * d)
+            .unwrap()
+            .solve_in_place(&mut direct);
+        let scale = direct.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (x, y) in kmp.alpha.iter().zip(&direct) {
+            assert!((x - y).abs() < 1e-9 * scale, "{x} vs {y}");
+        }
+        let (mut c, mut ce) = ([0.0; 9], [0.0; 9]);
+        for k in 0..=40 {
+            for order in [Order::Position, Order::Velocity] {
+                let s = 2.0 * k as f64 / 40.0;
+                kmp.covariance(s, order, &mut c);
+                kmp.covariance_exact(s, order, &mut ce);
+                let scale = ce.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                for (x, y) in c.iter().zip(&ce) {
+                    assert!((x - y).abs() < 1e-9 * scale, "s={s}: {x} vs {y}");
+                }
+            }
+        }
+        assert!(kmp.cov_chol.get().is_some());
     }
 }

@@ -10,10 +10,12 @@
 //! Q_ab(s) = Σ_{k,k'} T_k(u) T_k'(u) C_ab[k, k'],   C_ab[k, k'] = (e_a ⊗ c_k)ᵀ A⁻¹ (e_b ⊗ c_k')
 //! ```
 //!
-//! and the velocity form uses `T_k'(u) / half` instead of `T_k(u)`. `C = Wᵀ W` with
-//! `W = L⁻¹ [e_a ⊗ c_k]` (one blocked forward substitution with `(p + 1)·d` right-hand sides
-//! that skips the leading zero blocks); a query is `d(d+1)/2` quadratic forms of size `p + 1`
-//! instead of `d` forward substitutions through the whole factor.
+//! and the velocity form uses `T_k'(u) / half` instead of `T_k(u)`. Either `C = Bᵀ X` with
+//! `X = A⁻¹ B`, `B = [e_a ⊗ c_k]`, from the low-rank refinement of module `kmp_lowrank`
+//! ([`ChebCov::from_solver`]), or `C = Wᵀ W` with `W = L⁻¹ B` (one blocked forward
+//! substitution with `(p + 1)·d` right-hand sides that skips the leading zero blocks,
+//! [`ChebCov::new`]); a query is `d(d+1)/2` quadratic forms of size `p + 1` instead of `d`
+//! forward substitutions through the whole factor.
 //!
 //! # Precision contract
 //! The degree `p` is the smallest (odd) for which the a-priori Bernstein-ellipse bounds on the
@@ -28,8 +30,9 @@
 //! compare [`crate::primitives::Kmp::covariance`] with a straightforward dense evaluation
 //! (LU of the point-major `K ⊗ I + λ_c Σ`), positions and velocities, across the span: relative
 //! error (largest entry error over largest entry) 4e-13 on a 40-point 3-joint problem and
-//! 1.1e-10 on the benchmark's 200-point 7-joint problem, where the exact per-query
-//! substitution itself is 5.8e-11 from the dense formula; 1e-9 is asserted. If no
+//! 6.6e-11 on the benchmark's 200-point 7-joint problem (low-rank refinement; 1.1e-10 through
+//! the factor), where the exact per-query substitution itself is 5.8e-11 from the dense
+//! formula; 1e-9 is asserted. If no
 //! `p ≤` [`MAX_DEGREE`] suffices (a span of many kernel widths), the KMP keeps the exact
 //! per-query substitution.
 
@@ -42,6 +45,9 @@ pub(crate) const MAX_DEGREE: usize = 95;
 
 /// Right-hand-side columns per register block of the forward substitution.
 const CB: usize = 4;
+
+/// `(B, nc) ↦ A⁻¹ B` for `nc` right-hand-side columns, or `None` to decline.
+pub(crate) type BlockSolver<'a> = dyn FnMut(&[f64], usize) -> Option<Vec<f64>> + 'a;
 
 /// The precomputed expansion: `C_ab` for `a ≥ b`.
 #[derive(Debug, Clone)]
@@ -169,6 +175,50 @@ fn gram_block(a: &[f64], ra: usize, b: &[f64], rb: usize, off: usize, p1: usize,
     }
 }
 
+/// The Chebyshev expansion of the kernel vectors over the span of `t`:
+/// `(mid, half, p, mp, coef)` with `coef` row-major `N × mp` (row `m` holds `c_0..c_p` at
+/// reference point `m`, zero padding to `mp`, a multiple of [`CB`]). `None` when no degree up
+/// to [`MAX_DEGREE`] meets the contract.
+fn expansion(t: &[f64], h: f64) -> Option<(f64, f64, usize, usize, Vec<f64>)> {
+    let n = t.len();
+    let (t0, t1) = (t[0], t[n - 1]);
+    let mid = 0.5 * (t0 + t1);
+    let half = 0.5 * (t1 - t0);
+    if half.is_nan() || half <= 0.0 {
+        return None;
+    }
+    let p = degree(h, half)?;
+    let p1 = p + 1;
+    // Columns padded to whole register blocks (p1 is even, so coefficient pairs fit).
+    let mp = p1.div_ceil(CB) * CB;
+    // Values at the Chebyshev points u_j = cos(jπ/p), then coefficients
+    // c_k = (2/p) Σ''_j f(u_j) cos(jkπ/p), halved for k = 0 and k = p.
+    let cosines: Vec<f64> = (0..2 * p)
+        .map(|i| (std::f64::consts::PI * i as f64 / p as f64).cos())
+        .collect();
+    let mut vals = vec![0.0; p1 * n];
+    for j in 0..p1 {
+        let s = mid + half * cosines[j];
+        for (m, &tm) in t.iter().enumerate() {
+            let r = s - tm;
+            vals[j * n + m] = (-h * r * r).exp();
+        }
+    }
+    // Right-hand sides of joint 0's block: row m holds (c_0..c_p)[m], zero padding.
+    let mut coef = vec![0.0; n * mp];
+    for k in 0..p1 {
+        let edge_k = if k == 0 || k == p { 0.5 } else { 1.0 };
+        for j in 0..p1 {
+            let edge_j = if j == 0 || j == p { 0.5 } else { 1.0 };
+            let w = 2.0 / p as f64 * edge_k * edge_j * cosines[(j * k) % (2 * p)];
+            for m in 0..n {
+                coef[m * mp + k] += w * vals[j * n + m];
+            }
+        }
+    }
+    Some((mid, half, p, mp, coef))
+}
+
 impl ChebCov {
     /// Builds the expansion for reference times `t` (`n` points), `d` joints, kernel width
     /// `h`, from the joint-major lower factor `l` of `A` (`nd × nd`). `None` when no degree up
@@ -176,41 +226,8 @@ impl ChebCov {
     pub(crate) fn new(t: &[f64], d: usize, h: f64, l: &[f64]) -> Option<ChebCov> {
         let n = t.len();
         let nd = n * d;
-        let (t0, t1) = (t[0], t[n - 1]);
-        let mid = 0.5 * (t0 + t1);
-        let half = 0.5 * (t1 - t0);
-        if half.is_nan() || half <= 0.0 {
-            return None;
-        }
-        let p = degree(h, half)?;
+        let (mid, half, p, mp, coef) = expansion(t, h)?;
         let p1 = p + 1;
-        // Columns padded to whole register blocks (p1 is even, so coefficient pairs fit).
-        let mp = p1.div_ceil(CB) * CB;
-        // Values at the Chebyshev points u_j = cos(jπ/p), then coefficients
-        // c_k = (2/p) Σ''_j f(u_j) cos(jkπ/p), halved for k = 0 and k = p.
-        let cosines: Vec<f64> = (0..2 * p)
-            .map(|i| (std::f64::consts::PI * i as f64 / p as f64).cos())
-            .collect();
-        let mut vals = vec![0.0; p1 * n];
-        for j in 0..p1 {
-            let s = mid + half * cosines[j];
-            for (m, &tm) in t.iter().enumerate() {
-                let r = s - tm;
-                vals[j * n + m] = (-h * r * r).exp();
-            }
-        }
-        // Right-hand sides of joint 0's block: row m holds (c_0..c_p)[m], zero padding.
-        let mut coef = vec![0.0; n * mp];
-        for k in 0..p1 {
-            let edge_k = if k == 0 || k == p { 0.5 } else { 1.0 };
-            for j in 0..p1 {
-                let edge_j = if j == 0 || j == p { 0.5 } else { 1.0 };
-                let w = 2.0 / p as f64 * edge_k * edge_j * cosines[(j * k) % (2 * p)];
-                for m in 0..n {
-                    coef[m * mp + k] += w * vals[j * n + m];
-                }
-            }
-        }
         // W_a = L⁻¹ (e_a ⊗ [c_k]) from row a·N on, block-major.
         let nblk = mp / CB;
         let mut w: Vec<Vec<f64>> = Vec::with_capacity(d);
@@ -241,6 +258,63 @@ impl ChebCov {
                     p1,
                     &mut c[off..off + p1 * p1],
                 );
+            }
+        }
+        Some(ChebCov {
+            mid,
+            half,
+            deg: p,
+            c,
+        })
+    }
+
+    /// Builds the expansion like [`ChebCov::new`], with `A⁻¹ B` from `solve(B, nc)`: `B` has
+    /// `N·d` joint-major rows (joint `a`, point `m` at row `a·N + m`) and `nc = d(p+1)` columns
+    /// (`e_b ⊗ c_k` at column `b(p+1) + k`). `None` when no degree meets the contract or the
+    /// solver declines.
+    pub(crate) fn from_solver(
+        t: &[f64],
+        d: usize,
+        h: f64,
+        solve: &mut BlockSolver<'_>,
+    ) -> Option<ChebCov> {
+        let n = t.len();
+        let (mid, half, p, mp, coef) = expansion(t, h)?;
+        let p1 = p + 1;
+        let nc = d * p1;
+        let mut b = vec![0.0; n * d * nc];
+        for a in 0..d {
+            for m in 0..n {
+                let at = (a * n + m) * nc + a * p1;
+                b[at..at + p1].copy_from_slice(&coef[m * mp..m * mp + p1]);
+            }
+        }
+        let x = solve(&b, nc)?;
+        // C_a· = [c_k]ᵀ X_a (p1 × nc); block (a, b) for b ≤ a.
+        let mut coef_t = vec![0.0; p1 * n];
+        for m in 0..n {
+            for k in 0..p1 {
+                coef_t[k * n + m] = coef[m * mp + k];
+            }
+        }
+        let mut c = vec![0.0; d * (d + 1) / 2 * p1 * p1];
+        let mut row = vec![0.0; p1 * nc];
+        for a in 0..d {
+            row.iter_mut().for_each(|v| *v = 0.0);
+            crate::primitives::kmp_lowrank::mul_add(
+                &coef_t,
+                p1,
+                n,
+                &x[a * n * nc..(a + 1) * n * nc],
+                nc,
+                &mut row,
+            );
+            for bj in 0..=a {
+                let off = (a * (a + 1) / 2 + bj) * p1 * p1;
+                for k in 0..p1 {
+                    c[off + k * p1..off + (k + 1) * p1]
+                        .copy_from_slice(&row[k * nc + bj * p1..k * nc + (bj + 1) * p1]);
+                }
             }
         }
         Some(ChebCov {

@@ -20,6 +20,7 @@ pub mod dmp;
 pub mod gmm;
 pub mod kmp;
 mod kmp_cov;
+mod kmp_lowrank;
 pub mod promp;
 pub mod rhythmic;
 
