@@ -38,13 +38,15 @@
 //!    profile between knots stays within the true limits; knots at breakpoints are not
 //!    tightened and their neighbours take 4b, see [`crate::topp::totg`]); steps where a
 //!    constraint is exceeded by more than 3e-7 relative (bound: 9e-7 beyond the tightening,
-//!    or a bound above 2e-6 of the limits) are cut (as many parts
+//!    or a bound above the cut threshold: 2e-6 of the limits, up to 5e-5 where the bounded
+//!    steps are a small share of the duration, see [`crate::topp::totg`]) are cut (as many parts
 //!    as the excess calls for, the excess shrinking with the square of the step) and the
 //!    problem integrated again, at most [`crate::topp::toppra::MAX_REFINE_ROUNDS`] times and up
 //!    to [`crate::topp::toppra::MAX_REFINED_INTERVALS`] knots (TOPP-RA's caps and check
 //!    points); beyond that the solver returns [`Error::Infeasible`] saying how far the limits
 //!    are exceeded: the work is bounded for every input. Steps found clean and unchanged are
-//!    not checked again.
+//!    not checked again, and knots kept from the previous round keep their evaluated
+//!    constraints.
 //!
 //! The result is a [`Profile`] (x at knots, constant u between), evaluated exactly by
 //! [`crate::topp::Retimed`].
@@ -82,15 +84,25 @@ use crate::Path;
 /// limits hold within 1e-6 relative.
 const BOUND_TOL: f64 = 9e-7;
 
-/// Largest relative tightening of a bounded step's limits at its knots; a step whose bound
-/// exceeds it is cut instead (into parts of about [`TIGHTEN_TARGET`]).
+/// Smallest *cut threshold*: a bounded step whose bound is at most the problem's threshold
+/// (between this and [`TIGHTEN_CAP`], see [`tighten_max`]) has the limits at its free knots
+/// tightened by the bound; a step whose bound exceeds it is cut (into parts whose bound is
+/// about half the threshold). The threshold sets the knot spacing on arcs, Δθ ∝ √threshold.
 const TIGHTEN_MAX: f64 = 2e-6;
 
-/// The bound aimed at when a bounded step is cut.
-const TIGHTEN_TARGET: f64 = 1e-6;
+/// Largest cut threshold (see [`tighten_max`]): the tightening it allows costs at most about
+/// half of it (2.5e-5) of the time spent on varying steps, and knots next to a junction take
+/// four times the bound.
+const TIGHTEN_CAP: f64 = 5e-5;
 
-/// Tightening above the bound, so that the next round's (slightly different) step still fits.
-const TIGHTEN_MARGIN: f64 = 0.02;
+/// The cut threshold per squared ratio (whole duration / time on varying steps), see
+/// [`tighten_max`].
+const TIGHTEN_SHARE: f64 = 1.6e-7;
+
+/// Tightening above the bound (ε = (1 + margin)·b), so that the next round's step still fits:
+/// its u and x differ (the parts of a cut step do not share its u). Doubling costs at most
+/// about b/2 more of the time on bounded steps and spares most second refinement rounds.
+const TIGHTEN_MARGIN: f64 = 1.0;
 
 /// Stand-in for "no finite bound" on x.
 const X_BIG: f64 = 1e30;
@@ -175,16 +187,24 @@ pub fn solve<P: Path>(problem: Toppra<'_, P>) -> Result<Parametrized<P>> {
 /// Evaluates the path at a breakpoint on the side of the piece that ends there.
 type SideEval<'a> = &'a dyn Fn(f64, usize, &mut [f64]);
 
-/// Constraint rows of one side of every knot.
+/// Constraint rows of both sides of every knot, with the tightening applied.
 #[derive(Default)]
 struct Rows {
     rows: Vec<[f64; 3]>,
+    /// The untightened γ of every row.
+    gamma: Vec<f64>,
     /// Per knot: [start, end) of the right-side rows, then of the left-side rows.
     range: Vec<[usize; 4]>,
-    /// Per knot: x bounds, right then left side.
+    /// Per knot: x bounds, right then left side (`xhi` tightened, `xhi0` not).
     xlo: Vec<[f64; 2]>,
     xhi: Vec<[f64; 2]>,
+    xhi0: Vec<[f64; 2]>,
+    /// Per knot: the tightening applied to its rows.
+    applied: Vec<f64>,
 }
+
+/// Marks a knot that is not in the previous round's knots.
+const NEW_KNOT: usize = usize::MAX;
 
 struct Scratch {
     q: Vec<f64>,
@@ -231,16 +251,22 @@ impl Scratch {
         }
         check_path_values(s, &self.q, &self.dq, &self.ddq)?;
         let (p, cr) = self.point(s);
+        // The constraints append to `rows` directly (no copy).
+        std::mem::swap(rows, &mut cr.rows);
         let (mut lo, mut hi) = (0.0f64, f64::INFINITY);
+        let mut result = Ok(());
         for c in cons {
-            cr.clear();
+            cr.clear_bounds();
             c.write(&p, cr);
-            cr.check(&**c, s)?;
-            rows.extend_from_slice(&cr.rows);
+            result = cr.check(&**c, s);
+            if result.is_err() {
+                break;
+            }
             lo = lo.max(cr.x_min);
             hi = hi.min(cr.x_max);
         }
-        Ok((lo, hi.max(lo)))
+        std::mem::swap(rows, &mut cr.rows);
+        result.map(|()| (lo, hi.max(lo)))
     }
 
     /// Evaluates σ, σ′, σ″ at `s` into the scratch buffers.
@@ -337,8 +363,10 @@ pub(crate) fn integrate<P: Path + ?Sized>(
     }
     let mut sc = Scratch::new(path.dim());
     let mut rows = Rows::default();
-    // The untightened γ of every row and x_max of every knot side, kept while the knots stay.
-    let mut base: (Vec<f64>, Vec<[f64; 2]>) = Default::default();
+    // The previous knots' rows, and per knot where it was in the previous knots
+    // ([`NEW_KNOT`] for a new one): kept knots reuse their rows.
+    let mut old_rows = Rows::default();
+    let mut origin: Vec<usize> = Vec::new();
     let mut clean = CleanSteps::default();
     // Per knot: the relative tightening of its constraints (0 at the ends and at breakpoints,
     // so closed-form steps and junction switching points keep the exact limits), and whether
@@ -348,12 +376,14 @@ pub(crate) fn integrate<P: Path + ?Sized>(
     // Per knot step: its constraints do not vary along it (closed-form step).
     let mut constant: Vec<bool> = Vec::new();
     let mut round = 0;
+    // The largest tightening of a bounded step (set from the first sweep).
+    let mut tmax = TIGHTEN_MAX;
     loop {
         if !evaluated {
-            rows.evaluate(path, left, cons, &knots, breaks, &mut sc)?;
+            std::mem::swap(&mut rows, &mut old_rows);
+            let old = (!origin.is_empty()).then_some((&old_rows, &origin[..]));
+            rows.evaluate(path, left, cons, &knots, breaks, old, &mut sc)?;
             evaluated = true;
-            base.0.clear();
-            base.1.clear();
             constant.clear();
             match step_bound {
                 Some(b) => {
@@ -362,13 +392,14 @@ pub(crate) fn integrate<P: Path + ?Sized>(
                 None => constant.resize(knots.len() - 1, false),
             }
         }
-        if eps.iter().any(|&e| e > 0.0) {
-            rows.tighten(&eps, &mut base);
-        }
+        rows.tighten(&eps);
         let rows = &rows;
         let sweep = sweep(
             path, cons, &knots, breaks, rows, &constant, velocities, &mut sc,
         )?;
+        if round == 0 && step_bound.is_some() {
+            tmax = tighten_max(&sweep, &constant);
+        }
         // Event check between knots.
         clean.start_round();
         let n = knots.len() - 1;
@@ -407,14 +438,14 @@ pub(crate) fn integrate<P: Path + ?Sized>(
                     } else {
                         4.0 * bound
                     };
-                    if bound <= TIGHTEN_MAX && (free[0] || free[1]) {
+                    if bound <= tmax && (free[0] || free[1]) {
                         for (k, f) in [(i, free[0]), (i + 1, free[1])] {
                             if f {
                                 next_eps[k] = next_eps[k].max(need * (1.0 + TIGHTEN_MARGIN));
                             }
                         }
                     } else {
-                        let m = (need / TIGHTEN_TARGET).sqrt().ceil();
+                        let m = (need / (0.5 * tmax)).sqrt().ceil();
                         parts[i] = parts[i].max(if m.is_finite() {
                             (m as usize).clamp(2, 64)
                         } else {
@@ -464,12 +495,25 @@ pub(crate) fn integrate<P: Path + ?Sized>(
         }
         if total > n {
             // The new knots of a cut step start tightened by its bound shrunk by the square
-            // of the cut (four times that next to a fixed knot).
+            // of the cut (four times that next to a fixed knot), and so do its free end knots
+            // (an untightened end would leave the end parts above the limits: one more round).
+            for i in 0..n {
+                if parts[i] > 1 {
+                    let per = cut_bound[i] / (parts[i] * parts[i]) as f64 * (1.0 + TIGHTEN_MARGIN);
+                    for k in [i, i + 1] {
+                        if !fixed_knot(k) {
+                            next_eps[k] = next_eps[k].max(per);
+                        }
+                    }
+                }
+            }
             let mut next = Vec::with_capacity(total + 1);
             let mut next_e = Vec::with_capacity(total + 1);
+            origin.clear();
             for i in 0..n {
                 next.push(knots[i]);
                 next_e.push(next_eps[i]);
+                origin.push(i);
                 let per = cut_bound[i] / (parts[i] * parts[i]) as f64 * (1.0 + TIGHTEN_MARGIN);
                 for k in 1..parts[i] {
                     let si = knots[i] + (knots[i + 1] - knots[i]) * (k as f64 / parts[i] as f64);
@@ -478,11 +522,13 @@ pub(crate) fn integrate<P: Path + ?Sized>(
                             (k == 1 && fixed_knot(i)) || (k + 1 == parts[i] && fixed_knot(i + 1));
                         next.push(si);
                         next_e.push(if edge { 4.0 * per } else { per });
+                        origin.push(NEW_KNOT);
                     }
                 }
             }
             next.push(knots[n]);
             next_e.push(next_eps[n]);
+            origin.push(n);
             knots = next;
             eps = next_e;
             evaluated = false;
@@ -490,6 +536,35 @@ pub(crate) fn integrate<P: Path + ?Sized>(
             eps = next_eps;
         }
         round += 1;
+    }
+}
+
+/// The cut threshold of bounded steps for this problem (see [`TIGHTEN_MAX`]), from the first
+/// sweep: [`TIGHTEN_SHARE`]·(T/T_v)², T the whole duration and T_v the time spent on varying
+/// (not closed-form) steps, clamped to [[`TIGHTEN_MAX`], [`TIGHTEN_CAP`]].
+///
+/// Why: with s̈ constant between knots the duration loss on varying steps is first order in
+/// the knot spacing, about C·(T_v/T)·√threshold relative to the whole duration (C measured
+/// 0.06–0.15 on Panda paths). Where the varying steps are a small share of the duration (long
+/// straight segments, short blends) their loss is diluted by it, and a coarser spacing keeps
+/// the same relative loss: C·√TIGHTEN_SHARE ≤ 6e-5 once scaled; paths that spend more than
+/// √(TIGHTEN_SHARE/TIGHTEN_MAX) ≈ 28 % of their time on arcs keep [`TIGHTEN_MAX`].
+fn tighten_max(sweep: &Sweep, constant: &[bool]) -> f64 {
+    let (mut all, mut varying) = (0.0, 0.0);
+    for j in 0..sweep.s.len() - 1 {
+        let root = sweep.x[j].max(0.0).sqrt() + sweep.x[j + 1].max(0.0).sqrt();
+        if root > 0.0 {
+            let dt = 2.0 * (sweep.s[j + 1] - sweep.s[j]) / root;
+            all += dt;
+            if !constant[sweep.step[j]] {
+                varying += dt;
+            }
+        }
+    }
+    if varying > 0.0 && all.is_finite() {
+        (TIGHTEN_SHARE * (all / varying).powi(2)).clamp(TIGHTEN_MAX, TIGHTEN_CAP)
+    } else {
+        TIGHTEN_MAX
     }
 }
 
@@ -587,31 +662,35 @@ fn is_break(breaks: &[f64], s: f64) -> bool {
 }
 
 impl Rows {
-    /// Tightens the limits at knot k by `eps[k]` (relative), in place: every row
-    /// γ → γ₀ − ε·|γ₀|, x_max → x₀·(1 − ε), from the untightened values `base` (saved on the
-    /// first call after an evaluation).
-    fn tighten(&mut self, eps: &[f64], base: &mut (Vec<f64>, Vec<[f64; 2]>)) {
-        if base.0.is_empty() {
-            base.0.extend(self.rows.iter().map(|r| r[2]));
-            base.1.extend_from_slice(&self.xhi);
-        }
+    /// Tightens the limits at every knot k whose applied tightening is not `eps[k]`
+    /// (relative), in place: every row γ → γ₀ − ε·|γ₀|, x_max → x₀·(1 − ε), from the
+    /// untightened values.
+    fn tighten(&mut self, eps: &[f64]) {
         for (k, r) in self.range.iter().enumerate() {
             let e = eps[k];
+            if e == self.applied[k] {
+                continue;
+            }
+            self.applied[k] = e;
             let shared = r[0] == r[2];
             for (a, b) in [(r[0], r[1]), (r[2], r[3])]
                 .into_iter()
                 .take(if shared { 1 } else { 2 })
             {
-                for (row, &g) in self.rows[a..b].iter_mut().zip(&base.0[a..b]) {
+                for (row, &g) in self.rows[a..b].iter_mut().zip(&self.gamma[a..b]) {
                     row[2] = g - e * g.abs();
                 }
             }
             for side in 0..2 {
-                self.xhi[k][side] = (base.1[k][side] * (1.0 - e)).max(self.xlo[k][side]);
+                self.xhi[k][side] = (self.xhi0[k][side] * (1.0 - e)).max(self.xlo[k][side]);
             }
         }
     }
 
+    /// Evaluates the rows of every knot, untightened; with `old`, the previous knots' rows
+    /// and where each knot was among them, a kept knot copies its rows (and their
+    /// tightening) instead.
+    #[allow(clippy::too_many_arguments)]
     fn evaluate<P: Path + ?Sized>(
         &mut self,
         path: &P,
@@ -619,34 +698,67 @@ impl Rows {
         cons: &[Box<dyn Constraint + '_>],
         knots: &[f64],
         breaks: &[f64],
+        old: Option<(&Rows, &[usize])>,
         sc: &mut Scratch,
     ) -> Result<()> {
         self.rows.clear();
+        self.gamma.clear();
         self.range.clear();
         self.xlo.clear();
         self.xhi.clear();
+        self.xhi0.clear();
+        self.applied.clear();
         let n = knots.len() - 1;
-        self.range.reserve(knots.len());
-        self.xlo.reserve(knots.len());
-        self.xhi.reserve(knots.len());
         for (k, &s) in knots.iter().enumerate() {
             let a = self.rows.len();
-            let (lo, hi) = sc.write(path, None, cons, s, &mut self.rows)?;
-            let b = self.rows.len();
-            let (range, xlo, xhi) = if k > 0 && k < n && is_break(breaks, s) {
-                let (llo, lhi) = sc.write(path, Some(left), cons, s, &mut self.rows)?;
-                ([a, b, b, self.rows.len()], [lo, llo], [hi, lhi])
-            } else {
-                ([a, b, a, b], [lo, lo], [hi, hi])
+            let kept = old.and_then(|(o, origin)| Some((o, *origin.get(k)?)));
+            let (range, xlo, xhi, xhi0, applied) = match kept {
+                Some((o, i)) if i != NEW_KNOT => {
+                    let r = o.range[i];
+                    let copy = |rows: &mut Vec<[f64; 3]>, gamma: &mut Vec<f64>, (p, q)| {
+                        rows.extend_from_slice(&o.rows[p..q]);
+                        gamma.extend_from_slice(&o.gamma[p..q]);
+                    };
+                    copy(&mut self.rows, &mut self.gamma, (r[0], r[1]));
+                    let b = self.rows.len();
+                    let range = if r[0] == r[2] {
+                        [a, b, a, b]
+                    } else {
+                        copy(&mut self.rows, &mut self.gamma, (r[2], r[3]));
+                        [a, b, b, self.rows.len()]
+                    };
+                    (range, o.xlo[i], o.xhi[i], o.xhi0[i], o.applied[i])
+                }
+                _ => {
+                    let (lo, hi) = sc.write(path, None, cons, s, &mut self.rows)?;
+                    let b = self.rows.len();
+                    let (range, xlo, xhi) = if k > 0 && k < n && is_break(breaks, s) {
+                        let (llo, lhi) = sc.write(path, Some(left), cons, s, &mut self.rows)?;
+                        ([a, b, b, self.rows.len()], [lo, llo], [hi, lhi])
+                    } else {
+                        ([a, b, a, b], [lo, lo], [hi, hi])
+                    };
+                    let new = &self.rows[a..];
+                    self.gamma.extend(new.iter().map(|r| r[2]));
+                    (range, xlo, xhi, xhi, 0.0)
+                }
             };
             self.range.push(range);
             self.xlo.push(xlo);
             self.xhi.push(xhi);
+            self.xhi0.push(xhi0);
+            self.applied.push(applied);
             if k == 0 {
                 // Every knot and the left side of every breakpoint: no regrowth (each one
                 // copies all rows so far).
-                self.rows
-                    .reserve(self.rows.len() * (knots.len() + breaks.len()));
+                let m = self.rows.len() * (knots.len() + breaks.len());
+                self.rows.reserve(m);
+                self.gamma.reserve(m);
+                self.range.reserve(knots.len());
+                self.xlo.reserve(knots.len());
+                self.xhi.reserve(knots.len());
+                self.xhi0.reserve(knots.len());
+                self.applied.reserve(knots.len());
             }
         }
         Ok(())
@@ -840,7 +952,48 @@ fn sweep<P: Path + ?Sized>(
 
 #[cfg(test)]
 mod tests {
-    use super::excess_between;
+    use super::{excess_between, tighten_max, Sweep, TIGHTEN_CAP, TIGHTEN_MAX, TIGHTEN_SHARE};
+
+    /// A sweep at ṡ = 1 over steps of the given lengths (one knot step each).
+    fn unit_speed(lengths: &[f64]) -> Sweep {
+        let mut s = vec![0.0];
+        for l in lengths {
+            s.push(s[s.len() - 1] + l);
+        }
+        Sweep {
+            x: vec![1.0; s.len()],
+            step: (0..lengths.len()).collect(),
+            s,
+            switching: Vec::new(),
+        }
+    }
+
+    /// The cut threshold against hand-computed durations (ṡ = 1: time = length).
+    #[test]
+    fn cut_threshold_scales_with_the_share_of_varying_steps() {
+        // 10 s straight, 1 s varying: (11/1)² times the share.
+        let t = tighten_max(&unit_speed(&[10.0, 1.0]), &[true, false]);
+        assert!((t - TIGHTEN_SHARE * 121.0).abs() < 1e-18, "{t}");
+        // Mostly varying: the floor; almost all straight: the cap; nothing varying: the floor.
+        assert_eq!(
+            tighten_max(&unit_speed(&[1.0, 1.0]), &[true, false]),
+            TIGHTEN_MAX
+        );
+        assert_eq!(
+            tighten_max(&unit_speed(&[100.0, 1.0]), &[true, false]),
+            TIGHTEN_CAP
+        );
+        assert_eq!(
+            tighten_max(&unit_speed(&[1.0, 1.0]), &[true, true]),
+            TIGHTEN_MAX
+        );
+        // Time, not length: a varying step at ṡ² going 0 → 4 over length 1 lasts
+        // 2·1/(0 + 2) = 1 s; a straight one of length 9 at ṡ = 2 lasts 4.5 s.
+        let mut sw = unit_speed(&[1.0, 9.0]);
+        sw.x = vec![0.0, 4.0, 4.0];
+        let t = tighten_max(&sw, &[false, true]);
+        assert!((t - TIGHTEN_SHARE * 5.5 * 5.5).abs() < 1e-18, "{t}");
+    }
 
     /// The closed form against a dense scan of 4b·t(1 − t) − e₀(1 − t) − e₁·t over t ∈ [0, 1].
     #[test]

@@ -801,8 +801,9 @@ pub(crate) fn largest_step(
     cap: f64,
 ) -> f64 {
     let mut u = cap;
+    // rhs/a < u ⇔ rhs < u·a for a > 0: divide only where the bound improves.
     let mut bound = |a: f64, rhs: f64| {
-        if a > 0.0 {
+        if a > 0.0 && rhs < u * a {
             let v = rhs / a;
             if v < u {
                 u = v;
