@@ -145,12 +145,14 @@ pub(crate) fn two_changes(
             None => f(a, b, c, e, h, k, l, m, n, o),
         }
     };
-    // No plateau: s = α, β = ±√W.
-    let r = pick(two_nn, two_nn_t);
-    let n = r.roots(alo, ahi, &mut roots);
-    for &x in &roots[..n] {
-        let beta = r.w_at(x);
-        if beta * d2 >= -tol && offer(x, 0.0, beta, 0.0, vc_of_alpha(x)) {
+    // Cheapest polynomial first (both plateaus: quadratic; one plateau: quartic; none:
+    // sextic): with a prescribed duration the first valid profile ends the search, and the
+    // plateau variants are the common ones at moderate limits.
+    // Both plateaus: s = v_c.
+    let r = pick(two_pp, two_pp_t);
+    let n = r.roots(vlo, vhi, &mut roots);
+    for &vc in &roots[..n] {
+        if offer(al1, tau1_of(vc), al2, tau2_of(vc), vc) {
             return true;
         }
     }
@@ -172,11 +174,12 @@ pub(crate) fn two_changes(
             return true;
         }
     }
-    // Both plateaus: s = v_c.
-    let r = pick(two_pp, two_pp_t);
-    let n = r.roots(vlo, vhi, &mut roots);
-    for &vc in &roots[..n] {
-        if offer(al1, tau1_of(vc), al2, tau2_of(vc), vc) {
+    // No plateau: s = α, β = ±√W.
+    let r = pick(two_nn, two_nn_t);
+    let n = r.roots(alo, ahi, &mut roots);
+    for &x in &roots[..n] {
+        let beta = r.w_at(x);
+        if beta * d2 >= -tol && offer(x, 0.0, beta, 0.0, vc_of_alpha(x)) {
             return true;
         }
     }

@@ -234,6 +234,30 @@ pub const MAX_POLY: usize = 6;
 /// Evaluates the polynomial `c` (lowest order first) and its derivative at `x`.
 #[inline]
 pub fn horner_d(c: &[f64], x: f64) -> (f64, f64) {
+    // Unrolled for the lengths the solver uses (same operations in the same order).
+    match c.len() {
+        3 => horner_n::<3>(c, x),
+        4 => horner_n::<4>(c, x),
+        5 => horner_n::<5>(c, x),
+        6 => horner_n::<6>(c, x),
+        7 => horner_n::<7>(c, x),
+        _ => horner_any(c, x),
+    }
+}
+
+#[inline(always)]
+fn horner_n<const N: usize>(c: &[f64], x: f64) -> (f64, f64) {
+    let mut p = 0.0;
+    let mut dp = 0.0;
+    for k in (0..N).rev() {
+        dp = dp * x + p;
+        p = p * x + c[k];
+    }
+    (p, dp)
+}
+
+#[inline]
+fn horner_any(c: &[f64], x: f64) -> (f64, f64) {
     let mut p = 0.0;
     let mut dp = 0.0;
     for &k in c.iter().rev() {
@@ -286,15 +310,18 @@ fn poly_roots_with(c: &[f64], lo: f64, hi: f64, out: &mut [f64; MAX_POLY], prete
     let r = lo.abs().max(hi.abs()).max(f64::MIN_POSITIVE);
     let mut len = c.len().min(MAX_POLY + 1);
     let mut big = 0.0f64;
+    // |c_k|·r^k, the size of each term on the interval.
+    let mut term = [0.0f64; MAX_POLY + 1];
     let mut pw = 1.0;
-    for &k in &c[..len] {
-        big = big.max((k * pw).abs());
+    for (k, &ck) in c[..len].iter().enumerate() {
+        term[k] = (ck * pw).abs();
+        big = big.max(term[k]);
         pw *= r;
     }
     if !big.is_finite() || big == 0.0 {
         return 0;
     }
-    while len > 1 && (c[len - 1] * r.powi(len as i32 - 1)).abs() <= 1e-15 * big {
+    while len > 1 && term[len - 1] <= 1e-15 * big {
         len -= 1;
     }
     let c = &c[..len];
@@ -385,36 +412,38 @@ fn root_bound(c: &[f64], lo: f64, hi: f64) -> Option<u32> {
 
 #[inline]
 fn root_bound_n<const N: usize>(c: &[f64], lo: f64, hi: f64) -> Option<u32> {
-    let var = |x: f64| -> Option<u32> {
-        // Taylor coefficients at x by repeated synthetic division; the same on |c| at |x|
-        // bounds the size of the terms each one sums (for the round-off test).
-        let mut t = [0.0; N];
-        let mut m = [0.0; N];
-        for i in 0..N {
-            t[i] = c[i];
-            m[i] = c[i].abs();
-        }
-        let ax = x.abs();
-        for k in 0..N {
-            for i in (k..N - 1).rev() {
-                t[i] += x * t[i + 1];
-                m[i] += ax * m[i + 1];
-            }
-        }
-        let mut count = 0;
-        let mut ok = true;
-        for k in 0..N {
-            ok &= t[k].abs() > 1e-12 * m[k];
-            if k > 0 && (t[k - 1] < 0.0) != (t[k] < 0.0) {
-                count += 1;
-            }
-        }
-        ok.then_some(count)
-    };
-    match (var(lo), var(hi)) {
-        (Some(a), Some(b)) => Some(a.saturating_sub(b)),
-        _ => None,
+    // Taylor coefficients at both ends by repeated synthetic division, in lockstep; the same
+    // on |c| at |x| bounds the size of the terms each one sums (for the round-off test).
+    let mut tl = [0.0; N];
+    let mut th = [0.0; N];
+    let mut ml = [0.0; N];
+    let mut mh = [0.0; N];
+    for i in 0..N {
+        tl[i] = c[i];
+        th[i] = c[i];
+        ml[i] = c[i].abs();
+        mh[i] = c[i].abs();
     }
+    let (al, ah) = (lo.abs(), hi.abs());
+    for k in 0..N {
+        for i in (k..N - 1).rev() {
+            tl[i] += lo * tl[i + 1];
+            th[i] += hi * th[i + 1];
+            ml[i] += al * ml[i + 1];
+            mh[i] += ah * mh[i + 1];
+        }
+    }
+    let mut ok = true;
+    let (mut vl, mut vh) = (0u32, 0u32);
+    for k in 0..N {
+        ok &= tl[k].abs() > 1e-12 * ml[k];
+        ok &= th[k].abs() > 1e-12 * mh[k];
+        if k > 0 {
+            vl += ((tl[k - 1] < 0.0) != (tl[k] < 0.0)) as u32;
+            vh += ((th[k - 1] < 0.0) != (th[k] < 0.0)) as u32;
+        }
+    }
+    ok.then(|| vl.saturating_sub(vh))
 }
 
 /// The root of `c` in `[a, b]` where it is monotone with a sign change (f(a) = `fa`): Newton

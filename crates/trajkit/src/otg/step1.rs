@@ -71,9 +71,15 @@ impl Step1 {
 }
 
 /// Collects verified candidates and keeps the fastest.
+///
+/// Candidates are built in place in a spare buffer ([`Collector::scratch`], then
+/// [`Collector::submit`]); the fastest valid one stays in the other buffer, so no profile is
+/// copied while the families are enumerated.
 pub(crate) struct Collector<'a> {
     dof: &'a Dof1,
-    pub best: Option<Profile>,
+    bufs: [Profile; 2],
+    /// Index in `bufs` of the fastest valid candidate so far.
+    best: Option<usize>,
     pub cand: [f64; MAX_CANDIDATES],
     pub ncand: usize,
 }
@@ -82,9 +88,24 @@ impl<'a> Collector<'a> {
     pub fn new(dof: &'a Dof1) -> Self {
         Collector {
             dof,
+            bufs: [Profile::default(); 2],
             best: None,
             cand: [0.0; MAX_CANDIDATES],
             ncand: 0,
+        }
+    }
+
+    /// The fastest valid candidate so far.
+    #[inline]
+    pub fn best(&self) -> Option<&Profile> {
+        self.best.map(|k| &self.bufs[k])
+    }
+
+    #[inline]
+    fn spare(&self) -> usize {
+        match self.best {
+            Some(0) => 1,
+            _ => 0,
         }
     }
 
@@ -92,7 +113,29 @@ impl<'a> Collector<'a> {
     /// target moves (then every valid duration bounds a blocked interval).
     #[inline]
     pub fn wants(&self, t: f64) -> bool {
-        self.dof.vf != 0.0 || self.dof.af != 0.0 || self.best.is_none_or(|b| t < b.duration())
+        self.dof.vf != 0.0 || self.dof.af != 0.0 || self.best().is_none_or(|b| t < b.duration())
+    }
+
+    /// The spare buffer, emptied and starting at `s`, to build a candidate in.
+    #[inline]
+    pub fn scratch(&mut self, s: State1) -> &mut Profile {
+        let k = self.spare();
+        self.bufs[k].reset(s);
+        &mut self.bufs[k]
+    }
+
+    /// Offers the candidate built in the spare buffer; returns whether it was valid.
+    pub fn submit(&mut self) -> bool {
+        let k = self.spare();
+        let t = self.bufs[k].duration();
+        if !self.wants(t) || !verify(self.dof, &self.bufs[k]) {
+            return false;
+        }
+        self.record(t);
+        if self.best().is_none_or(|b| t < b.duration()) {
+            self.best = Some(k);
+        }
+        true
     }
 
     /// Offers a main profile (starting after the brake); returns whether it was valid.
@@ -101,14 +144,21 @@ impl<'a> Collector<'a> {
             return false;
         }
         let t = main.duration();
+        self.record(t);
+        if self.best().is_none_or(|b| t < b.duration()) {
+            let k = self.spare();
+            self.bufs[k] = *main;
+            self.best = Some(k);
+        }
+        true
+    }
+
+    #[inline]
+    fn record(&mut self, t: f64) {
         if self.ncand < MAX_CANDIDATES && !self.cand[..self.ncand].contains(&t) {
             self.cand[self.ncand] = t;
             self.ncand += 1;
         }
-        if self.best.is_none_or(|b| t < b.duration()) {
-            self.best = Some(*main);
-        }
-        true
     }
 }
 
@@ -141,6 +191,43 @@ pub(crate) fn verify(dof: &Dof1, pr: &Profile) -> bool {
     let s = pr.start();
     let mut v_in = !check_v || (s.v <= vmax && s.v >= vmin);
     let mut a_in = !check_a || (s.a <= amax && s.a >= amin);
+    if v_in && a_in {
+        // The common case: starting inside, every value must stay inside (the loop below
+        // reduces to this when nothing starts outside).
+        let (vmax, vmin) = if check_v {
+            (vmax, vmin)
+        } else {
+            (f64::INFINITY, f64::NEG_INFINITY)
+        };
+        let (amax, amin) = if check_a {
+            (amax, amin)
+        } else {
+            (f64::INFINITY, f64::NEG_INFINITY)
+        };
+        for k in 0..pr.segments() {
+            let Some((_, d, st, j)) = pr.segment(k) else {
+                break;
+            };
+            let vend = st.v + d * (st.a + d * j / 2.0);
+            let aend = st.a + d * j;
+            let mut vmid = st.v;
+            if j != 0.0 {
+                let r = -st.a / j;
+                if r > 0.0 && r < d {
+                    vmid = st.v + r * (st.a + r * j / 2.0);
+                }
+            }
+            for v in [st.v, vmid, vend] {
+                if v > vmax || v < vmin {
+                    return false;
+                }
+            }
+            if st.a > amax || st.a < amin || aend > amax || aend < amin {
+                return false;
+            }
+        }
+        return true;
+    }
     let (v_hi, v_lo) = (vmax.max(s.v), vmin.min(s.v));
     let (a_hi, a_lo) = (amax.max(s.a), amin.min(s.a));
     for k in 0..pr.segments() {
@@ -206,33 +293,48 @@ pub(crate) fn velocity_cap(dof: &Dof1, s: State1) -> f64 {
 
 /// Step 1 for one degree of freedom. `None` when no valid profile was found.
 pub(crate) fn step1(dof: &Dof1) -> Option<Step1> {
-    let mut pr = Profile::new(State1 {
+    let mut s = Step1 {
+        profile: Profile::default(),
+        cand: [0.0; MAX_CANDIDATES],
+        ncand: 0,
+    };
+    s.ncand = step1_into(dof, &mut s.profile, &mut s.cand)?;
+    Some(s)
+}
+
+/// Step 1 written into the caller's storage (no copy of the result): the time-optimal profile
+/// into `profile`, the candidate durations into `cand`; returns how many candidates, or `None`
+/// when no valid profile was found (then `profile` is unspecified).
+pub(crate) fn step1_into(
+    dof: &Dof1,
+    profile: &mut Profile,
+    cand: &mut [f64; MAX_CANDIDATES],
+) -> Option<usize> {
+    *profile = Profile::new(State1 {
         p: dof.p0,
         v: dof.v0,
         a: dof.a0,
     });
-    brake(dof, &mut pr);
-    let s = pr.end();
+    brake(dof, profile);
+    let s = profile.end();
     let mut main_dof = *dof;
     main_dof.p0 = s.p;
     main_dof.v0 = s.v;
     main_dof.a0 = s.a;
     let mut col = Collector::new(&main_dof);
     solve_main(&main_dof, &mut col);
-    let best = col.best?;
-    let tb = pr.duration();
-    if !pr.append(&best) {
+    let best = col.best()?;
+    let tb = profile.duration();
+    if profile.segments() == 0 {
+        // No brake: the main profile, as verified, is the result.
+        *profile = *best;
+    } else if !profile.append(best) {
         return None;
     }
-    let mut cand = col.cand;
-    for c in cand[..col.ncand].iter_mut() {
-        *c += tb;
+    for (c, &t) in cand.iter_mut().zip(&col.cand[..col.ncand]) {
+        *c = t + tb;
     }
-    Some(Step1 {
-        profile: pr,
-        cand,
-        ncand: col.ncand,
-    })
+    Some(col.ncand)
 }
 
 /// Enumerates the main-profile candidates of a problem whose start state is safe.
@@ -320,7 +422,7 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
                     });
                 }
             }
-            if col.best.is_some() {
+            if col.best().is_some() {
                 return;
             }
             // Fallback for degenerate cases the closed forms miss: the bracketing solver on
@@ -362,15 +464,15 @@ fn rest_to_rest_peak(dof: &Dof1, col: &mut Collector<'_>) -> bool {
     ) else {
         return false;
     };
-    let mut pr = Profile::new(State1 {
+    let pr = col.scratch(State1 {
         p: dof.p0,
         v: 0.0,
         a: 0.0,
     });
-    push_change(&mut pr, order, &c1, 0.0);
+    push_change(pr, order, &c1, 0.0);
     pr.snap(vp, 0.0);
-    push_change(&mut pr, order, &c2, vp);
-    col.offer(&pr)
+    push_change(pr, order, &c2, vp);
+    col.submit()
 }
 
 /// Appends a velocity change to a profile.
@@ -536,7 +638,7 @@ impl Seq {
         if !col.wants(self.d[..self.n].iter().sum()) {
             return;
         }
-        let mut pr = Profile::new(State1 {
+        let pr = col.scratch(State1 {
             p: q.p0,
             v: q.v0,
             a: q.a0,
@@ -547,7 +649,7 @@ impl Seq {
         if mirror {
             pr.mirror();
         }
-        col.offer(&pr);
+        col.submit();
     }
     #[inline]
     fn displacement(&self, v0: f64, a0: f64) -> f64 {
@@ -575,19 +677,19 @@ fn vel_family(q: &Dof1, mirror: bool, col: &mut Collector<'_>) -> bool {
         if let (Some(c1), Some(c2)) = (c1, c2) {
             let tau = (d - c1.dist - c2.dist) / q.vmax;
             if tau >= 0.0 {
-                let mut pr = Profile::new(State1 {
+                let pr = col.scratch(State1 {
                     p: q.p0,
                     v: v0,
                     a: a0,
                 });
-                push_change(&mut pr, ProfileOrder::Third, &c1, v0);
+                push_change(pr, ProfileOrder::Third, &c1, v0);
                 pr.snap(q.vmax, 0.0);
                 pr.push_with(tau, q.vmax, 0.0, 0.0);
-                push_change(&mut pr, ProfileOrder::Third, &c2, q.vmax);
+                push_change(pr, ProfileOrder::Third, &c2, q.vmax);
                 if mirror {
                     pr.mirror();
                 }
-                return col.offer(&pr);
+                return col.submit();
             }
         }
     }

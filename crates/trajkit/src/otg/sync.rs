@@ -26,7 +26,7 @@ use super::input::{DurationDiscretization, InputView, Synchronization};
 use super::problem::{ControlInterface, Dof1};
 use super::profile::{Profile, State1};
 use super::result::OtgResult;
-use super::step1::{step1, verify, MAX_CANDIDATES};
+use super::step1::{step1, step1_into, verify, MAX_CANDIDATES};
 use super::step2::step2;
 use super::trajectory::DofTrajectory;
 
@@ -103,8 +103,11 @@ pub(crate) fn calculate(
             scratch[i].sync = false;
             continue;
         }
-        let s1 = step1(&d).ok_or(OtgResult::CalculationFailed { dof: i })?;
-        scratch[i].sync = match opts.synchronization {
+        let sc = &mut scratch[i];
+        sc.ncand = step1_into(&d, &mut sc.step1, &mut sc.cand)
+            .ok_or(OtgResult::CalculationFailed { dof: i })?;
+        sc.t_min = sc.step1.duration();
+        sc.sync = match opts.synchronization {
             Synchronization::Time | Synchronization::Phase => true,
             Synchronization::TimeIfNecessary => d.vf != 0.0 || d.af != 0.0,
             Synchronization::None => false,
@@ -112,15 +115,11 @@ pub(crate) fn calculate(
         // A synchronized DOF's output profile is written by every successful path below
         // (step 2 or phase synchronization), so the step-1 profile is copied there only for
         // the others.
-        out[i].independent_min_duration = s1.t_min();
-        if !scratch[i].sync {
-            out[i].profile = s1.profile;
+        out[i].independent_min_duration = sc.t_min;
+        if !sc.sync {
+            out[i].profile = sc.step1;
         }
-        scratch[i].cand = s1.cand;
-        scratch[i].ncand = s1.ncand;
-        scratch[i].t_min = s1.t_min();
-        scratch[i].step1 = s1.profile;
-        t_lead = t_lead.max(s1.t_min());
+        t_lead = t_lead.max(sc.t_min);
     }
 
     if opts.synchronization == Synchronization::Phase && phase(view, delta_time, out, scratch)? {
@@ -231,22 +230,37 @@ fn duration_of(out: &[DofTrajectory]) -> f64 {
 /// Re-plans one DOF for total duration `t` (brake kept); the step-1 profile when `t` is its
 /// minimum.
 fn replan(s: &Scratch, t: f64) -> Option<Profile> {
+    let mut pr = Profile::default();
+    replan_into(s, t, &mut pr).then_some(pr)
+}
+
+/// [`replan`] written into `out`; false (and `out` unspecified) when no profile was found.
+fn replan_into(s: &Scratch, t: f64, out: &mut Profile) -> bool {
     // At (numerically) the minimum duration the step-1 profile is the answer; the residual of
     // step 2 is at round-off level there.
     if (t - s.t_min).abs() <= 1e-13 * t.max(1.0) {
-        return Some(s.step1);
+        *out = s.step1;
+        return true;
     }
     if s.step1.brake_duration() == 0.0 {
-        return step2(&s.dof, t);
+        return match step2(&s.dof, t) {
+            Some(p) => {
+                *out = p;
+                true
+            }
+            None => false,
+        };
     }
-    let mut pr = s.step1.brake_part();
-    let e = pr.end();
+    *out = s.step1.brake_part();
+    let e = out.end();
     let mut d = s.dof;
     d.p0 = e.p;
     d.v0 = e.v;
     d.a0 = e.a;
-    let main = step2(&d, t - pr.duration())?;
-    pr.append(&main).then_some(pr)
+    match step2(&d, t - out.duration()) {
+        Some(main) => out.append(&main),
+        None => false,
+    }
 }
 
 /// Step 2 for every synchronized DOF at duration `t`, written into `out`; the failing DOF on
@@ -259,9 +273,8 @@ fn try_all(scratch: &[Scratch], out: &mut [DofTrajectory], n: usize, t: f64) -> 
         if t < scratch[i].t_min {
             return Err(i);
         }
-        match replan(&scratch[i], t) {
-            Some(p) => out[i].profile = p,
-            None => return Err(i),
+        if !replan_into(&scratch[i], t, &mut out[i].profile) {
+            return Err(i);
         }
     }
     Ok(())
