@@ -757,10 +757,23 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
             emit(&s, col);
         }
     }
+    // The plateau families' plateau duration is convex in their parameter, so its largest
+    // value over the parameter window is at one of the window's ends. When it is clearly
+    // negative at both (beyond the tolerance of `okd`, with a margin far above round-off), no
+    // root can give a valid profile and the family is skipped: neither its coefficients nor
+    // its polynomial are computed.
+    let dscale = (amax - amin) / j;
+    let hopeless = |t: f64, size: f64| t < -1e-12 * dscale.max(1e-300) - 1e-9 * size;
     // acc0: s = α₂, plateau τ₁ at a_max.
     let c0 = amax * amax + (af * af - a0 * a0) / 2.0 - j * dv;
-    let r = s1_acc0(a0, af, v0, vf, d, j, amax);
-    let n = r.roots(amin - tol, amax.min(af) + tol, &mut roots);
+    let (xlo, xhi) = (amin - tol, amax.min(af) + tol);
+    let t1_at = |x: f64| (x * x - c0) / (j * amax);
+    let t1_size = |x: f64| (x * x + c0.abs()) / (j * amax);
+    let n = if hopeless(t1_at(xlo), t1_size(xlo)) && hopeless(t1_at(xhi), t1_size(xhi)) {
+        0
+    } else {
+        s1_acc0(a0, af, v0, vf, d, j, amax).roots(xlo, xhi, &mut roots)
+    };
     for &x in &roots[..n] {
         let t1 = (x * x - c0) / (j * amax);
         if !okd(t1, (amax - amin) / j) {
@@ -779,8 +792,15 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     // acc1: s = α₁, plateau τ₂ at a_min.
     let t2_of =
         |x: f64| ((2.0 * x * x - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j) - dv) / -amin;
-    let r = s1_acc1(a0, af, v0, vf, d, j, amin);
-    let n = r.roots(a0c - tol, amax + tol, &mut roots);
+    let t2_size = |x: f64| {
+        ((2.0 * x * x + a0 * a0 + 2.0 * amin * amin + af * af) / (2.0 * j) + dv.abs()) / -amin
+    };
+    let (xlo, xhi) = (a0c - tol, amax + tol);
+    let n = if hopeless(t2_of(xlo), t2_size(xlo)) && hopeless(t2_of(xhi), t2_size(xhi)) {
+        0
+    } else {
+        s1_acc1(a0, af, v0, vf, d, j, amin).roots(xlo, xhi, &mut roots)
+    };
     for &x in &roots[..n] {
         let t2 = t2_of(x);
         if !okd(t2, (amax - amin) / j) {
@@ -793,11 +813,17 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
         s.add((af - amin) / j, j);
         emit(&s, col);
     }
-    // acc0_acc1: s = τ₁.
-    let r = s1_acc01(a0, af, v0, vf, d, j, amax, amin);
+    // acc0_acc1: s = τ₁ (τ₂ grows with τ₁: its largest value is at the window's end).
     let (vlo, vhi) = velocity_window(q);
     let t1_hi = ((vhi - vlo).abs() + dv.abs()) / amax;
-    let n = r.roots(0.0, t1_hi, &mut roots);
+    let k01 = (2.0 * amax * amax - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j);
+    let t2_at = |x: f64| (k01 + amax * x - dv) / -amin;
+    let size = (k01.abs() + amax * t1_hi + dv.abs()) / -amin;
+    let n = if hopeless(t2_at(t1_hi), size) {
+        0
+    } else {
+        s1_acc01(a0, af, v0, vf, d, j, amax, amin).roots(0.0, t1_hi, &mut roots)
+    };
     for &x in &roots[..n] {
         let t2 = ((2.0 * amax * amax - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j)
             + amax * x
