@@ -148,17 +148,34 @@ pub(crate) fn two_changes(
     // Cheapest polynomial first (both plateaus: quadratic; one plateau: quartic; none:
     // sextic): with a prescribed duration the first valid profile ends the search, and the
     // plateau variants are the common ones at moderate limits.
+    // A plateau variant whose plateau duration is clearly negative over its whole parameter
+    // window (far beyond the tolerance of `offer`) is skipped. The durations are linear in
+    // v_c, and v_c is a parabola in α or β with its vertex at 0: the largest value is at an
+    // end of the window or at 0.
+    let size = t.unwrap_or(0.0)
+        + (vlo.abs() + vhi.abs() + v0.abs() + vf.abs()) / al1.abs().min(al2.abs())
+        + (a0.abs() + af.abs() + al1.abs() + al2.abs()) / j;
+    let hopeless = |f: &dyn Fn(f64) -> f64, lo: f64, hi: f64| {
+        let neg = |x: f64| f(x) < -1e-6 * size;
+        neg(lo) && neg(hi) && (!(lo < 0.0 && hi > 0.0) || neg(0.0))
+    };
     // Both plateaus: s = v_c.
-    let r = pick(two_pp, two_pp_t);
-    let n = r.roots(vlo, vhi, &mut roots);
+    let n = if hopeless(&tau1_of, vlo, vhi) || hopeless(&tau2_of, vlo, vhi) {
+        0
+    } else {
+        pick(two_pp, two_pp_t).roots(vlo, vhi, &mut roots)
+    };
     for &vc in &roots[..n] {
         if offer(al1, tau1_of(vc), al2, tau2_of(vc), vc) {
             return true;
         }
     }
     // Plateau in change 1: s = β.
-    let r = pick(two_pn, two_pn_t);
-    let n = r.roots(blo, bhi, &mut roots);
+    let n = if hopeless(&|x| tau1_of(vc_of_beta(x)), blo, bhi) {
+        0
+    } else {
+        pick(two_pn, two_pn_t).roots(blo, bhi, &mut roots)
+    };
     for &x in &roots[..n] {
         let vc = vc_of_beta(x);
         if offer(al1, tau1_of(vc), x, 0.0, vc) {
@@ -166,8 +183,11 @@ pub(crate) fn two_changes(
         }
     }
     // Plateau in change 2: s = α.
-    let r = pick(two_np, two_np_t);
-    let n = r.roots(alo, ahi, &mut roots);
+    let n = if hopeless(&|x| tau2_of(vc_of_alpha(x)), alo, ahi) {
+        0
+    } else {
+        pick(two_np, two_np_t).roots(alo, ahi, &mut roots)
+    };
     for &x in &roots[..n] {
         let vc = vc_of_alpha(x);
         if offer(x, 0.0, al2, tau2_of(vc), vc) {

@@ -406,7 +406,7 @@ struct Taylor<const N: usize> {
 
 /// Taylor coefficients of `c` at `x` by repeated synthetic division (t[0] is Horner's p(x));
 /// `None` when a coefficient is zero or small enough for round-off to have flipped its sign.
-#[inline]
+#[inline(always)]
 fn taylor<const N: usize>(c: &[f64], x: f64) -> Option<Taylor<N>> {
     let mut t = [0.0; N];
     let mut m = [0.0; N];
@@ -473,6 +473,10 @@ fn isolate_n<const N: usize>(
     out: &mut [f64; MAX_POLY],
 ) -> Option<usize> {
     let a = taylor::<N>(c, lo)?;
+    // Most windows hold no root and p keeps its sign from the start: one expansion settles it.
+    if a.t[0] != 0.0 && away_from_zero(&a, hi - lo, 1.0) {
+        return Some(0);
+    }
     let b = taylor::<N>(c, hi)?;
     let mut n = 0;
     isolate_piece(c, &a, &b, 2, out, &mut n)?;

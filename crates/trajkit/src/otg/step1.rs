@@ -74,31 +74,67 @@ impl Step1 {
 ///
 /// Candidates are built in place in a spare buffer ([`Collector::scratch`], then
 /// [`Collector::submit`]); the fastest valid one stays in the other buffer, so no profile is
-/// copied while the families are enumerated.
+/// copied while the families are enumerated. One of the two buffers is the caller's (where
+/// the result is wanted), the other the collector's own.
 pub(crate) struct Collector<'a> {
     dof: &'a Dof1,
-    bufs: [Profile; 2],
-    /// Index in `bufs` of the fastest valid candidate so far.
+    /// Buffer 0.
+    out: &'a mut Profile,
+    /// Buffer 1.
+    own: Profile,
+    /// Which buffer holds the fastest valid candidate so far.
     best: Option<usize>,
     pub cand: [f64; MAX_CANDIDATES],
     pub ncand: usize,
 }
 
 impl<'a> Collector<'a> {
-    pub fn new(dof: &'a Dof1) -> Self {
+    pub fn new(dof: &'a Dof1, out: &'a mut Profile) -> Self {
         Collector {
             dof,
-            bufs: [Profile::default(); 2],
+            out,
+            own: Profile::default(),
             best: None,
             cand: [0.0; MAX_CANDIDATES],
             ncand: 0,
         }
     }
 
+    #[inline]
+    fn buf(&self, k: usize) -> &Profile {
+        if k == 0 {
+            self.out
+        } else {
+            &self.own
+        }
+    }
+
+    #[inline]
+    fn buf_mut(&mut self, k: usize) -> &mut Profile {
+        if k == 0 {
+            self.out
+        } else {
+            &mut self.own
+        }
+    }
+
     /// The fastest valid candidate so far.
     #[inline]
     pub fn best(&self) -> Option<&Profile> {
-        self.best.map(|k| &self.bufs[k])
+        self.best.map(|k| self.buf(k))
+    }
+
+    /// Which buffer holds the fastest valid candidate (0: the caller's).
+    pub fn best_index(&self) -> Option<usize> {
+        self.best
+    }
+
+    /// Leaves the fastest valid candidate in the caller's buffer.
+    pub fn settle(&mut self) {
+        if self.best == Some(1) {
+            *self.out = self.own;
+            self.best = Some(0);
+        }
     }
 
     #[inline]
@@ -120,15 +156,16 @@ impl<'a> Collector<'a> {
     #[inline]
     pub fn scratch(&mut self, s: State1) -> &mut Profile {
         let k = self.spare();
-        self.bufs[k].reset(s);
-        &mut self.bufs[k]
+        let b = self.buf_mut(k);
+        b.reset(s);
+        b
     }
 
     /// Offers the candidate built in the spare buffer; returns whether it was valid.
     pub fn submit(&mut self) -> bool {
         let k = self.spare();
-        let t = self.bufs[k].duration();
-        if !self.wants(t) || !verify(self.dof, &self.bufs[k]) {
+        let t = self.buf(k).duration();
+        if !self.wants(t) || !verify(self.dof, self.buf(k)) {
             return false;
         }
         self.record(t);
@@ -147,7 +184,7 @@ impl<'a> Collector<'a> {
         self.record(t);
         if self.best().is_none_or(|b| t < b.duration()) {
             let k = self.spare();
-            self.bufs[k] = *main;
+            *self.buf_mut(k) = *main;
             self.best = Some(k);
         }
         true
@@ -310,7 +347,7 @@ pub(crate) fn step1_into(
     profile: &mut Profile,
     cand: &mut [f64; MAX_CANDIDATES],
 ) -> Option<usize> {
-    *profile = Profile::new(State1 {
+    profile.reset(State1 {
         p: dof.p0,
         v: dof.v0,
         a: dof.a0,
@@ -321,20 +358,28 @@ pub(crate) fn step1_into(
     main_dof.p0 = s.p;
     main_dof.v0 = s.v;
     main_dof.a0 = s.a;
-    let mut col = Collector::new(&main_dof);
-    solve_main(&main_dof, &mut col);
-    let best = col.best()?;
     let tb = profile.duration();
-    if profile.segments() == 0 {
-        // No brake: the main profile, as verified, is the result.
-        *profile = *best;
-    } else if !profile.append(best) {
-        return None;
+    // The collector builds its candidates in `profile` (and its own buffer): without a brake
+    // the result needs no copy when the fastest candidate was built there.
+    let brake_pr = (profile.segments() > 0).then_some(*profile);
+    let mut col = Collector::new(&main_dof, profile);
+    solve_main(&main_dof, &mut col);
+    col.best_index()?;
+    let (cands, ncand) = (col.cand, col.ncand);
+    match brake_pr {
+        None => col.settle(),
+        Some(b) => {
+            let best = *col.best()?;
+            *profile = b;
+            if !profile.append(&best) {
+                return None;
+            }
+        }
     }
-    for (c, &t) in cand.iter_mut().zip(&col.cand[..col.ncand]) {
+    for (c, &t) in cand.iter_mut().zip(&cands[..ncand]) {
         *c = t + tb;
     }
-    Some(col.ncand)
+    Some(ncand)
 }
 
 /// Enumerates the main-profile candidates of a problem whose start state is safe.
@@ -737,13 +782,15 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     let okd = |x: f64, scale: f64| x >= -1e-12 * scale.max(1e-300);
     let mut roots = [0.0; MAX_POLY];
     // none: s = α₁, α₂ = w.
-    let r = s1_none(a0, af, v0, vf, d, j);
+    // (Coefficients only when a window is not empty.)
+    let mut none = None;
     // α₂² = α₁² − K with α₂ ∈ [a_min, a_f]: α₁² ∈ [K (+a_f² when a_f < 0), K + max(a_f², a_min²)].
     let k = j * dv + (a0 * a0 - af * af) / 2.0;
     let l = k + if af < 0.0 { af * af } else { 0.0 };
     let af_pos = if af >= 0.0 { af * af } else { 0.0 };
     let u = k + af_pos.max(amin * amin);
     for (lo, hi) in square_window(l.max(0.0), u, a0c, amax, true, tol) {
+        let r = none.get_or_insert_with(|| s1_none(a0, af, v0, vf, d, j));
         let n = r.roots(lo, hi, &mut roots);
         for &x in &roots[..n] {
             let al2 = r.w_at(x);

@@ -39,8 +39,12 @@ pub struct Scratch {
     pub(crate) ncand: usize,
     pub(crate) t_min: f64,
     pub(crate) sync: bool,
-    /// The time-optimal profile of step 1.
+    /// The time-optimal profile of step 1, once it has been moved out of the output (see
+    /// `step1_in_out`).
     pub(crate) step1: Profile,
+    /// Whether the output profile of this DOF still holds the step-1 profile (step 1 writes
+    /// there; it is copied here only before something else overwrites it).
+    pub(crate) step1_in_out: bool,
 }
 
 impl Default for Scratch {
@@ -52,6 +56,7 @@ impl Default for Scratch {
             t_min: 0.0,
             sync: false,
             step1: Profile::default(),
+            step1_in_out: false,
         }
     }
 }
@@ -104,21 +109,16 @@ pub(crate) fn calculate(
             continue;
         }
         let sc = &mut scratch[i];
-        sc.ncand = step1_into(&d, &mut sc.step1, &mut sc.cand)
+        sc.ncand = step1_into(&d, &mut out[i].profile, &mut sc.cand)
             .ok_or(OtgResult::CalculationFailed { dof: i })?;
-        sc.t_min = sc.step1.duration();
+        sc.step1_in_out = true;
+        sc.t_min = out[i].profile.duration();
         sc.sync = match opts.synchronization {
             Synchronization::Time | Synchronization::Phase => true,
             Synchronization::TimeIfNecessary => d.vf != 0.0 || d.af != 0.0,
             Synchronization::None => false,
         };
-        // A synchronized DOF's output profile is written by every successful path below
-        // (step 2 or phase synchronization), so the step-1 profile is copied there only for
-        // the others.
         out[i].independent_min_duration = sc.t_min;
-        if !sc.sync {
-            out[i].profile = sc.step1;
-        }
         t_lead = t_lead.max(sc.t_min);
     }
 
@@ -131,12 +131,11 @@ pub(crate) fn calculate(
     for i in 0..n {
         if view.enabled[i] && !scratch[i].sync {
             let t = disc(scratch[i].t_min.max(min_dur));
-            if t > scratch[i].t_min {
-                out[i].profile =
-                    replan(&scratch[i], t).ok_or(OtgResult::SynchronizationFailed {
-                        dof: i,
-                        duration: t,
-                    })?;
+            if t > scratch[i].t_min && !replan_into(&mut scratch[i], t, &mut out[i].profile) {
+                return Err(OtgResult::SynchronizationFailed {
+                    dof: i,
+                    duration: t,
+                });
             }
         }
     }
@@ -227,20 +226,22 @@ fn duration_of(out: &[DofTrajectory]) -> f64 {
     out.iter().fold(0.0f64, |m, d| m.max(d.profile.duration()))
 }
 
-/// Re-plans one DOF for total duration `t` (brake kept); the step-1 profile when `t` is its
-/// minimum.
-fn replan(s: &Scratch, t: f64) -> Option<Profile> {
-    let mut pr = Profile::default();
-    replan_into(s, t, &mut pr).then_some(pr)
-}
-
-/// [`replan`] written into `out`; false (and `out` unspecified) when no profile was found.
-fn replan_into(s: &Scratch, t: f64, out: &mut Profile) -> bool {
+/// Re-plans one DOF for total duration `t` (brake kept) into `out`, its output profile; the
+/// step-1 profile when `t` is its minimum. False (and `out` unspecified) when no profile was
+/// found.
+fn replan_into(s: &mut Scratch, t: f64, out: &mut Profile) -> bool {
     // At (numerically) the minimum duration the step-1 profile is the answer; the residual of
     // step 2 is at round-off level there.
     if (t - s.t_min).abs() <= 1e-13 * t.max(1.0) {
-        *out = s.step1;
+        if !s.step1_in_out {
+            *out = s.step1;
+            s.step1_in_out = true;
+        }
         return true;
+    }
+    if s.step1_in_out {
+        s.step1 = *out;
+        s.step1_in_out = false;
     }
     if s.step1.brake_duration() == 0.0 {
         return match step2(&s.dof, t) {
@@ -265,7 +266,12 @@ fn replan_into(s: &Scratch, t: f64, out: &mut Profile) -> bool {
 
 /// Step 2 for every synchronized DOF at duration `t`, written into `out`; the failing DOF on
 /// error (then the synchronized entries of `out` are partly overwritten).
-fn try_all(scratch: &[Scratch], out: &mut [DofTrajectory], n: usize, t: f64) -> Result<(), usize> {
+fn try_all(
+    scratch: &mut [Scratch],
+    out: &mut [DofTrajectory],
+    n: usize,
+    t: f64,
+) -> Result<(), usize> {
     for i in 0..n {
         if !scratch[i].sync {
             continue;
@@ -273,7 +279,7 @@ fn try_all(scratch: &[Scratch], out: &mut [DofTrajectory], n: usize, t: f64) -> 
         if t < scratch[i].t_min {
             return Err(i);
         }
-        if !replan_into(&scratch[i], t, &mut out[i].profile) {
+        if !replan_into(&mut scratch[i], t, &mut out[i].profile) {
             return Err(i);
         }
     }
@@ -381,17 +387,19 @@ fn phase(
     if discrete {
         t = (t / delta_time - 1e-9).ceil().max(0.0) * delta_time;
     }
-    let sc = Scratch {
+    let mut sc = Scratch {
         dof: s,
         cand: s1.cand,
         ncand: s1.ncand,
         t_min: s1.t_min(),
         sync: true,
         step1: s1.profile,
+        step1_in_out: false,
     };
-    let Some(sp) = replan(&sc, t) else {
+    let mut sp = Profile::default();
+    if !replan_into(&mut sc, t, &mut sp) {
         return Ok(false);
-    };
+    }
     if sp.brake_duration() > 0.0 {
         return Ok(false);
     }
