@@ -97,6 +97,8 @@ pub(crate) fn two_changes(
     let tau1_of = |vc: f64| (vc - v0 - d1 * (2.0 * al1 * al1 - a0 * a0) / (2.0 * j)) / al1;
     let tau2_of = |vc: f64| (vf - vc - d2 * (2.0 * al2 * al2 - af * af) / (2.0 * j)) / al2;
     // Builds and offers the profile for (α, τ₁, β, τ₂); false when a duration is negative.
+    // (One buffer, emptied for each candidate.)
+    let mut buf: Option<Profile> = None;
     let mut offer = |alpha: f64, tau1: f64, beta: f64, tau2: f64, vc: f64| -> bool {
         let segs = [
             ((alpha - a0) * d1 / j, d1 * j),
@@ -121,7 +123,8 @@ pub(crate) fn two_changes(
             }
             None => 0.0,
         };
-        let mut pr = Profile::new(State1 {
+        let pr = buf.get_or_insert_with(Profile::default);
+        pr.reset(State1 {
             p: q.p0,
             v: v0,
             a: a0,
@@ -134,7 +137,7 @@ pub(crate) fn two_changes(
         for s in &segs[3..] {
             pr.push(s.0.max(0.0), s.1);
         }
-        take(&pr)
+        take(pr)
     };
     let mut roots = [0.0; MAX_POLY];
     let args = (a0, af, v0, vf, d, j, d1, d2, al1, al2);

@@ -81,7 +81,7 @@ pub(crate) struct Collector<'a> {
     /// Buffer 0.
     out: &'a mut Profile,
     /// Buffer 1.
-    own: Profile,
+    own: &'a mut Profile,
     /// Which buffer holds the fastest valid candidate so far.
     best: Option<usize>,
     pub cand: [f64; MAX_CANDIDATES],
@@ -89,11 +89,11 @@ pub(crate) struct Collector<'a> {
 }
 
 impl<'a> Collector<'a> {
-    pub fn new(dof: &'a Dof1, out: &'a mut Profile) -> Self {
+    pub fn new(dof: &'a Dof1, out: &'a mut Profile, own: &'a mut Profile) -> Self {
         Collector {
             dof,
             out,
-            own: Profile::default(),
+            own,
             best: None,
             cand: [0.0; MAX_CANDIDATES],
             ncand: 0,
@@ -105,7 +105,7 @@ impl<'a> Collector<'a> {
         if k == 0 {
             self.out
         } else {
-            &self.own
+            self.own
         }
     }
 
@@ -114,7 +114,7 @@ impl<'a> Collector<'a> {
         if k == 0 {
             self.out
         } else {
-            &mut self.own
+            self.own
         }
     }
 
@@ -132,7 +132,7 @@ impl<'a> Collector<'a> {
     /// Leaves the fastest valid candidate in the caller's buffer.
     pub fn settle(&mut self) {
         if self.best == Some(1) {
-            *self.out = self.own;
+            *self.out = *self.own;
             self.best = Some(0);
         }
     }
@@ -335,16 +335,19 @@ pub(crate) fn step1(dof: &Dof1) -> Option<Step1> {
         cand: [0.0; MAX_CANDIDATES],
         ncand: 0,
     };
-    s.ncand = step1_into(dof, &mut s.profile, &mut s.cand)?;
+    let mut spare = Profile::default();
+    s.ncand = step1_into(dof, &mut s.profile, &mut spare, &mut s.cand)?;
     Some(s)
 }
 
 /// Step 1 written into the caller's storage (no copy of the result): the time-optimal profile
-/// into `profile`, the candidate durations into `cand`; returns how many candidates, or `None`
-/// when no valid profile was found (then `profile` is unspecified).
+/// into `profile`, the candidate durations into `cand`, with `spare` as working space (left
+/// unspecified); returns how many candidates, or `None` when no valid profile was found (then
+/// `profile` is unspecified).
 pub(crate) fn step1_into(
     dof: &Dof1,
     profile: &mut Profile,
+    spare: &mut Profile,
     cand: &mut [f64; MAX_CANDIDATES],
 ) -> Option<usize> {
     profile.reset(State1 {
@@ -362,7 +365,7 @@ pub(crate) fn step1_into(
     // The collector builds its candidates in `profile` (and its own buffer): without a brake
     // the result needs no copy when the fastest candidate was built there.
     let brake_pr = (profile.segments() > 0).then_some(*profile);
-    let mut col = Collector::new(&main_dof, profile);
+    let mut col = Collector::new(&main_dof, profile, spare);
     solve_main(&main_dof, &mut col);
     col.best_index()?;
     let (cands, ncand) = (col.cand, col.ncand);

@@ -109,7 +109,8 @@ pub(crate) fn calculate(
             continue;
         }
         let sc = &mut scratch[i];
-        sc.ncand = step1_into(&d, &mut out[i].profile, &mut sc.cand)
+        // The scratch's step-1 slot is free while the step-1 profile is in the output.
+        sc.ncand = step1_into(&d, &mut out[i].profile, &mut sc.step1, &mut sc.cand)
             .ok_or(OtgResult::CalculationFailed { dof: i })?;
         sc.step1_in_out = true;
         sc.t_min = out[i].profile.duration();
