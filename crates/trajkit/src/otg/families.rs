@@ -197,7 +197,31 @@ pub(crate) fn two_changes(
             return true;
         }
     }
-    // No plateau: s = α, β = ±√W.
+    // No plateau: s = α, β = ±√W. Both changes meet at v_c: d₁α² + d₂β² = K. When K lies
+    // clearly outside the range that α's and β's windows allow, the variant (a sextic) is
+    // skipped.
+    let squares = |lo: f64, hi: f64, dk: f64| {
+        let (a, b) = (lo * lo, hi * hi);
+        let mn = if lo <= 0.0 && hi >= 0.0 {
+            0.0
+        } else {
+            a.min(b)
+        };
+        let mx = a.max(b);
+        if dk > 0.0 {
+            (mn, mx)
+        } else {
+            (-mx, -mn)
+        }
+    };
+    let (sa, ta) = squares(alo, ahi, d1);
+    let (sb, tb) = squares(blo, bhi, d2);
+    let kk = j * (vf - v0) + (d1 * a0 * a0 + d2 * af * af) / 2.0;
+    let margin = 1e-9 * (kk.abs() + ta.abs().max(sa.abs()) + tb.abs().max(sb.abs()));
+    // (Written so that NaN does not skip.)
+    if kk < sa + sb - margin || kk > ta + tb + margin {
+        return false;
+    }
     let r = pick(two_nn, two_nn_t);
     let n = r.roots(alo, ahi, &mut roots);
     for &x in &roots[..n] {
