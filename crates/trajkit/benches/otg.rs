@@ -7,8 +7,9 @@
 //!
 //! `OTG_MINREP=1` runs only a min-of-repetitions pass instead (each repetition times all
 //! problems of one library, the libraries alternate, the minimum per library is kept: robust to
-//! load spikes on a shared machine). `OTG_PROFILE=<dof><g|r>` (e.g. `7g`) runs trajkit alone on
-//! one problem set for a few seconds, for a profiler.
+//! load spikes on a shared machine). `OTG_PROFILE=<dof><g|r>` (e.g. `7g`; `R7g` for rsruckig)
+//! runs one library alone on one problem set for `OTG_SECS` seconds (default 5), for a
+//! profiler.
 //!
 //! Run: `cargo bench -p trajkit --bench otg`.
 
@@ -195,18 +196,27 @@ fn minrep<const N: usize>(general: bool, reps: usize) {
     );
 }
 
-/// Runs trajkit alone on one problem set for about `secs` seconds (for a profiler).
-fn profile_loop<const N: usize>(general: bool, secs: f64) {
+/// Runs one library alone (trajkit, or rsruckig when `peer`) on one problem set for about
+/// `secs` seconds (for a profiler).
+fn profile_loop<const N: usize>(general: bool, peer: bool, secs: f64) {
     let ours = problems::<N>(general, 7 + N as u64 + general as u64);
+    let theirs: Vec<_> = ours.iter().map(to_ruckig).collect();
     let otg = Otg::<N>::new(0.001);
+    let mut rk = RuckigOtg::<N>::new(None, 0.001);
+    let mut tr = rsruckig::prelude::Trajectory::<N>::new(None);
     let t0 = Instant::now();
     while t0.elapsed().as_secs_f64() < secs {
-        for p in &ours {
-            black_box(
-                otg.calculate(black_box(p))
-                    .map(|t| t.duration())
-                    .unwrap_or(0.0),
-            );
+        for (p, q) in ours.iter().zip(&theirs) {
+            if peer {
+                let _ = rk.calculate(black_box(q), &mut tr);
+                black_box(tr.get_duration());
+            } else {
+                black_box(
+                    otg.calculate(black_box(p))
+                        .map(|t| t.duration())
+                        .unwrap_or(0.0),
+                );
+            }
         }
     }
 }
@@ -219,13 +229,14 @@ fn main() {
             .ok()
             .and_then(|s| s.parse().ok())
             .unwrap_or(5.0);
-        match case.as_str() {
-            "1g" => profile_loop::<1>(true, secs),
-            "1r" => profile_loop::<1>(false, secs),
-            "3g" => profile_loop::<3>(true, secs),
-            "3r" => profile_loop::<3>(false, secs),
-            "7g" => profile_loop::<7>(true, secs),
-            _ => profile_loop::<7>(false, secs),
+        let peer = case.starts_with('R');
+        match case.trim_start_matches('R') {
+            "1g" => profile_loop::<1>(true, peer, secs),
+            "1r" => profile_loop::<1>(false, peer, secs),
+            "3g" => profile_loop::<3>(true, peer, secs),
+            "3r" => profile_loop::<3>(false, peer, secs),
+            "7g" => profile_loop::<7>(true, peer, secs),
+            _ => profile_loop::<7>(false, peer, secs),
         }
         return;
     }

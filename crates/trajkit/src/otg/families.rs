@@ -64,7 +64,10 @@ type TwoTimed = fn(f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64) -> Res
 /// `t − (other durations)` when a duration `t` is prescribed (none otherwise). For each of the
 /// four plateau variants the position residual is a polynomial in one parameter; every root
 /// that gives non-negative durations becomes a profile handed to `take`, which returns true to
-/// stop. `vlo`/`vhi` bound v_c (velocity limits or caps).
+/// stop. `vlo`/`vhi` bound v_c (velocity limits or caps). The variants go from the cheapest
+/// polynomial (both plateaus, quadratic) to the dearest (no plateau, sextic); a variant whose
+/// plateau duration is clearly negative over its whole window, or whose velocity continuity
+/// cannot hold there, is skipped.
 pub(crate) fn two_changes(
     q: &Dof1,
     d1: f64,

@@ -29,7 +29,16 @@
 //! Shortcuts, each checked against the differential suite: towards a target at rest a valid
 //! cruise at the velocity limit ends the search (nothing is faster), candidates that cannot be
 //! the fastest are not verified, and the peak family runs only for a moving target (where its
-//! durations bound the blocked intervals) or when nothing else was found.
+//! durations bound the blocked intervals) or when nothing else was found. A plateau family
+//! (and a two-change variant) is skipped, coefficients and polynomial alike, when a necessary
+//! condition fails by far more than the acceptance tolerance over its whole parameter window:
+//! its plateau duration is negative at the window's ends (the duration is convex in the
+//! parameter), or velocity continuity cannot hold there. Such a family has no valid root, so
+//! skipping it changes no result.
+//!
+//! Candidates are built in place (`Collector`): in the caller's output profile and one spare
+//! buffer, the fastest kept by swapping the two roles, so no profile is copied while the
+//! families are enumerated.
 //!
 //! Second order uses the peak family (one acceleration switch) and the cruise family; first
 //! order moves at the velocity limit. The velocity interface uses the fastest velocity change.
