@@ -27,7 +27,7 @@ use super::problem::{ControlInterface, Dof1};
 use super::profile::{Profile, State1};
 use super::result::OtgResult;
 use super::step1::{step1, step1_into, verify, MAX_CANDIDATES};
-use super::step2::step2;
+use super::step2::{step2, step2_into};
 use super::trajectory::DofTrajectory;
 
 /// Per-DOF scratch space of the calculation (kept by the caller so that a compile-time number
@@ -245,13 +245,7 @@ fn replan_into(s: &mut Scratch, t: f64, out: &mut Profile) -> bool {
         s.step1_in_out = false;
     }
     if s.step1.brake_duration() == 0.0 {
-        return match step2(&s.dof, t) {
-            Some(p) => {
-                *out = p;
-                true
-            }
-            None => false,
-        };
+        return step2_into(&s.dof, t, out);
     }
     *out = s.step1.brake_part();
     let e = out.end();
