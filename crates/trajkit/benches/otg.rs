@@ -5,6 +5,12 @@
 //! Criterion reports the mean time per `calculate`; after it, a per-call timing pass over the
 //! same problem sets prints mean and p99 (`OTG_P99=0` skips it).
 //!
+//! `OTG_MINREP=1` runs only a min-of-repetitions pass instead (each repetition times all
+//! problems of one library, the libraries alternate, the minimum per library is kept: robust to
+//! load spikes on a shared machine). `OTG_PROFILE=<dof><g|r>` (e.g. `7g`; `R7g` for rsruckig)
+//! runs one library alone on one problem set for `OTG_SECS` seconds (default 5), for a
+//! profiler.
+//!
 //! Run: `cargo bench -p trajkit --bench otg`.
 
 use criterion::{criterion_group, Criterion};
@@ -156,9 +162,98 @@ fn p99<const N: usize>(general: bool) {
     );
 }
 
+/// Minimum over repetitions of the mean time per call (ns) of both libraries, alternating.
+fn minrep<const N: usize>(general: bool, reps: usize) {
+    let ours = problems::<N>(general, 7 + N as u64 + general as u64);
+    let theirs: Vec<_> = ours.iter().map(to_ruckig).collect();
+    let otg = Otg::<N>::new(0.001);
+    let mut rk = RuckigOtg::<N>::new(None, 0.001);
+    let mut tr = rsruckig::prelude::Trajectory::<N>::new(None);
+    let (mut a, mut b) = (f64::INFINITY, f64::INFINITY);
+    for _ in 0..reps {
+        let t0 = Instant::now();
+        for p in &ours {
+            black_box(
+                otg.calculate(black_box(p))
+                    .map(|t| t.duration())
+                    .unwrap_or(0.0),
+            );
+        }
+        a = a.min(t0.elapsed().as_nanos() as f64 / PROBLEMS as f64);
+        let t0 = Instant::now();
+        for q in &theirs {
+            let _ = rk.calculate(black_box(q), &mut tr);
+            black_box(tr.get_duration());
+        }
+        b = b.min(t0.elapsed().as_nanos() as f64 / PROBLEMS as f64);
+    }
+    println!(
+        "| {N} DOF {:<7} | {:>8.3} | {:>8.3} | {:>5.2} |",
+        if general { "general" } else { "rest" },
+        a / 1e3,
+        b / 1e3,
+        a / b
+    );
+}
+
+/// Runs one library alone (trajkit, or rsruckig when `peer`) on one problem set for about
+/// `secs` seconds (for a profiler).
+fn profile_loop<const N: usize>(general: bool, peer: bool, secs: f64) {
+    let ours = problems::<N>(general, 7 + N as u64 + general as u64);
+    let theirs: Vec<_> = ours.iter().map(to_ruckig).collect();
+    let otg = Otg::<N>::new(0.001);
+    let mut rk = RuckigOtg::<N>::new(None, 0.001);
+    let mut tr = rsruckig::prelude::Trajectory::<N>::new(None);
+    let t0 = Instant::now();
+    while t0.elapsed().as_secs_f64() < secs {
+        for (p, q) in ours.iter().zip(&theirs) {
+            if peer {
+                let _ = rk.calculate(black_box(q), &mut tr);
+                black_box(tr.get_duration());
+            } else {
+                black_box(
+                    otg.calculate(black_box(p))
+                        .map(|t| t.duration())
+                        .unwrap_or(0.0),
+                );
+            }
+        }
+    }
+}
+
 criterion_group!(benches, bench);
 
 fn main() {
+    if let Ok(case) = std::env::var("OTG_PROFILE") {
+        let secs = std::env::var("OTG_SECS")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(5.0);
+        let peer = case.starts_with('R');
+        match case.trim_start_matches('R') {
+            "1g" => profile_loop::<1>(true, peer, secs),
+            "1r" => profile_loop::<1>(false, peer, secs),
+            "3g" => profile_loop::<3>(true, peer, secs),
+            "3r" => profile_loop::<3>(false, peer, secs),
+            "7g" => profile_loop::<7>(true, peer, secs),
+            _ => profile_loop::<7>(false, peer, secs),
+        }
+        return;
+    }
+    if let Ok(reps) = std::env::var("OTG_MINREP") {
+        let reps = reps.parse::<usize>().unwrap_or(1).max(30);
+        println!(
+            "min over {reps} repetitions of the mean per calculate, µs ({PROBLEMS} problems):"
+        );
+        println!("| problem         | trajkit | rsruckig | ratio |");
+        minrep::<1>(true, reps);
+        minrep::<1>(false, reps);
+        minrep::<3>(true, reps);
+        minrep::<3>(false, reps);
+        minrep::<7>(true, reps);
+        minrep::<7>(false, reps);
+        return;
+    }
     benches();
     Criterion::default().configure_from_args().final_summary();
     if std::env::var("OTG_P99").as_deref() != Ok("0") && !std::env::args().any(|a| a == "--test") {

@@ -64,7 +64,10 @@ type TwoTimed = fn(f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64) -> Res
 /// `t − (other durations)` when a duration `t` is prescribed (none otherwise). For each of the
 /// four plateau variants the position residual is a polynomial in one parameter; every root
 /// that gives non-negative durations becomes a profile handed to `take`, which returns true to
-/// stop. `vlo`/`vhi` bound v_c (velocity limits or caps).
+/// stop. `vlo`/`vhi` bound v_c (velocity limits or caps). The variants go from the cheapest
+/// polynomial (both plateaus, quadratic) to the dearest (no plateau, sextic); a variant whose
+/// plateau duration is clearly negative over its whole window, or whose velocity continuity
+/// cannot hold there, is skipped.
 pub(crate) fn two_changes(
     q: &Dof1,
     d1: f64,
@@ -97,6 +100,8 @@ pub(crate) fn two_changes(
     let tau1_of = |vc: f64| (vc - v0 - d1 * (2.0 * al1 * al1 - a0 * a0) / (2.0 * j)) / al1;
     let tau2_of = |vc: f64| (vf - vc - d2 * (2.0 * al2 * al2 - af * af) / (2.0 * j)) / al2;
     // Builds and offers the profile for (α, τ₁, β, τ₂); false when a duration is negative.
+    // (One buffer, emptied for each candidate.)
+    let mut buf: Option<Profile> = None;
     let mut offer = |alpha: f64, tau1: f64, beta: f64, tau2: f64, vc: f64| -> bool {
         let segs = [
             ((alpha - a0) * d1 / j, d1 * j),
@@ -121,7 +126,8 @@ pub(crate) fn two_changes(
             }
             None => 0.0,
         };
-        let mut pr = Profile::new(State1 {
+        let pr = buf.get_or_insert_with(Profile::default);
+        pr.reset(State1 {
             p: q.p0,
             v: v0,
             a: a0,
@@ -134,7 +140,7 @@ pub(crate) fn two_changes(
         for s in &segs[3..] {
             pr.push(s.0.max(0.0), s.1);
         }
-        take(&pr)
+        take(pr)
     };
     let mut roots = [0.0; MAX_POLY];
     let args = (a0, af, v0, vf, d, j, d1, d2, al1, al2);
@@ -145,18 +151,37 @@ pub(crate) fn two_changes(
             None => f(a, b, c, e, h, k, l, m, n, o),
         }
     };
-    // No plateau: s = α, β = ±√W.
-    let r = pick(two_nn, two_nn_t);
-    let n = r.roots(alo, ahi, &mut roots);
-    for &x in &roots[..n] {
-        let beta = r.w_at(x);
-        if beta * d2 >= -tol && offer(x, 0.0, beta, 0.0, vc_of_alpha(x)) {
+    // Cheapest polynomial first (both plateaus: quadratic; one plateau: quartic; none:
+    // sextic): with a prescribed duration the first valid profile ends the search, and the
+    // plateau variants are the common ones at moderate limits.
+    // A plateau variant whose plateau duration is clearly negative over its whole parameter
+    // window (far beyond the tolerance of `offer`) is skipped. The durations are linear in
+    // v_c, and v_c is a parabola in α or β with its vertex at 0: the largest value is at an
+    // end of the window or at 0.
+    let size = t.unwrap_or(0.0)
+        + (vlo.abs() + vhi.abs() + v0.abs() + vf.abs()) / al1.abs().min(al2.abs())
+        + (a0.abs() + af.abs() + al1.abs() + al2.abs()) / j;
+    let hopeless = |f: &dyn Fn(f64) -> f64, lo: f64, hi: f64| {
+        let neg = |x: f64| f(x) < -1e-6 * size;
+        neg(lo) && neg(hi) && (!(lo < 0.0 && hi > 0.0) || neg(0.0))
+    };
+    // Both plateaus: s = v_c.
+    let n = if hopeless(&tau1_of, vlo, vhi) || hopeless(&tau2_of, vlo, vhi) {
+        0
+    } else {
+        pick(two_pp, two_pp_t).roots(vlo, vhi, &mut roots)
+    };
+    for &vc in &roots[..n] {
+        if offer(al1, tau1_of(vc), al2, tau2_of(vc), vc) {
             return true;
         }
     }
     // Plateau in change 1: s = β.
-    let r = pick(two_pn, two_pn_t);
-    let n = r.roots(blo, bhi, &mut roots);
+    let n = if hopeless(&|x| tau1_of(vc_of_beta(x)), blo, bhi) {
+        0
+    } else {
+        pick(two_pn, two_pn_t).roots(blo, bhi, &mut roots)
+    };
     for &x in &roots[..n] {
         let vc = vc_of_beta(x);
         if offer(al1, tau1_of(vc), x, 0.0, vc) {
@@ -164,19 +189,47 @@ pub(crate) fn two_changes(
         }
     }
     // Plateau in change 2: s = α.
-    let r = pick(two_np, two_np_t);
-    let n = r.roots(alo, ahi, &mut roots);
+    let n = if hopeless(&|x| tau2_of(vc_of_alpha(x)), alo, ahi) {
+        0
+    } else {
+        pick(two_np, two_np_t).roots(alo, ahi, &mut roots)
+    };
     for &x in &roots[..n] {
         let vc = vc_of_alpha(x);
         if offer(x, 0.0, al2, tau2_of(vc), vc) {
             return true;
         }
     }
-    // Both plateaus: s = v_c.
-    let r = pick(two_pp, two_pp_t);
-    let n = r.roots(vlo, vhi, &mut roots);
-    for &vc in &roots[..n] {
-        if offer(al1, tau1_of(vc), al2, tau2_of(vc), vc) {
+    // No plateau: s = α, β = ±√W. Both changes meet at v_c: d₁α² + d₂β² = K. When K lies
+    // clearly outside the range that α's and β's windows allow, the variant (a sextic) is
+    // skipped.
+    let squares = |lo: f64, hi: f64, dk: f64| {
+        let (a, b) = (lo * lo, hi * hi);
+        let mn = if lo <= 0.0 && hi >= 0.0 {
+            0.0
+        } else {
+            a.min(b)
+        };
+        let mx = a.max(b);
+        if dk > 0.0 {
+            (mn, mx)
+        } else {
+            (-mx, -mn)
+        }
+    };
+    let (sa, ta) = squares(alo, ahi, d1);
+    let (sb, tb) = squares(blo, bhi, d2);
+    let kk = j * (vf - v0) + (d1 * a0 * a0 + d2 * af * af) / 2.0;
+    let margin = 1e-9 * (kk.abs() + ta.abs().max(sa.abs()) + tb.abs().max(sb.abs()));
+    // (Written so that NaN does not skip.)
+    if kk < sa + sb - margin || kk > ta + tb + margin {
+        return false;
+    }
+    let r = pick(two_nn, two_nn_t);
+    let n = r.roots(alo, ahi, &mut roots);
+    for &x in &roots[..n] {
+        let beta = r.w_at(x);
+        if beta * d2 >= -tol && offer(x, 0.0, beta, 0.0, vc_of_alpha(x)) {
             return true;
         }
     }

@@ -38,7 +38,10 @@ pub(crate) fn integrate(p: f64, v: f64, a: f64, j: f64, t: f64) -> (f64, f64, f6
 }
 
 /// The motion of one degree of freedom: constant-jerk segments from a start state.
-#[derive(Debug, Clone, Copy, PartialEq)]
+///
+/// Entries past the last segment are unspecified (a profile reused as a buffer keeps old
+/// values there); equality compares the segments and the final state only.
+#[derive(Debug, Clone, Copy)]
 pub struct Profile {
     n: usize,
     brake: usize,
@@ -51,6 +54,20 @@ pub struct Profile {
     j: [f64; MAX_SEGMENTS],
     /// Segment durations (kept exactly; differences of start times lose precision).
     d: [f64; MAX_SEGMENTS],
+}
+
+impl PartialEq for Profile {
+    fn eq(&self, o: &Profile) -> bool {
+        let (n, m) = (self.n, self.n + 1);
+        n == o.n
+            && self.brake == o.brake
+            && self.t[..m] == o.t[..m]
+            && self.p[..m] == o.p[..m]
+            && self.v[..m] == o.v[..m]
+            && self.a[..m] == o.a[..m]
+            && self.j[..n] == o.j[..n]
+            && self.d[..n] == o.d[..n]
+    }
 }
 
 impl Default for Profile {
@@ -81,6 +98,18 @@ impl Profile {
         pr.v[0] = s.v;
         pr.a[0] = s.a;
         pr
+    }
+
+    /// Empties the profile in place (duration 0, starting and staying in `s`), without
+    /// clearing the storage past the start.
+    #[inline]
+    pub(crate) fn reset(&mut self, s: State1) {
+        self.n = 0;
+        self.brake = 0;
+        self.t[0] = 0.0;
+        self.p[0] = s.p;
+        self.v[0] = s.v;
+        self.a[0] = s.a;
     }
 
     /// Appends a segment of `duration` seconds with constant `jerk`, continuing from the current

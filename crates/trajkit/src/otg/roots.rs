@@ -9,9 +9,14 @@
 //! valid domain by bisection so that roots sitting on an edge are not lost.
 //!
 //! [`poly_roots`] finds the real roots of a polynomial of degree ≤ [`MAX_POLY`] in an interval
-//! (closed-form linear and quadratic cases; higher degrees split into monotone pieces at the
-//! roots of the derivative, each solved by Newton's method safeguarded by bisection, so tangent
-//! roots at a critical point are found too). The closed-form profile families use it; the
+//! (closed-form linear and quadratic cases). From degree 3 on it first isolates the roots with
+//! the Budan–Fourier bound (sign variations of the Taylor coefficients at the two ends, with a
+//! round-off guard), bisecting the interval up to two levels: a piece bounded by 0 has no
+//! root, a piece bounded by 1 has exactly one, found by Newton's method safeguarded by
+//! bisection, and a piece with an even bound and the same sign at both ends has none when a
+//! Taylor expansion at one end keeps the polynomial away from zero over the piece. Whatever that does not settle goes to the derivative recursion: the interval is
+//! split into monotone pieces at the roots of the derivative, each solved the same way, so
+//! tangent roots at a critical point are found too. The closed-form profile families use it; the
 //! bracketing solver above stays as the fallback for degenerate cases.
 //!
 //! Precision: a root is returned when its bracket is as narrow as f64 allows (or after 200
@@ -234,6 +239,30 @@ pub const MAX_POLY: usize = 6;
 /// Evaluates the polynomial `c` (lowest order first) and its derivative at `x`.
 #[inline]
 pub fn horner_d(c: &[f64], x: f64) -> (f64, f64) {
+    // Unrolled for the lengths the solver uses (same operations in the same order).
+    match c.len() {
+        3 => horner_n::<3>(c, x),
+        4 => horner_n::<4>(c, x),
+        5 => horner_n::<5>(c, x),
+        6 => horner_n::<6>(c, x),
+        7 => horner_n::<7>(c, x),
+        _ => horner_any(c, x),
+    }
+}
+
+#[inline(always)]
+fn horner_n<const N: usize>(c: &[f64], x: f64) -> (f64, f64) {
+    let mut p = 0.0;
+    let mut dp = 0.0;
+    for k in (0..N).rev() {
+        dp = dp * x + p;
+        p = p * x + c[k];
+    }
+    (p, dp)
+}
+
+#[inline]
+fn horner_any(c: &[f64], x: f64) -> (f64, f64) {
     let mut p = 0.0;
     let mut dp = 0.0;
     for &k in c.iter().rev() {
@@ -286,30 +315,24 @@ fn poly_roots_with(c: &[f64], lo: f64, hi: f64, out: &mut [f64; MAX_POLY], prete
     let r = lo.abs().max(hi.abs()).max(f64::MIN_POSITIVE);
     let mut len = c.len().min(MAX_POLY + 1);
     let mut big = 0.0f64;
+    // |c_k|·r^k, the size of each term on the interval.
+    let mut term = [0.0f64; MAX_POLY + 1];
     let mut pw = 1.0;
-    for &k in &c[..len] {
-        big = big.max((k * pw).abs());
+    for (k, &ck) in c[..len].iter().enumerate() {
+        term[k] = (ck * pw).abs();
+        big = big.max(term[k]);
         pw *= r;
     }
     if !big.is_finite() || big == 0.0 {
         return 0;
     }
-    while len > 1 && (c[len - 1] * r.powi(len as i32 - 1)).abs() <= 1e-15 * big {
+    while len > 1 && term[len - 1] <= 1e-15 * big {
         len -= 1;
     }
     let c = &c[..len];
     if pretest && len >= 4 {
-        match root_bound(c, lo, hi) {
-            Some(0) => return 0,
-            Some(1) => {
-                // At most one root: when the ends differ in sign it is the only one.
-                let (fa, fb) = (horner_d(c, lo).0, horner_d(c, hi).0);
-                if fa != 0.0 && fb != 0.0 && (fa < 0.0) != (fb < 0.0) {
-                    out[0] = monotone_root(c, lo, hi, fa, fb);
-                    return 1;
-                }
-            }
-            _ => {}
+        if let Some(n) = isolate(c, lo, hi, out) {
+            return n;
         }
     }
     roots_rec(c, big, lo, hi, out)
@@ -369,52 +392,159 @@ fn roots_rec(c: &[f64], big: f64, lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -
     n
 }
 
+/// Taylor coefficients of a polynomial at a point, with the Budan–Fourier count there.
+#[derive(Clone, Copy)]
+struct Taylor<const N: usize> {
+    x: f64,
+    /// Sign variations of (p, p′, p″/2, …) at x.
+    var: u32,
+    /// p(x + h) = Σ t[k]·h^k.
+    t: [f64; N],
+    /// The same for |c| at |x|: bounds the size of the terms each t[k] sums.
+    m: [f64; N],
+}
+
+/// Taylor coefficients of `c` at `x` by repeated synthetic division (t[0] is Horner's p(x));
+/// `None` when a coefficient is zero or small enough for round-off to have flipped its sign.
+#[inline(always)]
+fn taylor<const N: usize>(c: &[f64], x: f64) -> Option<Taylor<N>> {
+    let mut t = [0.0; N];
+    let mut m = [0.0; N];
+    for i in 0..N {
+        t[i] = c[i];
+        m[i] = c[i].abs();
+    }
+    let ax = x.abs();
+    for k in 0..N {
+        for i in (k..N - 1).rev() {
+            t[i] += x * t[i + 1];
+            m[i] += ax * m[i + 1];
+        }
+    }
+    let mut ok = true;
+    let mut var = 0u32;
+    for k in 0..N {
+        ok &= t[k].abs() > 1e-12 * m[k];
+        if k > 0 {
+            var += ((t[k - 1] < 0.0) != (t[k] < 0.0)) as u32;
+        }
+    }
+    ok.then_some(Taylor { x, var, t, m })
+}
+
 /// Budan–Fourier bound: the number of roots of `c` in `[lo, hi]` is at most the difference of
-/// the sign variations of (p, p′, p″, …) at the two ends. `None` when a value is zero or small
-/// enough for round-off to have flipped its sign (no bound then).
+/// the sign variations of (p, p′, p″, …) at the two ends (and has its parity). `None` when
+/// no bound is available at an end.
+#[cfg(test)]
 fn root_bound(c: &[f64], lo: f64, hi: f64) -> Option<u32> {
-    // One unrolled instance per length (the common ones: quartics and sextics).
+    fn at<const N: usize>(c: &[f64], lo: f64, hi: f64) -> Option<u32> {
+        Some(
+            taylor::<N>(c, lo)?
+                .var
+                .saturating_sub(taylor::<N>(c, hi)?.var),
+        )
+    }
     match c.len() {
-        4 => root_bound_n::<4>(c, lo, hi),
-        5 => root_bound_n::<5>(c, lo, hi),
-        6 => root_bound_n::<6>(c, lo, hi),
-        7 => root_bound_n::<7>(c, lo, hi),
+        4 => at::<4>(c, lo, hi),
+        5 => at::<5>(c, lo, hi),
+        6 => at::<6>(c, lo, hi),
+        7 => at::<7>(c, lo, hi),
         _ => None,
     }
 }
 
-#[inline]
-fn root_bound_n<const N: usize>(c: &[f64], lo: f64, hi: f64) -> Option<u32> {
-    let var = |x: f64| -> Option<u32> {
-        // Taylor coefficients at x by repeated synthetic division; the same on |c| at |x|
-        // bounds the size of the terms each one sums (for the round-off test).
-        let mut t = [0.0; N];
-        let mut m = [0.0; N];
-        for i in 0..N {
-            t[i] = c[i];
-            m[i] = c[i].abs();
-        }
-        let ax = x.abs();
-        for k in 0..N {
-            for i in (k..N - 1).rev() {
-                t[i] += x * t[i + 1];
-                m[i] += ax * m[i + 1];
-            }
-        }
-        let mut count = 0;
-        let mut ok = true;
-        for k in 0..N {
-            ok &= t[k].abs() > 1e-12 * m[k];
-            if k > 0 && (t[k - 1] < 0.0) != (t[k] < 0.0) {
-                count += 1;
-            }
-        }
-        ok.then_some(count)
-    };
-    match (var(lo), var(hi)) {
-        (Some(a), Some(b)) => Some(a.saturating_sub(b)),
+/// Root isolation for degrees 3 to 6 (see the module documentation); `None` when it does not
+/// settle the roots and the caller must use the derivative recursion.
+fn isolate(c: &[f64], lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -> Option<usize> {
+    // One unrolled instance per length (the common ones: quartics and sextics).
+    match c.len() {
+        4 => isolate_n::<4>(c, lo, hi, out),
+        5 => isolate_n::<5>(c, lo, hi, out),
+        6 => isolate_n::<6>(c, lo, hi, out),
+        7 => isolate_n::<7>(c, lo, hi, out),
         _ => None,
     }
+}
+
+fn isolate_n<const N: usize>(
+    c: &[f64],
+    lo: f64,
+    hi: f64,
+    out: &mut [f64; MAX_POLY],
+) -> Option<usize> {
+    let a = taylor::<N>(c, lo)?;
+    // Most windows hold no root and p keeps its sign from the start: one expansion settles it.
+    if a.t[0] != 0.0 && away_from_zero(&a, hi - lo, 1.0) {
+        return Some(0);
+    }
+    let b = taylor::<N>(c, hi)?;
+    let mut n = 0;
+    isolate_piece(c, &a, &b, 2, out, &mut n)?;
+    Some(n)
+}
+
+/// One piece `[a.x, b.x]` of [`isolate`]: appends its roots to `out`. A piece bounded by 0
+/// has no root; bounded by 1, exactly one (parity), with a sign change at the ends. A larger
+/// even bound with the same sign at both ends is often a complex pair: the piece has no root
+/// when the Taylor expansion at either end keeps p away from zero over the whole piece;
+/// otherwise it is bisected (up to `depth` more levels).
+fn isolate_piece<const N: usize>(
+    c: &[f64],
+    a: &Taylor<N>,
+    b: &Taylor<N>,
+    depth: u32,
+    out: &mut [f64; MAX_POLY],
+    n: &mut usize,
+) -> Option<()> {
+    let (fa, fb) = (a.t[0], b.t[0]);
+    let bound = a.var.saturating_sub(b.var);
+    if bound == 0 {
+        return Some(());
+    }
+    if bound == 1 {
+        if fa == 0.0 || fb == 0.0 || (fa < 0.0) == (fb < 0.0) || *n >= MAX_POLY {
+            return None;
+        }
+        out[*n] = monotone_root(c, a.x, b.x, fa, fb);
+        *n += 1;
+        return Some(());
+    }
+    let w = b.x - a.x;
+    if bound % 2 == 0
+        && fa != 0.0
+        && (fa < 0.0) == (fb < 0.0)
+        && (away_from_zero(a, w, 1.0) || away_from_zero(b, w, -1.0))
+    {
+        return Some(());
+    }
+    let mid = 0.5 * (a.x + b.x);
+    if depth == 0 || mid <= a.x || mid >= b.x {
+        return None;
+    }
+    let m = taylor::<N>(c, mid)?;
+    isolate_piece(c, a, &m, depth - 1, out, n)?;
+    isolate_piece(c, &m, b, depth - 1, out, n)
+}
+
+/// Whether p(x + s·h) keeps the sign of p(x) for all h in [0, w] (s = ±1), by the lower bound
+/// |p(x)| − Σ (terms of the wrong sign)·w^k, with a margin for the round-off of the Taylor
+/// coefficients (a few ulp of the sizes `m`).
+#[inline]
+fn away_from_zero<const N: usize>(p: &Taylor<N>, w: f64, s: f64) -> bool {
+    let sg = if p.t[0] < 0.0 { -1.0 } else { 1.0 };
+    let mut worst = 0.0;
+    let mut err = p.m[0];
+    let (mut wk, mut sk) = (1.0, 1.0);
+    for k in 1..N {
+        wk *= w;
+        sk *= s;
+        let term = sg * sk * p.t[k] * wk;
+        if term < 0.0 {
+            worst -= term;
+        }
+        err += p.m[k] * wk;
+    }
+    sg * p.t[0] - worst > 64.0 * f64::EPSILON * N as f64 * err
 }
 
 /// The root of `c` in `[a, b]` where it is monotone with a sign change (f(a) = `fa`): Newton

@@ -29,7 +29,16 @@
 //! Shortcuts, each checked against the differential suite: towards a target at rest a valid
 //! cruise at the velocity limit ends the search (nothing is faster), candidates that cannot be
 //! the fastest are not verified, and the peak family runs only for a moving target (where its
-//! durations bound the blocked intervals) or when nothing else was found.
+//! durations bound the blocked intervals) or when nothing else was found. A plateau family
+//! (and a two-change variant) is skipped, coefficients and polynomial alike, when a necessary
+//! condition fails by far more than the acceptance tolerance over its whole parameter window:
+//! its plateau duration is negative at the window's ends (the duration is convex in the
+//! parameter), or velocity continuity cannot hold there. Such a family has no valid root, so
+//! skipping it changes no result.
+//!
+//! Candidates are built in place (`Collector`): in the caller's output profile and one spare
+//! buffer, the fastest kept by swapping the two roles, so no profile is copied while the
+//! families are enumerated.
 //!
 //! Second order uses the peak family (one acceleration switch) and the cruise family; first
 //! order moves at the velocity limit. The velocity interface uses the fastest velocity change.
@@ -71,20 +80,77 @@ impl Step1 {
 }
 
 /// Collects verified candidates and keeps the fastest.
+///
+/// Candidates are built in place in a spare buffer ([`Collector::scratch`], then
+/// [`Collector::submit`]); the fastest valid one stays in the other buffer, so no profile is
+/// copied while the families are enumerated. One of the two buffers is the caller's (where
+/// the result is wanted), the other the collector's own.
 pub(crate) struct Collector<'a> {
     dof: &'a Dof1,
-    pub best: Option<Profile>,
+    /// Buffer 0.
+    out: &'a mut Profile,
+    /// Buffer 1.
+    own: &'a mut Profile,
+    /// Which buffer holds the fastest valid candidate so far.
+    best: Option<usize>,
     pub cand: [f64; MAX_CANDIDATES],
     pub ncand: usize,
 }
 
 impl<'a> Collector<'a> {
-    pub fn new(dof: &'a Dof1) -> Self {
+    pub fn new(dof: &'a Dof1, out: &'a mut Profile, own: &'a mut Profile) -> Self {
         Collector {
             dof,
+            out,
+            own,
             best: None,
             cand: [0.0; MAX_CANDIDATES],
             ncand: 0,
+        }
+    }
+
+    #[inline]
+    fn buf(&self, k: usize) -> &Profile {
+        if k == 0 {
+            self.out
+        } else {
+            self.own
+        }
+    }
+
+    #[inline]
+    fn buf_mut(&mut self, k: usize) -> &mut Profile {
+        if k == 0 {
+            self.out
+        } else {
+            self.own
+        }
+    }
+
+    /// The fastest valid candidate so far.
+    #[inline]
+    pub fn best(&self) -> Option<&Profile> {
+        self.best.map(|k| self.buf(k))
+    }
+
+    /// Which buffer holds the fastest valid candidate (0: the caller's).
+    pub fn best_index(&self) -> Option<usize> {
+        self.best
+    }
+
+    /// Leaves the fastest valid candidate in the caller's buffer.
+    pub fn settle(&mut self) {
+        if self.best == Some(1) {
+            *self.out = *self.own;
+            self.best = Some(0);
+        }
+    }
+
+    #[inline]
+    fn spare(&self) -> usize {
+        match self.best {
+            Some(0) => 1,
+            _ => 0,
         }
     }
 
@@ -92,7 +158,30 @@ impl<'a> Collector<'a> {
     /// target moves (then every valid duration bounds a blocked interval).
     #[inline]
     pub fn wants(&self, t: f64) -> bool {
-        self.dof.vf != 0.0 || self.dof.af != 0.0 || self.best.is_none_or(|b| t < b.duration())
+        self.dof.vf != 0.0 || self.dof.af != 0.0 || self.best().is_none_or(|b| t < b.duration())
+    }
+
+    /// The spare buffer, emptied and starting at `s`, to build a candidate in.
+    #[inline]
+    pub fn scratch(&mut self, s: State1) -> &mut Profile {
+        let k = self.spare();
+        let b = self.buf_mut(k);
+        b.reset(s);
+        b
+    }
+
+    /// Offers the candidate built in the spare buffer; returns whether it was valid.
+    pub fn submit(&mut self) -> bool {
+        let k = self.spare();
+        let t = self.buf(k).duration();
+        if !self.wants(t) || !verify(self.dof, self.buf(k)) {
+            return false;
+        }
+        self.record(t);
+        if self.best().is_none_or(|b| t < b.duration()) {
+            self.best = Some(k);
+        }
+        true
     }
 
     /// Offers a main profile (starting after the brake); returns whether it was valid.
@@ -101,14 +190,21 @@ impl<'a> Collector<'a> {
             return false;
         }
         let t = main.duration();
+        self.record(t);
+        if self.best().is_none_or(|b| t < b.duration()) {
+            let k = self.spare();
+            *self.buf_mut(k) = *main;
+            self.best = Some(k);
+        }
+        true
+    }
+
+    #[inline]
+    fn record(&mut self, t: f64) {
         if self.ncand < MAX_CANDIDATES && !self.cand[..self.ncand].contains(&t) {
             self.cand[self.ncand] = t;
             self.ncand += 1;
         }
-        if self.best.is_none_or(|b| t < b.duration()) {
-            self.best = Some(*main);
-        }
-        true
     }
 }
 
@@ -141,6 +237,43 @@ pub(crate) fn verify(dof: &Dof1, pr: &Profile) -> bool {
     let s = pr.start();
     let mut v_in = !check_v || (s.v <= vmax && s.v >= vmin);
     let mut a_in = !check_a || (s.a <= amax && s.a >= amin);
+    if v_in && a_in {
+        // The common case: starting inside, every value must stay inside (the loop below
+        // reduces to this when nothing starts outside).
+        let (vmax, vmin) = if check_v {
+            (vmax, vmin)
+        } else {
+            (f64::INFINITY, f64::NEG_INFINITY)
+        };
+        let (amax, amin) = if check_a {
+            (amax, amin)
+        } else {
+            (f64::INFINITY, f64::NEG_INFINITY)
+        };
+        for k in 0..pr.segments() {
+            let Some((_, d, st, j)) = pr.segment(k) else {
+                break;
+            };
+            let vend = st.v + d * (st.a + d * j / 2.0);
+            let aend = st.a + d * j;
+            let mut vmid = st.v;
+            if j != 0.0 {
+                let r = -st.a / j;
+                if r > 0.0 && r < d {
+                    vmid = st.v + r * (st.a + r * j / 2.0);
+                }
+            }
+            for v in [st.v, vmid, vend] {
+                if v > vmax || v < vmin {
+                    return false;
+                }
+            }
+            if st.a > amax || st.a < amin || aend > amax || aend < amin {
+                return false;
+            }
+        }
+        return true;
+    }
     let (v_hi, v_lo) = (vmax.max(s.v), vmin.min(s.v));
     let (a_hi, a_lo) = (amax.max(s.a), amin.min(s.a));
     for k in 0..pr.segments() {
@@ -206,33 +339,59 @@ pub(crate) fn velocity_cap(dof: &Dof1, s: State1) -> f64 {
 
 /// Step 1 for one degree of freedom. `None` when no valid profile was found.
 pub(crate) fn step1(dof: &Dof1) -> Option<Step1> {
-    let mut pr = Profile::new(State1 {
+    let mut s = Step1 {
+        profile: Profile::default(),
+        cand: [0.0; MAX_CANDIDATES],
+        ncand: 0,
+    };
+    let mut spare = Profile::default();
+    s.ncand = step1_into(dof, &mut s.profile, &mut spare, &mut s.cand)?;
+    Some(s)
+}
+
+/// Step 1 written into the caller's storage (no copy of the result): the time-optimal profile
+/// into `profile`, the candidate durations into `cand`, with `spare` as working space (left
+/// unspecified); returns how many candidates, or `None` when no valid profile was found (then
+/// `profile` is unspecified).
+pub(crate) fn step1_into(
+    dof: &Dof1,
+    profile: &mut Profile,
+    spare: &mut Profile,
+    cand: &mut [f64; MAX_CANDIDATES],
+) -> Option<usize> {
+    profile.reset(State1 {
         p: dof.p0,
         v: dof.v0,
         a: dof.a0,
     });
-    brake(dof, &mut pr);
-    let s = pr.end();
+    brake(dof, profile);
+    let s = profile.end();
     let mut main_dof = *dof;
     main_dof.p0 = s.p;
     main_dof.v0 = s.v;
     main_dof.a0 = s.a;
-    let mut col = Collector::new(&main_dof);
+    let tb = profile.duration();
+    // The collector builds its candidates in `profile` (and its own buffer): without a brake
+    // the result needs no copy when the fastest candidate was built there.
+    let brake_pr = (profile.segments() > 0).then_some(*profile);
+    let mut col = Collector::new(&main_dof, profile, spare);
     solve_main(&main_dof, &mut col);
-    let best = col.best?;
-    let tb = pr.duration();
-    if !pr.append(&best) {
-        return None;
+    col.best_index()?;
+    let (cands, ncand) = (col.cand, col.ncand);
+    match brake_pr {
+        None => col.settle(),
+        Some(b) => {
+            let best = *col.best()?;
+            *profile = b;
+            if !profile.append(&best) {
+                return None;
+            }
+        }
     }
-    let mut cand = col.cand;
-    for c in cand[..col.ncand].iter_mut() {
-        *c += tb;
+    for (c, &t) in cand.iter_mut().zip(&cands[..ncand]) {
+        *c = t + tb;
     }
-    Some(Step1 {
-        profile: pr,
-        cand,
-        ncand: col.ncand,
-    })
+    Some(ncand)
 }
 
 /// Enumerates the main-profile candidates of a problem whose start state is safe.
@@ -320,7 +479,7 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
                     });
                 }
             }
-            if col.best.is_some() {
+            if col.best().is_some() {
                 return;
             }
             // Fallback for degenerate cases the closed forms miss: the bracketing solver on
@@ -362,15 +521,15 @@ fn rest_to_rest_peak(dof: &Dof1, col: &mut Collector<'_>) -> bool {
     ) else {
         return false;
     };
-    let mut pr = Profile::new(State1 {
+    let pr = col.scratch(State1 {
         p: dof.p0,
         v: 0.0,
         a: 0.0,
     });
-    push_change(&mut pr, order, &c1, 0.0);
+    push_change(pr, order, &c1, 0.0);
     pr.snap(vp, 0.0);
-    push_change(&mut pr, order, &c2, vp);
-    col.offer(&pr)
+    push_change(pr, order, &c2, vp);
+    col.submit()
 }
 
 /// Appends a velocity change to a profile.
@@ -536,7 +695,7 @@ impl Seq {
         if !col.wants(self.d[..self.n].iter().sum()) {
             return;
         }
-        let mut pr = Profile::new(State1 {
+        let pr = col.scratch(State1 {
             p: q.p0,
             v: q.v0,
             a: q.a0,
@@ -547,7 +706,7 @@ impl Seq {
         if mirror {
             pr.mirror();
         }
-        col.offer(&pr);
+        col.submit();
     }
     #[inline]
     fn displacement(&self, v0: f64, a0: f64) -> f64 {
@@ -575,19 +734,19 @@ fn vel_family(q: &Dof1, mirror: bool, col: &mut Collector<'_>) -> bool {
         if let (Some(c1), Some(c2)) = (c1, c2) {
             let tau = (d - c1.dist - c2.dist) / q.vmax;
             if tau >= 0.0 {
-                let mut pr = Profile::new(State1 {
+                let pr = col.scratch(State1 {
                     p: q.p0,
                     v: v0,
                     a: a0,
                 });
-                push_change(&mut pr, ProfileOrder::Third, &c1, v0);
+                push_change(pr, ProfileOrder::Third, &c1, v0);
                 pr.snap(q.vmax, 0.0);
                 pr.push_with(tau, q.vmax, 0.0, 0.0);
-                push_change(&mut pr, ProfileOrder::Third, &c2, q.vmax);
+                push_change(pr, ProfileOrder::Third, &c2, q.vmax);
                 if mirror {
                     pr.mirror();
                 }
-                return col.offer(&pr);
+                return col.submit();
             }
         }
     }
@@ -635,13 +794,15 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     let okd = |x: f64, scale: f64| x >= -1e-12 * scale.max(1e-300);
     let mut roots = [0.0; MAX_POLY];
     // none: s = α₁, α₂ = w.
-    let r = s1_none(a0, af, v0, vf, d, j);
+    // (Coefficients only when a window is not empty.)
+    let mut none = None;
     // α₂² = α₁² − K with α₂ ∈ [a_min, a_f]: α₁² ∈ [K (+a_f² when a_f < 0), K + max(a_f², a_min²)].
     let k = j * dv + (a0 * a0 - af * af) / 2.0;
     let l = k + if af < 0.0 { af * af } else { 0.0 };
     let af_pos = if af >= 0.0 { af * af } else { 0.0 };
     let u = k + af_pos.max(amin * amin);
     for (lo, hi) in square_window(l.max(0.0), u, a0c, amax, true, tol) {
+        let r = none.get_or_insert_with(|| s1_none(a0, af, v0, vf, d, j));
         let n = r.roots(lo, hi, &mut roots);
         for &x in &roots[..n] {
             let al2 = r.w_at(x);
@@ -655,10 +816,23 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
             emit(&s, col);
         }
     }
+    // The plateau families' plateau duration is convex in their parameter, so its largest
+    // value over the parameter window is at one of the window's ends. When it is clearly
+    // negative at both (beyond the tolerance of `okd`, with a margin far above round-off), no
+    // root can give a valid profile and the family is skipped: neither its coefficients nor
+    // its polynomial are computed.
+    let dscale = (amax - amin) / j;
+    let hopeless = |t: f64, size: f64| t < -1e-12 * dscale.max(1e-300) - 1e-9 * size;
     // acc0: s = α₂, plateau τ₁ at a_max.
     let c0 = amax * amax + (af * af - a0 * a0) / 2.0 - j * dv;
-    let r = s1_acc0(a0, af, v0, vf, d, j, amax);
-    let n = r.roots(amin - tol, amax.min(af) + tol, &mut roots);
+    let (xlo, xhi) = (amin - tol, amax.min(af) + tol);
+    let t1_at = |x: f64| (x * x - c0) / (j * amax);
+    let t1_size = |x: f64| (x * x + c0.abs()) / (j * amax);
+    let n = if hopeless(t1_at(xlo), t1_size(xlo)) && hopeless(t1_at(xhi), t1_size(xhi)) {
+        0
+    } else {
+        s1_acc0(a0, af, v0, vf, d, j, amax).roots(xlo, xhi, &mut roots)
+    };
     for &x in &roots[..n] {
         let t1 = (x * x - c0) / (j * amax);
         if !okd(t1, (amax - amin) / j) {
@@ -677,8 +851,15 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     // acc1: s = α₁, plateau τ₂ at a_min.
     let t2_of =
         |x: f64| ((2.0 * x * x - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j) - dv) / -amin;
-    let r = s1_acc1(a0, af, v0, vf, d, j, amin);
-    let n = r.roots(a0c - tol, amax + tol, &mut roots);
+    let t2_size = |x: f64| {
+        ((2.0 * x * x + a0 * a0 + 2.0 * amin * amin + af * af) / (2.0 * j) + dv.abs()) / -amin
+    };
+    let (xlo, xhi) = (a0c - tol, amax + tol);
+    let n = if hopeless(t2_of(xlo), t2_size(xlo)) && hopeless(t2_of(xhi), t2_size(xhi)) {
+        0
+    } else {
+        s1_acc1(a0, af, v0, vf, d, j, amin).roots(xlo, xhi, &mut roots)
+    };
     for &x in &roots[..n] {
         let t2 = t2_of(x);
         if !okd(t2, (amax - amin) / j) {
@@ -691,11 +872,17 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
         s.add((af - amin) / j, j);
         emit(&s, col);
     }
-    // acc0_acc1: s = τ₁.
-    let r = s1_acc01(a0, af, v0, vf, d, j, amax, amin);
+    // acc0_acc1: s = τ₁ (τ₂ grows with τ₁: its largest value is at the window's end).
     let (vlo, vhi) = velocity_window(q);
     let t1_hi = ((vhi - vlo).abs() + dv.abs()) / amax;
-    let n = r.roots(0.0, t1_hi, &mut roots);
+    let k01 = (2.0 * amax * amax - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j);
+    let t2_at = |x: f64| (k01 + amax * x - dv) / -amin;
+    let size = (k01.abs() + amax * t1_hi + dv.abs()) / -amin;
+    let n = if hopeless(t2_at(t1_hi), size) {
+        0
+    } else {
+        s1_acc01(a0, af, v0, vf, d, j, amax, amin).roots(0.0, t1_hi, &mut roots)
+    };
     for &x in &roots[..n] {
         let t2 = ((2.0 * amax * amax - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j)
             + amax * x

@@ -25,16 +25,41 @@ use super::velocity_change::{fastest, VelChange};
 /// A verified profile for `dof` (whose start state is safe) lasting `t` seconds, if one of the
 /// step-2 families has one.
 pub(crate) fn step2(dof: &Dof1, t: f64) -> Option<Profile> {
+    let mut pr = Profile::default();
+    step2_into(dof, t, &mut pr).then_some(pr)
+}
+
+/// [`step2`] written into `out` (the rest-to-rest closed form, the common case of
+/// synchronization, builds there without a copy); false (and `out` unspecified) when no family
+/// has a profile.
+pub(crate) fn step2_into(dof: &Dof1, t: f64, out: &mut Profile) -> bool {
     if !t.is_finite() || t < 0.0 {
-        return None;
+        return false;
     }
+    let ok = |pr: &Profile| verify(dof, pr) && (pr.duration() - t).abs() <= 1e-12 * t.max(1.0);
+    if dof.interface == ControlInterface::Position
+        && dof.order() != ProfileOrder::First
+        && rest_to_rest(dof, t, &ok, out)
+    {
+        return true;
+    }
+    match other_families(dof, t, &ok) {
+        Some(p) => {
+            *out = p;
+            true
+        }
+        None => false,
+    }
+}
+
+/// The step-2 families other than the rest-to-rest closed form.
+fn other_families(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
     let start = State1 {
         p: dof.p0,
         v: dof.v0,
         a: dof.a0,
     };
     let order = dof.order();
-    let ok = |pr: &Profile| verify(dof, pr) && (pr.duration() - t).abs() <= 1e-12 * t.max(1.0);
     match (order, dof.interface) {
         (ProfileOrder::First, iface) => {
             let d = if iface == ControlInterface::Position {
@@ -60,26 +85,21 @@ pub(crate) fn step2(dof: &Dof1, t: f64) -> Option<Profile> {
             pr.set_final(dof.vf, 0.0);
             ok(&pr).then_some(pr)
         }
-        (ProfileOrder::Third, ControlInterface::Velocity) => velocity3(dof, t, &ok),
-        (ProfileOrder::Second, ControlInterface::Position) => {
-            rest_to_rest(dof, t, &ok).or_else(|| cruise(dof, t, &ok))
-        }
+        (ProfileOrder::Third, ControlInterface::Velocity) => velocity3(dof, t, ok),
+        (ProfileOrder::Second, ControlInterface::Position) => cruise(dof, t, ok),
         (ProfileOrder::Third, ControlInterface::Position) => {
             // Early returns rather than an `or_else` chain, which moves the profile through
             // every remaining stage.
-            if let r @ Some(_) = rest_to_rest(dof, t, &ok) {
-                return r;
-            }
-            if let r @ Some(_) = cruise_closed(dof, t, &ok) {
+            if let r @ Some(_) = cruise_closed(dof, t, ok) {
                 return r;
             }
             for (mirror, at_valley) in [(false, false), (false, true), (true, false), (true, true)]
             {
-                if let r @ Some(_) = hold(dof, t, mirror, at_valley, &ok) {
+                if let r @ Some(_) = hold(dof, t, mirror, at_valley, ok) {
                     return r;
                 }
             }
-            cruise(dof, t, &ok)
+            cruise(dof, t, ok)
         }
     }
 }
@@ -87,11 +107,12 @@ pub(crate) fn step2(dof: &Dof1, t: f64) -> Option<Profile> {
 /// Closed-form cruise velocity for a rest-to-rest move with symmetric acceleration limits (the
 /// common case of synchronization): with t₁ the time of each velocity change and D the distance,
 /// v_c·(t − t₁(v_c)) = D. Without an acceleration plateau t₁ = 2√(v_c/j), a cubic in √v_c;
-/// with one t₁ = v_c/a + a/j, a quadratic. `None` (the general family takes over) when the
-/// case does not apply or the profile fails verification.
-fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
+/// with one t₁ = v_c/a + a/j, a quadratic. False (the general family takes over) when the
+/// case does not apply or the profile fails verification. Builds in `pr`; returns whether it
+/// left a verified profile there.
+fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool, pr: &mut Profile) -> bool {
     if dof.v0 != 0.0 || dof.a0 != 0.0 || dof.vf != 0.0 || dof.af != 0.0 || dof.amax != -dof.amin {
-        return None;
+        return false;
     }
     let order = dof.order();
     let d = (dof.pf - dof.p0).abs();
@@ -101,7 +122,7 @@ fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Pr
         ProfileOrder::Second => {
             let disc = t * t - 4.0 * d / a;
             if disc < 0.0 {
-                return None;
+                return false;
             }
             2.0 * d / (t + disc.sqrt())
         }
@@ -122,33 +143,37 @@ fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Pr
                 let mut roots = [0.0; crate::poly::roots::MAX_DEGREE];
                 let n = crate::poly::roots::roots_in(&[d, 0.0, -t, 2.0 / sj], 0.0, hi, &mut roots);
                 if n == 0 {
-                    return None;
+                    return false;
                 }
                 roots[0] * roots[0]
             }
         }
-        ProfileOrder::First => return None,
+        ProfileOrder::First => return false,
     };
     let vc = if dof.pf >= dof.p0 { vc } else { -vc };
-    let c1 = fastest(order, 0.0, 0.0, vc, 0.0, j, dof.amax, dof.amin)?;
-    let c2 = fastest(order, vc, 0.0, 0.0, 0.0, j, dof.amax, dof.amin)?;
+    let (Some(c1), Some(c2)) = (
+        fastest(order, 0.0, 0.0, vc, 0.0, j, dof.amax, dof.amin),
+        fastest(order, vc, 0.0, 0.0, 0.0, j, dof.amax, dof.amin),
+    ) else {
+        return false;
+    };
     let tau = t - c1.t - c2.t;
     if tau < 0.0 {
-        return None;
+        return false;
     }
-    let mut pr = Profile::new(State1 {
+    pr.reset(State1 {
         p: dof.p0,
         v: 0.0,
         a: 0.0,
     });
-    push_change(&mut pr, order, &c1, 0.0);
+    push_change(pr, order, &c1, 0.0);
     pr.snap(vc, 0.0);
     pr.push_with(tau, vc, 0.0, 0.0);
-    push_change(&mut pr, order, &c2, vc);
+    push_change(pr, order, &c2, vc);
     if order == ProfileOrder::Second {
         pr.set_final(0.0, 0.0);
     }
-    ok(&pr).then_some(pr)
+    ok(pr)
 }
 
 /// Cruise family with a free cruise velocity (third order), from the roots of its position
@@ -395,24 +420,25 @@ mod tests {
     #[test]
     fn rest_to_rest_closed_form_hits_both_cases() {
         let ok = |pr: &Profile| pr.duration() > 0.0;
+        let mut pr = Profile::default();
         // Plateau: a²/j = 0.25 < v_c.
         let d = Dof1::rest_to_rest(0.0, 1.0, 0.6, 1.0, 4.0);
-        let pr = rest_to_rest(&d, 3.0, &ok).unwrap();
+        assert!(rest_to_rest(&d, 3.0, &ok, &mut pr));
         assert!((pr.duration() - 3.0).abs() < 1e-12 && (pr.end().p - 1.0).abs() < 1e-12);
         assert!(verify(&d, &pr));
         // No plateau: large jerk limit... small: a²/j = 1/0.5 = 2 > v_c.
         let d = Dof1::rest_to_rest(0.0, -0.3, 1.0, 1.0, 0.5);
-        let pr = rest_to_rest(&d, 6.0, &ok).unwrap();
+        assert!(rest_to_rest(&d, 6.0, &ok, &mut pr));
         assert!((pr.duration() - 6.0).abs() < 1e-12 && (pr.end().p + 0.3).abs() < 1e-12);
         assert!(verify(&d, &pr));
         // Second order.
         let d = Dof1::rest_to_rest(1.0, 2.0, 1.0, 1.0, f64::INFINITY);
-        let pr = rest_to_rest(&d, 4.0, &ok).unwrap();
+        assert!(rest_to_rest(&d, 4.0, &ok, &mut pr));
         assert!((pr.duration() - 4.0).abs() < 1e-12 && (pr.end().p - 2.0).abs() < 1e-12);
         // Not rest-to-rest: not this path.
         let mut d = Dof1::rest_to_rest(0.0, 1.0, 1.0, 1.0, 1.0);
         d.v0 = 0.1;
-        assert!(rest_to_rest(&d, 5.0, &ok).is_none());
+        assert!(!rest_to_rest(&d, 5.0, &ok, &mut pr));
         assert!(step2(&d, 5.0).is_some());
     }
 }

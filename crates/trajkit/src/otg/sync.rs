@@ -26,8 +26,8 @@ use super::input::{DurationDiscretization, InputView, Synchronization};
 use super::problem::{ControlInterface, Dof1};
 use super::profile::{Profile, State1};
 use super::result::OtgResult;
-use super::step1::{step1, verify, MAX_CANDIDATES};
-use super::step2::step2;
+use super::step1::{step1, step1_into, verify, MAX_CANDIDATES};
+use super::step2::{step2, step2_into};
 use super::trajectory::DofTrajectory;
 
 /// Per-DOF scratch space of the calculation (kept by the caller so that a compile-time number
@@ -39,8 +39,12 @@ pub struct Scratch {
     pub(crate) ncand: usize,
     pub(crate) t_min: f64,
     pub(crate) sync: bool,
-    /// The time-optimal profile of step 1.
+    /// The time-optimal profile of step 1, once it has been moved out of the output (see
+    /// `step1_in_out`).
     pub(crate) step1: Profile,
+    /// Whether the output profile of this DOF still holds the step-1 profile (step 1 writes
+    /// there; it is copied here only before something else overwrites it).
+    pub(crate) step1_in_out: bool,
 }
 
 impl Default for Scratch {
@@ -52,6 +56,7 @@ impl Default for Scratch {
             t_min: 0.0,
             sync: false,
             step1: Profile::default(),
+            step1_in_out: false,
         }
     }
 }
@@ -103,24 +108,19 @@ pub(crate) fn calculate(
             scratch[i].sync = false;
             continue;
         }
-        let s1 = step1(&d).ok_or(OtgResult::CalculationFailed { dof: i })?;
-        scratch[i].sync = match opts.synchronization {
+        let sc = &mut scratch[i];
+        // The scratch's step-1 slot is free while the step-1 profile is in the output.
+        sc.ncand = step1_into(&d, &mut out[i].profile, &mut sc.step1, &mut sc.cand)
+            .ok_or(OtgResult::CalculationFailed { dof: i })?;
+        sc.step1_in_out = true;
+        sc.t_min = out[i].profile.duration();
+        sc.sync = match opts.synchronization {
             Synchronization::Time | Synchronization::Phase => true,
             Synchronization::TimeIfNecessary => d.vf != 0.0 || d.af != 0.0,
             Synchronization::None => false,
         };
-        // A synchronized DOF's output profile is written by every successful path below
-        // (step 2 or phase synchronization), so the step-1 profile is copied there only for
-        // the others.
-        out[i].independent_min_duration = s1.t_min();
-        if !scratch[i].sync {
-            out[i].profile = s1.profile;
-        }
-        scratch[i].cand = s1.cand;
-        scratch[i].ncand = s1.ncand;
-        scratch[i].t_min = s1.t_min();
-        scratch[i].step1 = s1.profile;
-        t_lead = t_lead.max(s1.t_min());
+        out[i].independent_min_duration = sc.t_min;
+        t_lead = t_lead.max(sc.t_min);
     }
 
     if opts.synchronization == Synchronization::Phase && phase(view, delta_time, out, scratch)? {
@@ -132,12 +132,11 @@ pub(crate) fn calculate(
     for i in 0..n {
         if view.enabled[i] && !scratch[i].sync {
             let t = disc(scratch[i].t_min.max(min_dur));
-            if t > scratch[i].t_min {
-                out[i].profile =
-                    replan(&scratch[i], t).ok_or(OtgResult::SynchronizationFailed {
-                        dof: i,
-                        duration: t,
-                    })?;
+            if t > scratch[i].t_min && !replan_into(&mut scratch[i], t, &mut out[i].profile) {
+                return Err(OtgResult::SynchronizationFailed {
+                    dof: i,
+                    duration: t,
+                });
             }
         }
     }
@@ -228,30 +227,46 @@ fn duration_of(out: &[DofTrajectory]) -> f64 {
     out.iter().fold(0.0f64, |m, d| m.max(d.profile.duration()))
 }
 
-/// Re-plans one DOF for total duration `t` (brake kept); the step-1 profile when `t` is its
-/// minimum.
-fn replan(s: &Scratch, t: f64) -> Option<Profile> {
+/// Re-plans one DOF for total duration `t` (brake kept) into `out`, its output profile; the
+/// step-1 profile when `t` is its minimum. False (and `out` unspecified) when no profile was
+/// found.
+fn replan_into(s: &mut Scratch, t: f64, out: &mut Profile) -> bool {
     // At (numerically) the minimum duration the step-1 profile is the answer; the residual of
     // step 2 is at round-off level there.
     if (t - s.t_min).abs() <= 1e-13 * t.max(1.0) {
-        return Some(s.step1);
+        if !s.step1_in_out {
+            *out = s.step1;
+            s.step1_in_out = true;
+        }
+        return true;
+    }
+    if s.step1_in_out {
+        s.step1 = *out;
+        s.step1_in_out = false;
     }
     if s.step1.brake_duration() == 0.0 {
-        return step2(&s.dof, t);
+        return step2_into(&s.dof, t, out);
     }
-    let mut pr = s.step1.brake_part();
-    let e = pr.end();
+    *out = s.step1.brake_part();
+    let e = out.end();
     let mut d = s.dof;
     d.p0 = e.p;
     d.v0 = e.v;
     d.a0 = e.a;
-    let main = step2(&d, t - pr.duration())?;
-    pr.append(&main).then_some(pr)
+    match step2(&d, t - out.duration()) {
+        Some(main) => out.append(&main),
+        None => false,
+    }
 }
 
 /// Step 2 for every synchronized DOF at duration `t`, written into `out`; the failing DOF on
 /// error (then the synchronized entries of `out` are partly overwritten).
-fn try_all(scratch: &[Scratch], out: &mut [DofTrajectory], n: usize, t: f64) -> Result<(), usize> {
+fn try_all(
+    scratch: &mut [Scratch],
+    out: &mut [DofTrajectory],
+    n: usize,
+    t: f64,
+) -> Result<(), usize> {
     for i in 0..n {
         if !scratch[i].sync {
             continue;
@@ -259,9 +274,8 @@ fn try_all(scratch: &[Scratch], out: &mut [DofTrajectory], n: usize, t: f64) -> 
         if t < scratch[i].t_min {
             return Err(i);
         }
-        match replan(&scratch[i], t) {
-            Some(p) => out[i].profile = p,
-            None => return Err(i),
+        if !replan_into(&mut scratch[i], t, &mut out[i].profile) {
+            return Err(i);
         }
     }
     Ok(())
@@ -368,17 +382,19 @@ fn phase(
     if discrete {
         t = (t / delta_time - 1e-9).ceil().max(0.0) * delta_time;
     }
-    let sc = Scratch {
+    let mut sc = Scratch {
         dof: s,
         cand: s1.cand,
         ncand: s1.ncand,
         t_min: s1.t_min(),
         sync: true,
         step1: s1.profile,
+        step1_in_out: false,
     };
-    let Some(sp) = replan(&sc, t) else {
+    let mut sp = Profile::default();
+    if !replan_into(&mut sc, t, &mut sp) {
         return Ok(false);
-    };
+    }
     if sp.brake_duration() > 0.0 {
         return Ok(false);
     }

@@ -69,7 +69,9 @@ pub(crate) fn fastest3(
 ) -> Option<VelChange> {
     let dv = vb - va;
     let base = (aa * aa + ab * ab) / 2.0;
-    let tol = 1e-12 * (aa.abs() + ab.abs() + (j * dv.abs()).sqrt()) + 1e-300;
+    // The tolerance (a square root) only matters near the edges of the two shapes: computed
+    // when a comparison is not settled without it.
+    let tol = || 1e-12 * (aa.abs() + ab.abs() + (j * dv.abs()).sqrt()) + 1e-300;
     // Both shapes (ramp up then down, or down then up) can be valid; the faster one wins.
     let mut best: Option<VelChange> = None;
     let mut take = |c: VelChange| {
@@ -78,9 +80,9 @@ pub(crate) fn fastest3(
         }
     };
     let ru = j * dv + base;
-    if ru >= -tol * tol {
+    if ru >= 0.0 || ru >= -tol() * tol() {
         let alpha = ru.max(0.0).sqrt();
-        if alpha >= aa.max(ab) - tol {
+        if alpha >= aa.max(ab) || alpha >= aa.max(ab) - tol() {
             let alpha = alpha.max(aa.max(ab));
             if alpha <= amax {
                 take(build(
@@ -101,9 +103,9 @@ pub(crate) fn fastest3(
         }
     }
     let rd = -j * dv + base;
-    if rd >= -tol * tol {
+    if rd >= 0.0 || rd >= -tol() * tol() {
         let alpha = -rd.max(0.0).sqrt();
-        if alpha <= aa.min(ab) + tol {
+        if alpha <= aa.min(ab) || alpha <= aa.min(ab) + tol() {
             let alpha = alpha.min(aa.min(ab));
             if alpha >= amin {
                 take(build(
