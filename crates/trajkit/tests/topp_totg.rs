@@ -327,7 +327,7 @@ fn short_blends_take_coarser_arc_steps_within_the_loss_budget() {
 fn the_loss_estimate_keeps_arc_heavy_paths_within_the_budget() {
     // 12 short segments, max deviation 0.5: 75 % of the time on arcs. The arcs' share keeps
     // the smallest cut threshold, whose loss here (8.2e-5) is beyond the budget; the estimate
-    // sees it and one corrective round with a lower threshold brings it within.
+    // sees it and corrective rounds with a lower threshold bring it within (two here).
     let w = arc_heavy(1, 12, 0.3);
     assert_loss("arc-heavy", totg_loss(&w, 0.5, 4e-4));
     let lim = panda();

@@ -66,22 +66,22 @@
 //!   paths that spend over 28 % of their time on arcs keep τ = 2e-6, the others a coarser
 //!   spacing;
 //! - **duration budget, checked a posteriori.** C is measured, not bounded, so once the
-//!   refinement has converged the loss is *estimated*: the arcs are integrated once more with
-//!   every other knot dropped (same rows, no path evaluation; about half a sweep). Because
-//!   the loss is first order in the spacing, doubling the spacing adds about the loss
-//!   itself: T(2h) − T(h) ≈ T(h) − T(0) (Richardson); the tightening's cost,
-//!   Σ Δt·max(ε₀, ε₁)/2, is added. The estimate is returned in
-//!   [`PhaseSolution::loss_estimate`](crate::topp::ni::PhaseSolution). If it exceeds
-//!   [`LOSS_BUDGET`](crate::topp::ni::LOSS_BUDGET) = 7e-5 of the duration, τ is lowered by the
-//!   factor the first-order model calls for, (0.8·budget/estimate)² (at least 2e-8), the
-//!   steps above it are cut, the problem is integrated again and estimated again; at most two
-//!   such corrections. Measured: the estimate is within 1–4 % of the loss against TOTG at
-//!   fine arc steps extrapolated to zero step on the 7-waypoint bench input (3.05e-5 vs
-//!   3.10e-5, no correction), trajkit's default path (6.04e-5 vs 6.04e-5, no correction) and
-//!   arc-heavy paths (random walks of short segments with large max deviations, 70–85 % of
-//!   the time on arcs: 8.2e-5 → 5.4e-5 after one correction, estimate 5.4e-5 vs 5.7e-5). The
-//!   tests assert the budget and the estimate within 10 % of the reference on these paths and
-//!   (ignored, long) on 18 seeded paths;
+//!   refinement has converged the loss is *estimated*: the problem is integrated once more
+//!   on every third knot of each arc (same rows, no path evaluation; about a third of a
+//!   sweep, +17 % of the solve on the bench inputs). Because the loss is first order in the
+//!   spacing, tripling the spacing adds about twice the loss: (T(3h) − T(h))/2 ≈ T(h) − T(0)
+//!   (Richardson); the tightening's cost, Σ Δt·max(ε₀, ε₁)/2, is added. The estimate is
+//!   returned in [`PhaseSolution::loss_estimate`](crate::topp::ni::PhaseSolution). If it
+//!   exceeds 0.9 of [`LOSS_BUDGET`](crate::topp::ni::LOSS_BUDGET) = 7e-5 of the duration
+//!   (0.9: the estimate's own error), τ is lowered by the factor the first-order model calls
+//!   for, (0.8·budget/estimate)² (at least 2e-8), the steps above it are cut, the problem is
+//!   integrated again and estimated again; at most two such corrections. Measured against
+//!   TOTG at fine arc steps extrapolated to zero step: the estimate is within 5 % of the loss
+//!   (3.02e-5 vs 3.10e-5 on the 7-waypoint bench input, 6.03e-5 vs 5.88e-5 on trajkit's
+//!   default path, neither corrected; arc-heavy paths — random walks of short segments with
+//!   large max deviations, 70–85 % of the time on arcs — that had losses of 6.0e-5–1.08e-4
+//!   end at 4.1e-5–6.1e-5). The tests assert the budget and the estimate within 10 % of the
+//!   reference on these paths and (ignored, long) on 18 seeded paths;
 //! - **what is guaranteed, and when not**: the limits (above) hold in every case. The budget
 //!   holds when the estimate is right, i.e. when the loss is first order in the spacing and
 //!   adjacent steps have similar spacing (knots of a cut step are equal parts). Where that
