@@ -38,6 +38,13 @@ pub(crate) fn brake(dof: &Dof1, pr: &mut Profile) {
             }
         }
         ProfileOrder::Third => {
+            // A state with zero acceleration and its velocity within the limits (every state
+            // at rest) is safe: no side below would brake it.
+            let s = pr.end();
+            if s.a == 0.0 && dof.amax >= 0.0 && dof.amin <= 0.0 && s.v <= vmax && s.v >= vmin {
+                pr.mark_brake();
+                return;
+            }
             // An acceleration beyond its limit is ramped back first (the side that owns it),
             // then the velocity of either side is braked.
             side(pr, vmax, vmin, dof.amax, dof.amin, dof.jmax, 1.0);

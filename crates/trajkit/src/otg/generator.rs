@@ -8,7 +8,7 @@
 
 use super::input::{DynInputParameter, InputParameter};
 use super::result::OtgResult;
-use super::sync::{calculate, Scratch};
+use super::sync::{calculate, Scratch, Spare};
 use super::trajectory::{DofTrajectory, DynTrajectory, FixedTrajectory, OtgTrajectory};
 use std::time::Instant;
 
@@ -83,6 +83,7 @@ pub struct Otg<const DOF: usize> {
     last: Option<InputParameter<DOF>>,
     traj: FixedTrajectory<DOF>,
     scratch: [Scratch; DOF],
+    spare: [Spare; DOF],
     time: f64,
 }
 
@@ -94,6 +95,7 @@ impl<const DOF: usize> Otg<DOF> {
             last: None,
             traj: FixedTrajectory::default(),
             scratch: [Scratch::default(); DOF],
+            spare: [None; DOF],
             time: 0.0,
         }
     }
@@ -105,7 +107,15 @@ impl<const DOF: usize> Otg<DOF> {
     ) -> Result<FixedTrajectory<DOF>, OtgResult> {
         let mut traj = FixedTrajectory::<DOF>::default();
         let mut scratch = [Scratch::default(); DOF];
-        self.calculate_into(input, &mut traj, &mut scratch)?;
+        let mut spare: [Spare; DOF] = [None; DOF];
+        let d = calculate(
+            &input.view(),
+            self.delta_time,
+            &mut traj.dofs,
+            &mut scratch,
+            &mut spare,
+        )?;
+        traj.duration = d;
         Ok(traj)
     }
 
@@ -116,7 +126,14 @@ impl<const DOF: usize> Otg<DOF> {
         traj: &mut FixedTrajectory<DOF>,
         scratch: &mut [Scratch; DOF],
     ) -> Result<(), OtgResult> {
-        let d = calculate(&input.view(), self.delta_time, &mut traj.dofs, scratch)?;
+        let mut spare: [Spare; DOF] = [None; DOF];
+        let d = calculate(
+            &input.view(),
+            self.delta_time,
+            &mut traj.dofs,
+            scratch,
+            &mut spare,
+        )?;
         traj.duration = d;
         Ok(())
     }
@@ -137,6 +154,7 @@ impl<const DOF: usize> Otg<DOF> {
                 self.delta_time,
                 &mut self.traj.dofs,
                 &mut self.scratch,
+                &mut self.spare,
             );
             out.calculation_duration_us = start.elapsed().as_secs_f64() * 1e6;
             match r {
@@ -184,6 +202,13 @@ pub fn calculate_dyn(
     let n = input.dof();
     let mut dofs = vec![DofTrajectory::default(); n];
     let mut scratch = vec![Scratch::default(); n];
-    let d = calculate(&input.view(), delta_time, &mut dofs, &mut scratch)?;
+    let mut spare = vec![None; n];
+    let d = calculate(
+        &input.view(),
+        delta_time,
+        &mut dofs,
+        &mut scratch,
+        &mut spare,
+    )?;
     Ok(OtgTrajectory { dofs, duration: d })
 }

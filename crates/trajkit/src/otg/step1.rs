@@ -84,13 +84,15 @@ impl Step1 {
 /// Candidates are built in place in a spare buffer ([`Collector::scratch`], then
 /// [`Collector::submit`]); the fastest valid one stays in the other buffer, so no profile is
 /// copied while the families are enumerated. One of the two buffers is the caller's (where
-/// the result is wanted), the other the collector's own.
+/// the result is wanted), the other the collector's own; the second is created only when a
+/// second candidate is built while a valid one is kept (most rest-to-rest problems never need
+/// it, and so never pay for initialising it).
 pub(crate) struct Collector<'a> {
     dof: &'a Dof1,
     /// Buffer 0.
     out: &'a mut Profile,
-    /// Buffer 1.
-    own: &'a mut Profile,
+    /// Buffer 1, created on first use.
+    own: &'a mut Option<Profile>,
     /// Which buffer holds the fastest valid candidate so far.
     best: Option<usize>,
     pub cand: [f64; MAX_CANDIDATES],
@@ -98,7 +100,7 @@ pub(crate) struct Collector<'a> {
 }
 
 impl<'a> Collector<'a> {
-    pub fn new(dof: &'a Dof1, out: &'a mut Profile, own: &'a mut Profile) -> Self {
+    pub fn new(dof: &'a Dof1, out: &'a mut Profile, own: &'a mut Option<Profile>) -> Self {
         Collector {
             dof,
             out,
@@ -111,10 +113,10 @@ impl<'a> Collector<'a> {
 
     #[inline]
     fn buf(&self, k: usize) -> &Profile {
-        if k == 0 {
-            self.out
-        } else {
-            self.own
+        match (k, self.own.as_ref()) {
+            (1, Some(own)) => own,
+            // Buffer 1 is created (by `buf_mut`) before it is first read: only k = 0 gets here.
+            _ => self.out,
         }
     }
 
@@ -123,7 +125,7 @@ impl<'a> Collector<'a> {
         if k == 0 {
             self.out
         } else {
-            self.own
+            self.own.get_or_insert_with(Profile::default)
         }
     }
 
@@ -140,8 +142,8 @@ impl<'a> Collector<'a> {
 
     /// Leaves the fastest valid candidate in the caller's buffer.
     pub fn settle(&mut self) {
-        if self.best == Some(1) {
-            *self.out = *self.own;
+        if let (Some(1), Some(own)) = (self.best, self.own.as_ref()) {
+            *self.out = *own;
             self.best = Some(0);
         }
     }
@@ -344,19 +346,19 @@ pub(crate) fn step1(dof: &Dof1) -> Option<Step1> {
         cand: [0.0; MAX_CANDIDATES],
         ncand: 0,
     };
-    let mut spare = Profile::default();
+    let mut spare = None;
     s.ncand = step1_into(dof, &mut s.profile, &mut spare, &mut s.cand)?;
     Some(s)
 }
 
 /// Step 1 written into the caller's storage (no copy of the result): the time-optimal profile
-/// into `profile`, the candidate durations into `cand`, with `spare` as working space (left
-/// unspecified); returns how many candidates, or `None` when no valid profile was found (then
+/// into `profile`, the candidate durations into `cand`, with `spare` as working space (created
+/// when needed, left unspecified); returns how many candidates, or `None` when no valid profile was found (then
 /// `profile` is unspecified).
 pub(crate) fn step1_into(
     dof: &Dof1,
     profile: &mut Profile,
-    spare: &mut Profile,
+    spare: &mut Option<Profile>,
     cand: &mut [f64; MAX_CANDIDATES],
 ) -> Option<usize> {
     profile.reset(State1 {

@@ -30,6 +30,12 @@ use super::step1::{step1, step1_into, verify, MAX_CANDIDATES};
 use super::step2::{step2, step2_into};
 use super::trajectory::DofTrajectory;
 
+/// Per-DOF spare profile of the calculation: step 1's second working buffer, then the slot
+/// the time-optimal profile is copied to before step 2 overwrites the output (see
+/// `Scratch::step1_in_out`). Kept apart from [`Scratch`] and created on first use, so that a
+/// calculation that never needs it neither initialises nor copies 700 bytes per DOF.
+pub type Spare = Option<Profile>;
+
 /// Per-DOF scratch space of the calculation (kept by the caller so that a compile-time number
 /// of degrees of freedom needs no allocation).
 #[derive(Debug, Clone, Copy)]
@@ -39,12 +45,16 @@ pub struct Scratch {
     pub(crate) ncand: usize,
     pub(crate) t_min: f64,
     pub(crate) sync: bool,
-    /// The time-optimal profile of step 1, once it has been moved out of the output (see
-    /// `step1_in_out`).
-    pub(crate) step1: Profile,
     /// Whether the output profile of this DOF still holds the step-1 profile (step 1 writes
-    /// there; it is copied here only before something else overwrites it).
+    /// there).
     pub(crate) step1_in_out: bool,
+    /// Whether the DOF's spare profile (see [`Spare`]) holds the step-1 profile. It is copied there only when it starts with a
+    /// brake (step 2 re-plans after the brake); without one it is not kept, and on the rare
+    /// way back to the minimum duration after step 2 it is calculated again (step 1 is
+    /// deterministic: the same profile).
+    pub(crate) step1_kept: bool,
+    /// Whether the step-1 profile starts with a brake.
+    pub(crate) brake: bool,
 }
 
 impl Default for Scratch {
@@ -55,8 +65,9 @@ impl Default for Scratch {
             ncand: 0,
             t_min: 0.0,
             sync: false,
-            step1: Profile::default(),
             step1_in_out: false,
+            step1_kept: false,
+            brake: false,
         }
     }
 }
@@ -67,10 +78,11 @@ pub(crate) fn calculate(
     delta_time: f64,
     out: &mut [DofTrajectory],
     scratch: &mut [Scratch],
+    spare: &mut [Spare],
 ) -> Result<f64, OtgResult> {
     view.check_shape(delta_time)?;
     let n = view.dof();
-    if out.len() < n || scratch.len() < n {
+    if out.len() < n || scratch.len() < n || spare.len() < n {
         return Err(OtgResult::InvalidInput {
             dof: usize::MAX,
             field: "current_position",
@@ -109,10 +121,12 @@ pub(crate) fn calculate(
             continue;
         }
         let sc = &mut scratch[i];
-        // The scratch's step-1 slot is free while the step-1 profile is in the output.
-        sc.ncand = step1_into(&d, &mut out[i].profile, &mut sc.step1, &mut sc.cand)
+        // The spare profile is free while the step-1 profile is in the output.
+        sc.ncand = step1_into(&d, &mut out[i].profile, &mut spare[i], &mut sc.cand)
             .ok_or(OtgResult::CalculationFailed { dof: i })?;
         sc.step1_in_out = true;
+        sc.step1_kept = false;
+        sc.brake = out[i].profile.brake_duration() != 0.0;
         sc.t_min = out[i].profile.duration();
         sc.sync = match opts.synchronization {
             Synchronization::Time | Synchronization::Phase => true,
@@ -132,7 +146,9 @@ pub(crate) fn calculate(
     for i in 0..n {
         if view.enabled[i] && !scratch[i].sync {
             let t = disc(scratch[i].t_min.max(min_dur));
-            if t > scratch[i].t_min && !replan_into(&mut scratch[i], t, &mut out[i].profile) {
+            if t > scratch[i].t_min
+                && !replan_into(&mut scratch[i], &mut spare[i], t, &mut out[i].profile)
+            {
                 return Err(OtgResult::SynchronizationFailed {
                     dof: i,
                     duration: t,
@@ -158,7 +174,7 @@ pub(crate) fn calculate(
             if !(t.is_finite() && t < 1e300) {
                 break;
             }
-            match try_all(scratch, out, n, t) {
+            match try_all(scratch, spare, out, n, t) {
                 Ok(()) => {
                     // A missing candidate could hide a shorter feasible duration between the
                     // last failure and t: bisect for the edge of the feasible range.
@@ -170,7 +186,7 @@ pub(crate) fn calculate(
                             if mid <= lo || mid >= hi {
                                 break;
                             }
-                            last_ok = try_all(scratch, out, n, mid).is_ok();
+                            last_ok = try_all(scratch, spare, out, n, mid).is_ok();
                             if last_ok {
                                 hi = mid;
                             } else {
@@ -178,7 +194,7 @@ pub(crate) fn calculate(
                             }
                         }
                         // A failed attempt leaves `out` partly written: redo the last success.
-                        if !last_ok && try_all(scratch, out, n, hi).is_err() {
+                        if !last_ok && try_all(scratch, spare, out, n, hi).is_err() {
                             return Err(OtgResult::SynchronizationFailed {
                                 dof: failed,
                                 duration: hi,
@@ -230,24 +246,42 @@ fn duration_of(out: &[DofTrajectory]) -> f64 {
 /// Re-plans one DOF for total duration `t` (brake kept) into `out`, its output profile; the
 /// step-1 profile when `t` is its minimum. False (and `out` unspecified) when no profile was
 /// found.
-fn replan_into(s: &mut Scratch, t: f64, out: &mut Profile) -> bool {
+fn replan_into(s: &mut Scratch, spare: &mut Spare, t: f64, out: &mut Profile) -> bool {
     // At (numerically) the minimum duration the step-1 profile is the answer; the residual of
     // step 2 is at round-off level there.
     if (t - s.t_min).abs() <= 1e-13 * t.max(1.0) {
         if !s.step1_in_out {
-            *out = s.step1;
+            match (s.step1_kept, spare.as_ref()) {
+                (true, Some(p)) => *out = *p,
+                _ => {
+                    let mut cand = [0.0; MAX_CANDIDATES];
+                    if step1_into(&s.dof, out, spare, &mut cand).is_none() {
+                        return false;
+                    }
+                    s.step1_kept = false;
+                }
+            }
             s.step1_in_out = true;
         }
         return true;
     }
     if s.step1_in_out {
-        s.step1 = *out;
+        if s.brake {
+            match spare {
+                Some(p) => *p = *out,
+                None => *spare = Some(*out),
+            }
+            s.step1_kept = true;
+        }
         s.step1_in_out = false;
     }
-    if s.step1.brake_duration() == 0.0 {
+    if !s.brake {
         return step2_into(&s.dof, t, out);
     }
-    *out = s.step1.brake_part();
+    let Some(step1) = spare.as_ref().filter(|_| s.step1_kept) else {
+        return false;
+    };
+    *out = step1.brake_part();
     let e = out.end();
     let mut d = s.dof;
     d.p0 = e.p;
@@ -263,6 +297,7 @@ fn replan_into(s: &mut Scratch, t: f64, out: &mut Profile) -> bool {
 /// error (then the synchronized entries of `out` are partly overwritten).
 fn try_all(
     scratch: &mut [Scratch],
+    spare: &mut [Spare],
     out: &mut [DofTrajectory],
     n: usize,
     t: f64,
@@ -274,7 +309,7 @@ fn try_all(
         if t < scratch[i].t_min {
             return Err(i);
         }
-        if !replan_into(&mut scratch[i], t, &mut out[i].profile) {
+        if !replan_into(&mut scratch[i], &mut spare[i], t, &mut out[i].profile) {
             return Err(i);
         }
     }
@@ -388,11 +423,12 @@ fn phase(
         ncand: s1.ncand,
         t_min: s1.t_min(),
         sync: true,
-        step1: s1.profile,
         step1_in_out: false,
+        step1_kept: true,
+        brake: s1.profile.brake_duration() != 0.0,
     };
     let mut sp = Profile::default();
-    if !replan_into(&mut sc, t, &mut sp) {
+    if !replan_into(&mut sc, &mut Some(s1.profile), t, &mut sp) {
         return Ok(false);
     }
     if sp.brake_duration() > 0.0 {
@@ -415,4 +451,54 @@ fn phase(
         }
     }
     Ok(true)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Step 1 into an output profile, as `calculate` does; returns the scratch, the spare and
+    /// a copy of the step-1 profile.
+    fn setup(d: Dof1, out: &mut Profile) -> (Scratch, Spare, Profile) {
+        let mut s = Scratch {
+            dof: d,
+            ..Scratch::default()
+        };
+        let mut spare = None;
+        s.ncand = step1_into(&d, out, &mut spare, &mut s.cand).unwrap();
+        s.step1_in_out = true;
+        s.step1_kept = false;
+        s.brake = out.brake_duration() != 0.0;
+        s.t_min = out.duration();
+        s.sync = true;
+        (s, spare, *out)
+    }
+
+    #[test]
+    fn back_at_the_minimum_duration_the_step1_profile_returns() {
+        // Without a brake (the step-1 profile is not kept but calculated again) and with one
+        // (it is copied aside before step 2).
+        let rest = Dof1::rest_to_rest(0.1, 1.3, 1.0, 2.0, 10.0);
+        let mut braking = Dof1::rest_to_rest(0.1, 1.3, 1.0, 2.0, 10.0);
+        braking.v0 = 1.6;
+        braking.a0 = 0.5;
+        for (d, has_brake) in [(rest, false), (braking, true)] {
+            let mut out = Profile::default();
+            let (mut s, mut spare, first) = setup(d, &mut out);
+            assert_eq!(s.brake, has_brake);
+            let t = 1.5 * s.t_min;
+            assert!(replan_into(&mut s, &mut spare, t, &mut out));
+            assert!((out.duration() - t).abs() <= 1e-12 * t);
+            assert!(out != first);
+            if has_brake {
+                assert_eq!(out.brake_duration(), first.brake_duration());
+            }
+            let t_min = s.t_min;
+            assert!(replan_into(&mut s, &mut spare, t_min, &mut out));
+            assert_eq!(out, first);
+            // And step 2 again from there.
+            assert!(replan_into(&mut s, &mut spare, t, &mut out));
+            assert!((out.duration() - t).abs() <= 1e-12 * t);
+        }
+    }
 }
