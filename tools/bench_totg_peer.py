@@ -27,34 +27,16 @@ DEFAULT = os.path.join(HERE, "..", "crates", "trajkit-cli", "src", "default_wayp
 use_venv("totg", ["tesseract-robotics==0.5.1", "numpy"])
 
 import numpy as np  # noqa: E402
-from tesseract_robotics import tesseract_command_language as cl  # noqa: E402
 from tesseract_robotics import tesseract_time_parameterization as tp  # noqa: E402
-
-VMAX = np.array([2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61])
-AMAX = np.array([15.0, 7.5, 10.0, 12.5, 15.0, 20.0, 20.0])
-JMAX = np.array([7500.0, 3750.0, 5000.0, 6250.0, 7500.0, 10000.0, 10000.0])
-
-
-def trajectory(waypoints):
-    names = [f"panda_joint{i + 1}" for i in range(7)]
-    prog = cl.CompositeInstruction("DEFAULT")
-    for w in waypoints:
-        sw = cl.StateWaypoint(names, np.array(w, dtype=float))
-        mi = cl.MoveInstruction(
-            cl.StateWaypointPoly_wrap_StateWaypoint(sw), cl.MoveInstructionType_FREESPACE, "DEFAULT"
-        )
-        prog.appendMoveInstruction(cl.MoveInstructionPoly_wrap_MoveInstruction(mi))
-    return prog, tp.InstructionsTrajectory(prog)
+from totg_peer import AMAX, VMAX, bounds, program  # noqa: E402
 
 
 def bench(name, waypoints, vmax, amax, repeats):
-    v = np.column_stack([-vmax, vmax])
-    a = np.column_stack([-amax, amax])
-    j = np.column_stack([-JMAX, JMAX])
+    v, a, j = bounds(vmax, amax)
     totg = tp.TimeOptimalTrajectoryGeneration(0.1, 0.001)
     times, duration = [], None
     for _ in range(repeats):
-        prog, traj = trajectory(waypoints)
+        _, traj = program(waypoints)
         t0 = time.perf_counter()
         ok = totg.compute(traj, v, a, j)
         times.append(time.perf_counter() - t0)

@@ -38,12 +38,7 @@ import multiprocessing as mp  # noqa: E402
 import time  # noqa: E402
 
 import numpy as np  # noqa: E402
-
-VMAX = np.array([2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61])
-AMAX = np.array([15.0, 7.5, 10.0, 12.5, 15.0, 20.0, 20.0])
-JMAX = np.array([7500.0, 3750.0, 5000.0, 6250.0, 7500.0, 10000.0, 10000.0])
-QMIN = np.array([-2.8973, -1.7628, -2.8973, -3.0718, -2.8973, -0.0175, -2.8973])
-QMAX = np.array([2.8973, 1.7628, 2.8973, -0.0698, 2.8973, 3.7525, 2.8973])
+from totg_peer import AMAX, QMAX, QMIN, VMAX, bounds, program  # noqa: E402
 
 
 def original_totg(waypoints, max_deviation):
@@ -52,18 +47,8 @@ def original_totg(waypoints, max_deviation):
     from tesseract_robotics import tesseract_command_language as cl
     from tesseract_robotics import tesseract_time_parameterization as tp
 
-    names = [f"panda_joint{i + 1}" for i in range(7)]
-    prog = cl.CompositeInstruction("DEFAULT")
-    for w in waypoints:
-        sw = cl.StateWaypoint(names, np.array(w, dtype=float))
-        mi = cl.MoveInstruction(
-            cl.StateWaypointPoly_wrap_StateWaypoint(sw), cl.MoveInstructionType_FREESPACE, "DEFAULT"
-        )
-        prog.appendMoveInstruction(cl.MoveInstructionPoly_wrap_MoveInstruction(mi))
-    traj = tp.InstructionsTrajectory(prog)
-    v = np.column_stack([-VMAX, VMAX])
-    a = np.column_stack([-AMAX, AMAX])
-    j = np.column_stack([-JMAX, JMAX])
+    prog, traj = program(waypoints)
+    v, a, j = bounds(VMAX, AMAX)
     t0 = time.perf_counter()
     ok = tp.TimeOptimalTrajectoryGeneration(max_deviation, 0.001).compute(traj, v, a, j)
     seconds = time.perf_counter() - t0
