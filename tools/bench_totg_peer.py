@@ -28,7 +28,8 @@ use_venv("totg", ["tesseract-robotics==0.5.1", "numpy"])
 
 import numpy as np  # noqa: E402
 from tesseract_robotics import tesseract_time_parameterization as tp  # noqa: E402
-from totg_peer import AMAX, VMAX, bounds, program  # noqa: E402
+from panda import AMAX, VMAX  # noqa: E402
+from totg_peer import bounds, program  # noqa: E402
 
 
 def bench(name, waypoints, vmax, amax, repeats):

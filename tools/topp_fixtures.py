@@ -28,18 +28,9 @@ import toppra as ta  # noqa: E402
 import toppra.algorithm as algo  # noqa: E402
 import toppra.constraint as constraint  # noqa: E402
 from scipy.interpolate import CubicSpline  # noqa: E402
+from panda import AMAX, QMAX, QMIN, VMAX, random_waypoints  # noqa: E402
 
 ta.setup_logging("WARNING")
-
-VMAX = np.array([2.175, 2.175, 2.175, 2.175, 2.61, 2.61, 2.61])
-AMAX = np.array([15.0, 7.5, 10.0, 12.5, 15.0, 20.0, 20.0])
-QMIN = np.array([-2.8973, -1.7628, -2.8973, -3.0718, -2.8973, -0.0175, -2.8973])
-QMAX = np.array([2.8973, 1.7628, 2.8973, -0.0698, 2.8973, 3.7525, 2.8973])
-
-
-def random_waypoints(rng, n, margin=0.1):
-    lo, hi = QMIN + margin, QMAX - margin
-    return lo + (hi - lo) * rng.random((n, 7))
 
 
 def make_problems():

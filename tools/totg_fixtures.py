@@ -38,7 +38,8 @@ import multiprocessing as mp  # noqa: E402
 import time  # noqa: E402
 
 import numpy as np  # noqa: E402
-from totg_peer import AMAX, QMAX, QMIN, VMAX, bounds, program  # noqa: E402
+from panda import AMAX, QMAX, QMIN, VMAX, random_waypoints  # noqa: E402
+from totg_peer import bounds, program  # noqa: E402
 
 
 def original_totg(waypoints, max_deviation):
@@ -88,11 +89,6 @@ def run_isolated(waypoints, max_deviation, timeout=20.0):
     if q.empty():
         return "crashed (exit code %s)" % p.exitcode, None, [], 0.0, None
     return q.get()
-
-
-def random_waypoints(rng, n, margin=0.1):
-    lo, hi = QMIN + margin, QMAX - margin
-    return lo + (hi - lo) * rng.random((n, 7))
 
 
 def make_problems():
