@@ -218,7 +218,12 @@ fn suite<const N: usize>(n: usize, seed: u64) -> (usize, usize) {
                     let mut mins = [0.0; N];
                     tr.independent_min_durations(&mut mins);
                     for i in 0..N {
-                        assert!(tr.duration() >= mins[i] * (1.0 - 1e-12));
+                        assert!(
+                            tr.duration() >= mins[i] * (1.0 - 1e-12),
+                            "{cat:?} {k}: DOF {i} min {} > {}\n{inp:?}",
+                            mins[i],
+                            tr.duration()
+                        );
                         let end = tr.dofs()[i].profile.duration();
                         if matches!(
                             inp.options.synchronization,

@@ -9,7 +9,9 @@
 //! for a target at rest), before 0 it reports the start state. The [`crate::Trajectory`]
 //! implementation follows trajkit's shared policy instead: time is clamped to `[0, duration]`.
 
+use super::problem::Dof1;
 use super::profile::Profile;
+use super::step1::step1;
 use crate::{Order, Trajectory};
 
 /// One degree of freedom of a trajectory.
@@ -17,9 +19,32 @@ use crate::{Order, Trajectory};
 pub struct DofTrajectory {
     /// The motion.
     pub profile: Profile,
+    /// The duration this degree of freedom would need on its own, when the calculation
+    /// needed it; NaN when synchronization did without it (then `problem` holds what to
+    /// compute it from).
+    pub(crate) min_duration: f64,
+    /// The problem of this degree of freedom, kept when `min_duration` is not known.
+    pub(crate) problem: Option<Dof1>,
+}
+
+impl DofTrajectory {
     /// The duration this degree of freedom would need on its own (time-optimal, brake
     /// included); 0 for a disabled one.
-    pub independent_min_duration: f64,
+    ///
+    /// A synchronized calculation computes the time-optimal profile only of the degrees of
+    /// freedom that determine the common duration; the others are planned for that duration
+    /// directly. For those the minimum duration is computed here, on request (the same step-1
+    /// solve the calculation would have run; no allocation). NaN only if that solve finds no
+    /// profile.
+    pub fn independent_min_duration(&self) -> f64 {
+        if !self.min_duration.is_nan() {
+            return self.min_duration;
+        }
+        self.problem
+            .as_ref()
+            .and_then(step1)
+            .map_or(f64::NAN, |s| s.t_min())
+    }
 }
 
 /// A multi-DOF trajectory from the online generator.
@@ -89,10 +114,12 @@ impl<S: AsRef<[DofTrajectory]>> OtgTrajectory<S> {
         }
     }
 
-    /// The duration each degree of freedom would need on its own, into `out`.
+    /// The duration each degree of freedom would need on its own, into `out` (see
+    /// [`DofTrajectory::independent_min_duration`]: computed here for the degrees of freedom
+    /// whose time-optimal profile the calculation did not need).
     pub fn independent_min_durations(&self, out: &mut [f64]) {
         for (o, d) in out.iter_mut().zip(self.dofs.as_ref()) {
-            *o = d.independent_min_duration;
+            *o = d.independent_min_duration();
         }
     }
 
