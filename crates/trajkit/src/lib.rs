@@ -43,6 +43,10 @@
 
 #![forbid(unsafe_code)]
 
+// Unit tests that reuse the integration tests' helpers (written against `trajkit::`).
+#[cfg(test)]
+extern crate self as trajkit;
+
 pub mod check;
 pub mod dynamics;
 pub mod error;

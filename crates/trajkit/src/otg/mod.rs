@@ -46,6 +46,8 @@ pub mod profile;
 pub mod result;
 pub mod roots;
 pub mod step1;
+#[cfg(test)]
+mod step1_modes_tests;
 pub mod step2;
 pub mod sync;
 pub mod trajectory;
@@ -64,7 +66,9 @@ pub use trajectory::{DofTrajectory, DynTrajectory, FixedTrajectory, OtgTrajector
 /// Time-optimal profile of one degree of freedom (brake pre-profile included), or `None` when
 /// the solver finds no valid profile.
 pub fn time_optimal(dof: &Dof1) -> Option<Profile> {
-    step1::step1(dof).map(|s| s.profile)
+    let mut pr = Profile::default();
+    step1::step1_fastest_into(dof, &mut pr, &mut None)?;
+    Some(pr)
 }
 
 /// A profile of one degree of freedom lasting exactly `duration` seconds (brake pre-profile

@@ -36,6 +36,16 @@
 //! parameter), or velocity continuity cannot hold there. Such a family has no valid root, so
 //! skipping it changes no result.
 //!
+//! Fastest-only mode (`step1_fastest_into`): where the candidate durations are not needed,
+//! candidates slower than the fastest so far are not verified, and a valid cruise at the
+//! velocity limit in the direction of the displacement ends the search for a moving target
+//! too, when neither the start nor the target is past the point of no return towards that
+//! limit (`cruise_is_optimal`: no valid profile's velocity exceeds the cruise profile's
+//! envelope, so a shorter one covers less distance) and the cruise is at least 10⁻⁴ of the
+//! duration. (Shorter, a family without a cruise reaches nearly the same profile through a
+//! root as imprecise as a tangent's, which may pass verification a few 1e-11 faster; the
+//! search then continues as in the full mode.)
+//!
 //! Candidates are built in place (`Collector`): in the caller's output profile and one spare
 //! buffer, the fastest kept by swapping the two roles, so no profile is copied while the
 //! families are enumerated.
@@ -95,17 +105,26 @@ pub(crate) struct Collector<'a> {
     own: &'a mut Option<Profile>,
     /// Which buffer holds the fastest valid candidate so far.
     best: Option<usize>,
+    /// Only the fastest candidate is wanted: candidates that cannot beat it are neither
+    /// verified nor recorded.
+    fastest_only: bool,
     pub cand: [f64; MAX_CANDIDATES],
     pub ncand: usize,
 }
 
 impl<'a> Collector<'a> {
-    pub fn new(dof: &'a Dof1, out: &'a mut Profile, own: &'a mut Option<Profile>) -> Self {
+    pub fn new(
+        dof: &'a Dof1,
+        out: &'a mut Profile,
+        own: &'a mut Option<Profile>,
+        fastest_only: bool,
+    ) -> Self {
         Collector {
             dof,
             out,
             own,
             best: None,
+            fastest_only,
             cand: [0.0; MAX_CANDIDATES],
             ncand: 0,
         }
@@ -156,11 +175,18 @@ impl<'a> Collector<'a> {
         }
     }
 
-    /// Whether a candidate of duration `t` can still matter: it could be the fastest, or the
-    /// target moves (then every valid duration bounds a blocked interval).
+    /// Whether every valid candidate matters (the target moves, so every valid duration
+    /// bounds a blocked interval, and all candidates are wanted).
+    #[inline]
+    fn wants_all(&self) -> bool {
+        !self.fastest_only && (self.dof.vf != 0.0 || self.dof.af != 0.0)
+    }
+
+    /// Whether a candidate of duration `t` can still matter: it could be the fastest, or
+    /// every candidate is wanted.
     #[inline]
     pub fn wants(&self, t: f64) -> bool {
-        self.dof.vf != 0.0 || self.dof.af != 0.0 || self.best().is_none_or(|b| t < b.duration())
+        self.wants_all() || self.best().is_none_or(|b| t < b.duration())
     }
 
     /// The spare buffer, emptied and starting at `s`, to build a candidate in.
@@ -203,7 +229,10 @@ impl<'a> Collector<'a> {
 
     #[inline]
     fn record(&mut self, t: f64) {
-        if self.ncand < MAX_CANDIDATES && !self.cand[..self.ncand].contains(&t) {
+        if !self.fastest_only
+            && self.ncand < MAX_CANDIDATES
+            && !self.cand[..self.ncand].contains(&t)
+        {
             self.cand[self.ncand] = t;
             self.ncand += 1;
         }
@@ -361,6 +390,39 @@ pub(crate) fn step1_into(
     spare: &mut Option<Profile>,
     cand: &mut [f64; MAX_CANDIDATES],
 ) -> Option<usize> {
+    let (cands, ncand) = step1_run(dof, profile, spare, false)?;
+    cand[..ncand].copy_from_slice(&cands[..ncand]);
+    Some(ncand)
+}
+
+/// Step 1 in fastest-only mode: only the time-optimal profile, into `profile` (with `spare`
+/// as working space, created when needed, left unspecified); no candidate durations. `None`
+/// when no valid profile was found (then `profile` is unspecified).
+///
+/// Contract: the result is the profile [`step1_into`] returns for `dof`, or one of the same
+/// duration to 1e-12 relative that passes the same verification; it is `None` exactly when
+/// [`step1_into`] is (checked on 1.2·10⁵ random problems of every category in
+/// `step1_modes_tests`). What it saves: candidates that cannot beat the fastest so far are
+/// not verified, and a valid cruise at the velocity limit ends the search for a moving
+/// target too when `cruise_is_optimal` proves that nothing is faster. Use it where the
+/// candidate durations are not needed (one DOF, or a DOF whose blocked intervals cannot
+/// matter); [`step1_into`] gives them.
+pub(crate) fn step1_fastest_into(
+    dof: &Dof1,
+    profile: &mut Profile,
+    spare: &mut Option<Profile>,
+) -> Option<()> {
+    step1_run(dof, profile, spare, true).map(|_| ())
+}
+
+/// Step 1 (brake, then the main profile's families) into `profile`; returns the candidate
+/// durations (brake included; none when `fastest_only`).
+fn step1_run(
+    dof: &Dof1,
+    profile: &mut Profile,
+    spare: &mut Option<Profile>,
+    fastest_only: bool,
+) -> Option<([f64; MAX_CANDIDATES], usize)> {
     profile.reset(State1 {
         p: dof.p0,
         v: dof.v0,
@@ -376,10 +438,10 @@ pub(crate) fn step1_into(
     // The collector builds its candidates in `profile` (and its own buffer): without a brake
     // the result needs no copy when the fastest candidate was built there.
     let brake_pr = (profile.segments() > 0).then_some(*profile);
-    let mut col = Collector::new(&main_dof, profile, spare);
+    let mut col = Collector::new(&main_dof, profile, spare, fastest_only);
     solve_main(&main_dof, &mut col);
     col.best_index()?;
-    let (cands, ncand) = (col.cand, col.ncand);
+    let (mut cands, ncand) = (col.cand, col.ncand);
     match brake_pr {
         None => col.settle(),
         Some(b) => {
@@ -390,10 +452,10 @@ pub(crate) fn step1_into(
             }
         }
     }
-    for (c, &t) in cand.iter_mut().zip(&cands[..ncand]) {
-        *c = t + tb;
+    for t in &mut cands[..ncand] {
+        *t += tb;
     }
-    Some(ncand)
+    Some((cands, ncand))
 }
 
 /// Enumerates the main-profile candidates of a problem whose start state is safe.
@@ -441,12 +503,25 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
             let mut cruise = false;
             // From rest to rest, a cruise against the displacement never fits (τ < 0).
             let rest = dof.v0 == 0.0 && dof.a0 == 0.0 && dof.vf == 0.0 && dof.af == 0.0;
-            for mirror in [false, true] {
+            // In fastest-only mode the direction of the displacement first (a valid cruise
+            // there ends the search).
+            let dirs = if col.fastest_only && dof.pf < dof.p0 {
+                [true, false]
+            } else {
+                [false, true]
+            };
+            for mirror in dirs {
                 if rest && (dof.pf >= dof.p0) == mirror {
                     continue;
                 }
                 let q = if mirror { dof.mirrored() } else { *dof };
-                cruise |= vel_family(&q, mirror, col);
+                let share = vel_family(&q, mirror, col);
+                cruise |= share.is_some();
+                // (Not when the cruise is so short that a family without one reaches the
+                // same profile, with a root as imprecise as a tangent's.)
+                if share.is_some_and(|c| c > 1e-4) && col.fastest_only && cruise_is_optimal(&q) {
+                    return;
+                }
             }
             if cruise && dof.vf == 0.0 && dof.af == 0.0 {
                 return;
@@ -493,6 +568,26 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
             peak_family(dof, col);
         }
     }
+}
+
+/// Whether a valid cruise at the velocity limit of `q` (positive direction of the possibly
+/// mirrored problem) is time-optimal also when the target moves; then the other families
+/// can only add candidate durations.
+///
+/// Why: when no state of a valid profile can be past the point of no return (the start can
+/// be reached from below the limit, v₀ + min(a₀, 0)²/(2j) ≤ v_max, and the target stays below
+/// it, v_f + max(a_f, 0)²/(2j) ≤ v_max), the velocity of a valid profile of duration T is at
+/// most the envelope min(R(t), F(T − t)), R the cruise profile's rise from the start and F
+/// its fall to the target read backwards (the largest velocities reachable after t and
+/// before T − t). The envelope's area A(T) equals the displacement d at the cruise
+/// profile's duration T*, and dA/dT is the envelope's peak velocity wherever a profile of
+/// duration T can reach the target velocity at all: A grows with T while the peak is
+/// positive, and is negative where it is not. So with d > 0 no T < T* covers d.
+fn cruise_is_optimal(q: &Dof1) -> bool {
+    let j2 = 2.0 * q.jmax;
+    q.pf > q.p0
+        && q.v0 + q.a0.min(0.0).powi(2) / j2 <= q.vmax
+        && q.vf + q.af.max(0.0).powi(2) / j2 <= q.vmax
 }
 
 /// Rest to rest with symmetric acceleration limits and no cruise: the time-optimal profile
@@ -721,9 +816,9 @@ impl Seq {
 }
 
 /// The cruise family (vel) in the positive direction of the (possibly mirrored) problem `q`:
-/// fastest change to (v_max, 0), cruise, fastest change to the target. Returns whether it
-/// offered a valid profile.
-fn vel_family(q: &Dof1, mirror: bool, col: &mut Collector<'_>) -> bool {
+/// fastest change to (v_max, 0), cruise, fastest change to the target. When it offered a
+/// valid profile, returns the cruise's share of its duration.
+fn vel_family(q: &Dof1, mirror: bool, col: &mut Collector<'_>) -> Option<f64> {
     let j = q.jmax;
     let (a0, v0, af, vf) = (q.a0, q.v0, q.af, q.vf);
     let amax = q.amax;
@@ -748,11 +843,12 @@ fn vel_family(q: &Dof1, mirror: bool, col: &mut Collector<'_>) -> bool {
                 if mirror {
                     pr.mirror();
                 }
-                return col.submit();
+                let share = tau / pr.duration();
+                return col.submit().then_some(share);
             }
         }
     }
-    false
+    None
 }
 
 /// The range of cruise velocities worth considering for `q`: its velocity limits, or the caps
