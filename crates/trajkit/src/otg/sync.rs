@@ -26,7 +26,7 @@ use super::input::{DurationDiscretization, InputView, Synchronization};
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
 use super::result::OtgResult;
-use super::step1::{step1, step1_into, verify, MAX_CANDIDATES};
+use super::step1::{step1, step1_fastest_into, step1_into, verify, MAX_CANDIDATES};
 use super::step2::{step2, step2_into};
 use super::trajectory::DofTrajectory;
 use super::velocity_change::fastest3;
@@ -43,6 +43,8 @@ pub(crate) enum Solved {
     /// Not run: synchronization has not needed this DOF's minimum duration (yet).
     #[default]
     No,
+    /// The time-optimal profile is known; of the candidate durations only its own.
+    Fastest,
     /// The time-optimal profile and every candidate duration are known.
     Full,
 }
@@ -93,12 +95,20 @@ impl Default for Scratch {
 /// Runs step 1 for one DOF into its output profile (`full`: every candidate duration too,
 /// otherwise only the fastest is needed); false when it finds no profile.
 fn solve(sc: &mut Scratch, spare: &mut Spare, out: &mut Profile, full: bool) -> bool {
-    let _ = full;
-    let Some(ncand) = step1_into(&sc.dof, out, spare, &mut sc.cand) else {
-        return false;
-    };
-    sc.ncand = ncand;
-    sc.solved = Solved::Full;
+    if full {
+        let Some(ncand) = step1_into(&sc.dof, out, spare, &mut sc.cand) else {
+            return false;
+        };
+        sc.ncand = ncand;
+        sc.solved = Solved::Full;
+    } else {
+        if step1_fastest_into(&sc.dof, out, spare).is_none() {
+            return false;
+        }
+        sc.cand[0] = out.duration();
+        sc.ncand = 1;
+        sc.solved = Solved::Fastest;
+    }
     sc.step1_in_out = true;
     sc.step1_kept = false;
     sc.brake = out.brake_duration() != 0.0;
