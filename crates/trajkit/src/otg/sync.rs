@@ -1,15 +1,19 @@
 //! Synchronization: one duration for all degrees of freedom, then step 2 for each.
 //!
-//! After step 1 every enabled degree of freedom has its minimum duration and the durations of
-//! all its other valid candidate profiles. A non-zero target velocity can make a range of
-//! durations impossible for a degree of freedom (a *blocked interval*: it cannot be slowed down
-//! a little, only a lot); its edges are durations of step-1 candidates. The synchronized
-//! duration is found by trying, in increasing order, the largest minimum duration (and the
-//! minimum duration option) and then every candidate duration above it, rounded up to a
-//! multiple of the control period when the duration is discrete; the first duration at which
-//! step 2 succeeds for every degree of freedom wins. If the candidates run out, durations
-//! growing geometrically from the last one are tried, so a valid (if not provably shortest)
+//! Step 1 gives a degree of freedom its minimum duration and the durations of all its other
+//! valid candidate profiles. A non-zero target velocity can make a range of durations
+//! impossible for a degree of freedom (a *blocked interval*: it cannot be slowed down a little,
+//! only a lot); its edges are durations of step-1 candidates. The synchronized duration is
+//! found by trying, in increasing order, the largest minimum duration (and the minimum
+//! duration option) and then every candidate duration above it, rounded up to a multiple of
+//! the control period when the duration is discrete; the first duration at which step 2
+//! succeeds for every degree of freedom wins. If the candidates run out, durations growing
+//! geometrically from the last one are tried, so a valid (if not provably shortest)
 //! synchronized trajectory is still found whenever step 2 can produce one.
+//!
+//! Under time (and phase) synchronization step 1 runs only where this search needs it (see
+//! `calculate`): usually for one degree of freedom, in fastest-only mode; the others are
+//! planned by step 2 alone, and the result is the duration the full search gives.
 //!
 //! Precision: every per-DOF profile passes step 1's or step 2's verification (target within
 //! 1e-8 / 1e-10, limits within 1e-12 relative, duration within 1e-12 relative of the common
