@@ -486,67 +486,50 @@ mod tests {
         }
     }
 
+    const FIELDS: [&str; 11] = [
+        "current_position",
+        "current_velocity",
+        "current_acceleration",
+        "target_position",
+        "target_velocity",
+        "target_acceleration",
+        "max_velocity",
+        "max_acceleration",
+        "max_jerk",
+        "min_velocity",
+        "min_acceleration",
+    ];
+
+    /// Makes field `k` (of `FIELDS`) of DOF `i` invalid.
+    fn spoil(p: &mut InputParameter<2>, k: usize, i: usize) {
+        let not_finite = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY][k % 3];
+        let not_signed = [f64::NAN, 0.0, -1.0][k % 3];
+        match k {
+            0 => p.current_position[i] = not_finite,
+            1 => p.current_velocity[i] = not_finite,
+            2 => p.current_acceleration[i] = not_finite,
+            3 => p.target_position[i] = not_finite,
+            4 => p.target_velocity[i] = not_finite,
+            5 => p.target_acceleration[i] = not_finite,
+            6 => p.max_velocity[i] = not_signed,
+            7 => p.max_acceleration[i] = not_signed,
+            8 => p.max_jerk[i] = not_signed,
+            9 => p.min_velocity.get_or_insert([-1.0, -2.0])[i] = -not_signed,
+            _ => p.min_acceleration.get_or_insert([-3.0, -4.0])[i] = -not_signed,
+        }
+    }
+
     #[test]
     fn every_bad_value_is_named_first_in_field_order() {
         assert_eq!(field_of(&valid()), None);
-        type Set = fn(&mut InputParameter<2>, usize, f64);
-        let fields: [(&str, Set, f64); 11] = [
-            (
-                "current_position",
-                |p, i, x| p.current_position[i] = x,
-                f64::NAN,
-            ),
-            (
-                "current_velocity",
-                |p, i, x| p.current_velocity[i] = x,
-                f64::INFINITY,
-            ),
-            (
-                "current_acceleration",
-                |p, i, x| p.current_acceleration[i] = x,
-                f64::NEG_INFINITY,
-            ),
-            (
-                "target_position",
-                |p, i, x| p.target_position[i] = x,
-                f64::NAN,
-            ),
-            (
-                "target_velocity",
-                |p, i, x| p.target_velocity[i] = x,
-                f64::INFINITY,
-            ),
-            (
-                "target_acceleration",
-                |p, i, x| p.target_acceleration[i] = x,
-                f64::NAN,
-            ),
-            ("max_velocity", |p, i, x| p.max_velocity[i] = x, -1.0),
-            (
-                "max_acceleration",
-                |p, i, x| p.max_acceleration[i] = x,
-                f64::NAN,
-            ),
-            ("max_jerk", |p, i, x| p.max_jerk[i] = x, 0.0),
-            (
-                "min_velocity",
-                |p, i, x| p.min_velocity.get_or_insert([-1.0, -2.0])[i] = x,
-                0.0,
-            ),
-            (
-                "min_acceleration",
-                |p, i, x| p.min_acceleration.get_or_insert([-3.0, -4.0])[i] = x,
-                f64::NAN,
-            ),
-        ];
-        for (k, &(name, set, bad)) in fields.iter().enumerate() {
+        for (k, &name) in FIELDS.iter().enumerate() {
             for i in 0..2 {
                 let mut p = valid();
-                set(&mut p, i, bad);
+                spoil(&mut p, k, i);
                 assert_eq!(field_of(&p), Some((i, name)));
                 // With every later field bad as well, this one is still named.
-                for &(_, later, bad_later) in &fields[k + 1..] {
-                    later(&mut p, i, bad_later);
+                for later in k + 1..FIELDS.len() {
+                    spoil(&mut p, later, i);
                 }
                 assert_eq!(field_of(&p), Some((i, name)));
             }
