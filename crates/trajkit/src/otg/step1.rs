@@ -541,62 +541,108 @@ fn rest_to_rest(dof: &Dof1, pr: &mut Profile, cand: &mut [f64; MAX_CANDIDATES]) 
         (-1.0, -dist, -dof.vmin, -dof.amin, dof.amax)
     };
     let j = dof.jmax;
-    // Ramp duration and plateau duration of the fastest change between rest and v.
-    let change = |a: f64| -> (f64, f64) {
-        let alpha = (j * v).sqrt();
-        if alpha <= a {
-            (alpha / j, 0.0)
-        } else {
-            (a / j, (v / a - a / j).max(0.0))
-        }
-    };
-    let js = s * j;
-    let (r1, h1, r2, h2, vp, cruise) = if v.is_finite() {
-        let (r1, h1) = change(a_up);
-        let (r2, h2) = change(a_down);
+    let shape = if v.is_finite() {
+        let (r1, h1) = rest_change(v, a_up, j);
+        let (r2, h2) = rest_change(v, a_down, j);
         let cruise = d / v - (2.0 * (r1 + r2) + h1 + h2) / 2.0;
         if cruise >= 0.0 {
-            (r1, h1, r2, h2, v, cruise)
+            RestShape {
+                r1,
+                h1,
+                r2,
+                h2,
+                vp: v,
+                cruise,
+            }
         } else {
             peak(d, j, a_up, a_down)?
         }
     } else {
         peak(d, j, a_up, a_down)?
     };
-    pr.reset(State1 {
-        p: dof.p0,
-        v: 0.0,
-        a: 0.0,
-    });
-    if !pr.push_run(&[(r1, js), (h1, 0.0), (r1, -js)]) {
-        return None;
-    }
-    // The exact peak velocity (removing the integration's round-off before the cruise).
-    pr.snap(s * vp, 0.0);
-    if !pr.push_run(&[(cruise, 0.0), (r2, -js), (h2, 0.0), (r2, js)]) || !verify(dof, pr) {
+    if !shape.write(pr, dof.p0, s, j) || !verify(dof, pr) {
         return None;
     }
     cand[0] = pr.duration();
     Some(1)
 }
 
-/// The no-cruise case of [`rest_to_rest`] for symmetric acceleration limits: (ramp, plateau)
-/// of both changes, the peak velocity and a zero cruise; `None` for asymmetric limits.
-fn peak(d: f64, j: f64, a_up: f64, a_down: f64) -> Option<(f64, f64, f64, f64, f64, f64)> {
+/// The no-cruise case of [`rest_to_rest`] for symmetric acceleration limits; `None` for
+/// asymmetric ones.
+fn peak(d: f64, j: f64, a_up: f64, a_down: f64) -> Option<RestShape> {
     if a_up != a_down {
         return None;
     }
     let a = a_up;
     let ramp_max = a / j;
     let r = (d / (2.0 * j)).cbrt();
-    if r <= ramp_max {
-        return Some((r, 0.0, r, 0.0, j * r * r, 0.0));
+    let (r, h, vp) = if r <= ramp_max {
+        (r, 0.0, j * r * r)
+    } else {
+        // v_p²/A + v_p·A/J − D = 0, positive root, as v_p/A.
+        let k = ramp_max;
+        let vpa = 0.5 * (-k + (k * k + 4.0 * d / a).sqrt());
+        (k, (vpa - k).max(0.0), a * vpa)
+    };
+    Some(RestShape {
+        r1: r,
+        h1: h,
+        r2: r,
+        h2: h,
+        vp,
+        cruise: 0.0,
+    })
+}
+
+/// Ramp and plateau durations of the fastest change between rest and velocity `v` > 0 under
+/// jerk limit `j` and acceleration limit `a`: (√(v/j), 0) when j·v ≤ a², otherwise
+/// (a/j, v/a − a/j). (The same values as [`fastest`] between (0, 0) and (v, 0).)
+#[inline]
+fn rest_change(v: f64, a: f64, j: f64) -> (f64, f64) {
+    let alpha = (j * v).sqrt();
+    if alpha <= a {
+        (alpha / j, 0.0)
+    } else {
+        (a / j, (v / a - a / j).max(0.0))
     }
-    // v_p²/A + v_p·A/J − D = 0, positive root, as v_p/A.
-    let k = ramp_max;
-    let vpa = 0.5 * (-k + (k * k + 4.0 * d / a).sqrt());
-    let h = (vpa - k).max(0.0);
-    Some((k, h, k, h, a * vpa, 0.0))
+}
+
+/// A motion from rest to rest in one direction: ramp r₁, plateau h₁, ramp r₁ up to the peak
+/// velocity v_p, a cruise there, then r₂, h₂, r₂ back to rest (steps 1 and 2).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RestShape {
+    pub r1: f64,
+    pub h1: f64,
+    pub r2: f64,
+    pub h2: f64,
+    /// Peak (cruise) velocity, > 0.
+    pub vp: f64,
+    pub cruise: f64,
+}
+
+impl RestShape {
+    /// Writes the shape into `pr` (emptied first), from rest at `p0` in direction `s` (±1)
+    /// with jerk limit `j`, integrating its segments; false when a duration is refused (then
+    /// `pr` is unspecified).
+    pub(crate) fn write(&self, pr: &mut Profile, p0: f64, s: f64, j: f64) -> bool {
+        let js = s * j;
+        pr.reset(State1 {
+            p: p0,
+            v: 0.0,
+            a: 0.0,
+        });
+        if !pr.push_run(&[(self.r1, js), (self.h1, 0.0), (self.r1, -js)]) {
+            return false;
+        }
+        // The exact peak velocity (removing the integration's round-off before the cruise).
+        pr.snap(s * self.vp, 0.0);
+        pr.push_run(&[
+            (self.cruise, 0.0),
+            (self.r2, -js),
+            (self.h2, 0.0),
+            (self.r2, js),
+        ])
+    }
 }
 
 /// Appends a velocity change to a profile.
