@@ -2,6 +2,9 @@
 //! problems in the same run: 1, 3 and 7 DOF with Franka Panda limits (the first N joints),
 //! general states (non-zero current and target velocity and acceleration) and rest-to-rest.
 //!
+//! Both libraries write into a trajectory reused across calls (trajkit's `calculate_into`,
+//! rsruckig's `calculate(&input, &mut trajectory)`): the same calling pattern.
+//!
 //! Criterion reports the mean time per `calculate`; after it, a per-call timing pass over the
 //! same problem sets prints mean and p99 (`OTG_P99=0` skips it).
 //!
@@ -16,7 +19,7 @@
 use criterion::{criterion_group, Criterion};
 use std::hint::black_box;
 use std::time::Instant;
-use trajkit::otg::{InputParameter, Otg};
+use trajkit::otg::{FixedTrajectory, InputParameter, Otg};
 use trajkit::rng::SplitMix64;
 use trajkit::Limits;
 
@@ -87,15 +90,13 @@ fn group<const N: usize>(c: &mut Criterion, general: bool) {
     let theirs: Vec<_> = ours.iter().map(to_ruckig).collect();
     let mut g = c.benchmark_group(&name);
     let otg = Otg::<N>::new(0.001);
+    let mut ot = FixedTrajectory::<N>::default();
     g.bench_function("trajkit", |b| {
         let mut k = 0;
         b.iter(|| {
             k = (k + 1) % PROBLEMS;
-            black_box(
-                otg.calculate(black_box(&ours[k]))
-                    .map(|t| t.duration())
-                    .unwrap_or(0.0),
-            )
+            let _ = otg.calculate_into(black_box(&ours[k]), &mut ot);
+            black_box(ot.duration())
         })
     });
     let mut rk = RuckigOtg::<N>::new(None, 0.001);
@@ -131,17 +132,15 @@ fn p99<const N: usize>(general: bool) {
     let ours = problems::<N>(general, 7 + N as u64 + general as u64);
     let theirs: Vec<_> = ours.iter().map(to_ruckig).collect();
     let otg = Otg::<N>::new(0.001);
+    let mut ot = FixedTrajectory::<N>::default();
     let mut rk = RuckigOtg::<N>::new(None, 0.001);
     let mut tr = rsruckig::prelude::Trajectory::<N>::new(None);
     let (mut a, mut b) = (Vec::new(), Vec::new());
     for _round in 0..40 {
         for k in 0..PROBLEMS {
             let t0 = Instant::now();
-            black_box(
-                otg.calculate(black_box(&ours[k]))
-                    .map(|t| t.duration())
-                    .unwrap_or(0.0),
-            );
+            let _ = otg.calculate_into(black_box(&ours[k]), &mut ot);
+            black_box(ot.duration());
             a.push(t0.elapsed().as_nanos() as f64);
             let t0 = Instant::now();
             let _ = rk.calculate(black_box(&theirs[k]), &mut tr);
@@ -167,17 +166,15 @@ fn minrep<const N: usize>(general: bool, reps: usize) {
     let ours = problems::<N>(general, 7 + N as u64 + general as u64);
     let theirs: Vec<_> = ours.iter().map(to_ruckig).collect();
     let otg = Otg::<N>::new(0.001);
+    let mut ot = FixedTrajectory::<N>::default();
     let mut rk = RuckigOtg::<N>::new(None, 0.001);
     let mut tr = rsruckig::prelude::Trajectory::<N>::new(None);
     let (mut a, mut b) = (f64::INFINITY, f64::INFINITY);
     for _ in 0..reps {
         let t0 = Instant::now();
         for p in &ours {
-            black_box(
-                otg.calculate(black_box(p))
-                    .map(|t| t.duration())
-                    .unwrap_or(0.0),
-            );
+            let _ = otg.calculate_into(black_box(p), &mut ot);
+            black_box(ot.duration());
         }
         a = a.min(t0.elapsed().as_nanos() as f64 / PROBLEMS as f64);
         let t0 = Instant::now();
@@ -202,6 +199,7 @@ fn profile_loop<const N: usize>(general: bool, peer: bool, secs: f64) {
     let ours = problems::<N>(general, 7 + N as u64 + general as u64);
     let theirs: Vec<_> = ours.iter().map(to_ruckig).collect();
     let otg = Otg::<N>::new(0.001);
+    let mut ot = FixedTrajectory::<N>::default();
     let mut rk = RuckigOtg::<N>::new(None, 0.001);
     let mut tr = rsruckig::prelude::Trajectory::<N>::new(None);
     let t0 = Instant::now();
@@ -211,11 +209,8 @@ fn profile_loop<const N: usize>(general: bool, peer: bool, secs: f64) {
                 let _ = rk.calculate(black_box(q), &mut tr);
                 black_box(tr.get_duration());
             } else {
-                black_box(
-                    otg.calculate(black_box(p))
-                        .map(|t| t.duration())
-                        .unwrap_or(0.0),
-                );
+                let _ = otg.calculate_into(black_box(p), &mut ot);
+                black_box(ot.duration());
             }
         }
     }

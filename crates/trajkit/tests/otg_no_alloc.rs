@@ -1,10 +1,13 @@
 //! The online generator allocates nothing with a compile-time number of degrees of freedom:
-//! `calculate`, `update` and trajectory queries run under a counting global allocator.
+//! `calculate`, `calculate_into`, `update` and trajectory queries run under a counting global
+//! allocator.
 
 mod alloc_counter;
 use alloc_counter::allocations;
 
-use trajkit::otg::{InputParameter, Otg, OtgResult, OutputParameter, Synchronization};
+use trajkit::otg::{
+    FixedTrajectory, InputParameter, Otg, OtgResult, OutputParameter, Synchronization,
+};
 use trajkit::rng::SplitMix64;
 use trajkit::{Order, Trajectory};
 
@@ -40,6 +43,8 @@ fn calculate_update_and_queries_allocate_nothing() {
     let mut otg = Otg::<7>::new(0.001);
     let mut out = OutputParameter::<7>::default();
     let mut results = [OtgResult::Working; 64];
+    let mut reused = FixedTrajectory::<7>::default();
+    let mut into_ok = 0;
     let n = allocations(|| {
         for (k, p) in problems.iter().enumerate() {
             let tr = otg.calculate(p);
@@ -48,6 +53,11 @@ fn calculate_update_and_queries_allocate_nothing() {
                 tr.eval(tr.duration() * 0.3, Order::Jerk, &mut q);
                 let _ = tr.position_extrema(2);
                 let _ = tr.first_time_at_position(1, p.target_position[1]);
+            }
+            if otg.calculate_into(p, &mut reused).is_ok() {
+                into_ok += 1;
+                let mut q = [0.0; 7];
+                reused.eval(reused.duration() * 0.6, Order::Position, &mut q);
             }
             let mut inp = *p;
             for _ in 0..20 {
@@ -62,4 +72,5 @@ fn calculate_update_and_queries_allocate_nothing() {
     assert_eq!(n, 0, "allocations on the real-time path");
     assert!(matches!(results[5], OtgResult::InvalidInput { .. }));
     assert!(results.iter().filter(|r| r.is_ok()).count() >= 60);
+    assert!(into_ok >= 60);
 }

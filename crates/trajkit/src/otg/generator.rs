@@ -100,41 +100,60 @@ impl<const DOF: usize> Otg<DOF> {
         }
     }
 
-    /// Calculates the trajectory for `input` (no allocation).
+    /// Calculates the trajectory for `input` (no allocation). Returns it by value; a caller
+    /// that calculates repeatedly can reuse one trajectory with [`Otg::calculate_into`].
     pub fn calculate(
         &self,
         input: &InputParameter<DOF>,
     ) -> Result<FixedTrajectory<DOF>, OtgResult> {
         let mut traj = FixedTrajectory::<DOF>::default();
+        self.calculate_into(input, &mut traj)?;
+        Ok(traj)
+    }
+
+    /// Calculates the trajectory for `input` into `traj`, a trajectory the caller owns and
+    /// may reuse from call to call: no temporary trajectory is built and nothing is copied
+    /// out (no allocation either). On success `traj` holds exactly what
+    /// [`Otg::calculate`] would return; on error its contents are unspecified (but valid to
+    /// query).
+    ///
+    /// ```
+    /// use trajkit::otg::{FixedTrajectory, InputParameter, Otg, OtgResult};
+    /// let otg = Otg::<1>::new(0.001);
+    /// let mut input = InputParameter::<1>::new();
+    /// input.max_velocity = [0.6];
+    /// input.max_acceleration = [1.0];
+    /// input.max_jerk = [4.0];
+    /// let mut traj = FixedTrajectory::<1>::default();
+    /// for target in [1.0, -0.5, 2.0] {
+    ///     input.target_position = [target];
+    ///     otg.calculate_into(&input, &mut traj)?;
+    ///     assert_eq!(traj, otg.calculate(&input)?);
+    /// }
+    /// let mut p = [0.0];
+    /// traj.at_time(traj.duration(), &mut p, &mut [0.0], &mut [0.0]);
+    /// assert!((p[0] - 2.0).abs() < 1e-8);
+    /// input.max_jerk = [-1.0];
+    /// assert!(matches!(
+    ///     otg.calculate_into(&input, &mut traj),
+    ///     Err(OtgResult::InvalidInput { field: "max_jerk", .. })
+    /// ));
+    /// # Ok::<(), OtgResult>(())
+    /// ```
+    pub fn calculate_into(
+        &self,
+        input: &InputParameter<DOF>,
+        traj: &mut FixedTrajectory<DOF>,
+    ) -> Result<(), OtgResult> {
         let mut scratch = [Scratch::default(); DOF];
         let mut spare: [Spare; DOF] = [None; DOF];
-        let d = calculate(
+        traj.duration = calculate(
             &input.view(),
             self.delta_time,
             &mut traj.dofs,
             &mut scratch,
             &mut spare,
         )?;
-        traj.duration = d;
-        Ok(traj)
-    }
-
-    /// Calculates into a trajectory the caller owns; on error the trajectory is unspecified.
-    pub fn calculate_into(
-        &self,
-        input: &InputParameter<DOF>,
-        traj: &mut FixedTrajectory<DOF>,
-        scratch: &mut [Scratch; DOF],
-    ) -> Result<(), OtgResult> {
-        let mut spare: [Spare; DOF] = [None; DOF];
-        let d = calculate(
-            &input.view(),
-            self.delta_time,
-            &mut traj.dofs,
-            scratch,
-            &mut spare,
-        )?;
-        traj.duration = d;
         Ok(())
     }
 

@@ -255,7 +255,51 @@ impl InputView<'_> {
     }
 
     /// Checks the lengths and the options.
+    #[inline]
     pub fn check_shape(&self, delta_time: f64) -> Result<(), OtgResult> {
+        let n = self.dof();
+        // The common case in plain comparisons; a mismatch is named by `length_error`.
+        let same = self.cv.len() == n
+            && self.ca.len() == n
+            && self.tp.len() == n
+            && self.tv.len() == n
+            && self.ta.len() == n
+            && self.vmax.len() == n
+            && self.amax.len() == n
+            && self.jmax.len() == n
+            && self.enabled.len() == n
+            && self.vmin.is_none_or(|v| v.len() == n)
+            && self.amin.is_none_or(|a| a.len() == n);
+        if !same {
+            self.length_error()?;
+        }
+        if let Some(m) = self.options.minimum_duration {
+            if !(m.is_finite() && m >= 0.0) {
+                return Err(bad(
+                    usize::MAX,
+                    "minimum_duration",
+                    m,
+                    "is not a finite number ≥ 0",
+                ));
+            }
+        }
+        if self.options.duration_discretization == DurationDiscretization::Discrete
+            && !(delta_time.is_finite() && delta_time > 0.0)
+        {
+            return Err(bad(
+                usize::MAX,
+                "delta_time",
+                delta_time,
+                "is not a positive finite number",
+            ));
+        }
+        Ok(())
+    }
+
+    /// The first vector whose length differs from the number of degrees of freedom, as an
+    /// error (in field order).
+    #[cold]
+    fn length_error(&self) -> Result<(), OtgResult> {
         let n = self.dof();
         let lens: [(&'static str, usize); 10] = [
             ("current_velocity", self.cv.len()),
@@ -284,59 +328,32 @@ impl InputView<'_> {
                 ));
             }
         }
-        if let Some(m) = self.options.minimum_duration {
-            if !(m.is_finite() && m >= 0.0) {
-                return Err(bad(
-                    usize::MAX,
-                    "minimum_duration",
-                    m,
-                    "is not a finite number ≥ 0",
-                ));
-            }
-        }
-        if self.options.duration_discretization == DurationDiscretization::Discrete
-            && !(delta_time.is_finite() && delta_time > 0.0)
-        {
-            return Err(bad(
-                usize::MAX,
-                "delta_time",
-                delta_time,
-                "is not a positive finite number",
-            ));
-        }
         Ok(())
     }
 
     /// The validated problem of degree of freedom `i`.
+    #[inline]
     pub fn dof_problem(&self, i: usize) -> Result<Dof1, OtgResult> {
-        for (f, v) in [
-            ("current_position", self.cp[i]),
-            ("current_velocity", self.cv[i]),
-            ("current_acceleration", self.ca[i]),
-            ("target_position", self.tp[i]),
-            ("target_velocity", self.tv[i]),
-            ("target_acceleration", self.ta[i]),
-        ] {
-            if !v.is_finite() {
-                return Err(bad(i, f, v, NOT_FINITE));
-            }
-        }
-        for (f, v) in [
-            ("max_velocity", self.vmax[i]),
-            ("max_acceleration", self.amax[i]),
-            ("max_jerk", self.jmax[i]),
-        ] {
-            if v.is_nan() || v <= 0.0 {
-                return Err(bad(i, f, v, NOT_POSITIVE));
-            }
-        }
-        let vmin = self.vmin.map_or(-self.vmax[i], |v| v[i]);
-        let amin = self.amin.map_or(-self.amax[i], |v| v[i]);
-        if vmin.is_nan() || vmin >= 0.0 {
-            return Err(bad(i, "min_velocity", vmin, NOT_NEGATIVE));
-        }
-        if amin.is_nan() || amin >= 0.0 {
-            return Err(bad(i, "min_acceleration", amin, NOT_NEGATIVE));
+        let (vmax, amax, jmax) = (self.vmax[i], self.amax[i], self.jmax[i]);
+        let vmin = self.vmin.map_or(-vmax, |v| v[i]);
+        let amin = self.amin.map_or(-amax, |v| v[i]);
+        // Finite states, positive maxima, negative minima: in plain comparisons without
+        // branches for the common case; when one fails, `value_error` names the first
+        // offender in the order of the fields.
+        let m = f64::MAX;
+        let plain = (self.cp[i].abs() <= m)
+            & (self.cv[i].abs() <= m)
+            & (self.ca[i].abs() <= m)
+            & (self.tp[i].abs() <= m)
+            & (self.tv[i].abs() <= m)
+            & (self.ta[i].abs() <= m)
+            & (vmax > 0.0)
+            & (amax > 0.0)
+            & (jmax > 0.0)
+            & (vmin < 0.0)
+            & (amin < 0.0);
+        if !plain {
+            self.value_error(i, vmin, amin)?;
         }
         if self.amax[i].is_infinite() != amin.is_infinite() {
             return Err(bad(
@@ -389,8 +406,12 @@ impl InputView<'_> {
                     "is outside the acceleration limits",
                 ));
             }
-            let before = d.vf - d.af * d.af.abs() / (2.0 * d.jmax);
-            if d.interface == ControlInterface::Position && (before > d.vmax || before < d.vmin) {
+            // With a_f = 0 this is the target velocity itself, checked above.
+            let before = || d.vf - d.af * d.af.abs() / (2.0 * d.jmax);
+            if d.interface == ControlInterface::Position
+                && d.af != 0.0
+                && (before() > d.vmax || before() < d.vmin)
+            {
                 return Err(bad(
                     i,
                     "target_acceleration",
@@ -400,5 +421,134 @@ impl InputView<'_> {
             }
         }
         Ok(d)
+    }
+
+    /// The first state that is not finite, maximum that is not positive or minimum that is
+    /// not negative of degree of freedom `i`, as an error.
+    #[cold]
+    fn value_error(&self, i: usize, vmin: f64, amin: f64) -> Result<(), OtgResult> {
+        for (f, v) in [
+            ("current_position", self.cp[i]),
+            ("current_velocity", self.cv[i]),
+            ("current_acceleration", self.ca[i]),
+            ("target_position", self.tp[i]),
+            ("target_velocity", self.tv[i]),
+            ("target_acceleration", self.ta[i]),
+        ] {
+            if !v.is_finite() {
+                return Err(bad(i, f, v, NOT_FINITE));
+            }
+        }
+        for (f, v) in [
+            ("max_velocity", self.vmax[i]),
+            ("max_acceleration", self.amax[i]),
+            ("max_jerk", self.jmax[i]),
+        ] {
+            if v.is_nan() || v <= 0.0 {
+                return Err(bad(i, f, v, NOT_POSITIVE));
+            }
+        }
+        if vmin.is_nan() || vmin >= 0.0 {
+            return Err(bad(i, "min_velocity", vmin, NOT_NEGATIVE));
+        }
+        if amin.is_nan() || amin >= 0.0 {
+            return Err(bad(i, "min_acceleration", amin, NOT_NEGATIVE));
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn valid() -> InputParameter<2> {
+        let mut p = InputParameter::<2>::new();
+        p.max_velocity = [1.0, 2.0];
+        p.max_acceleration = [3.0, 4.0];
+        p.max_jerk = [5.0, 6.0];
+        p.target_velocity = [0.5, -0.5];
+        p.target_acceleration = [0.2, -0.3];
+        p
+    }
+
+    fn field_of(p: &InputParameter<2>) -> Option<(usize, &'static str)> {
+        let v = p.view();
+        match v.check_shape(0.001).and_then(|_| {
+            for i in 0..2 {
+                v.dof_problem(i)?;
+            }
+            Ok(())
+        }) {
+            Ok(()) => None,
+            Err(OtgResult::InvalidInput { dof, field, .. }) => Some((dof, field)),
+            Err(e) => panic!("{e}"),
+        }
+    }
+
+    const FIELDS: [&str; 11] = [
+        "current_position",
+        "current_velocity",
+        "current_acceleration",
+        "target_position",
+        "target_velocity",
+        "target_acceleration",
+        "max_velocity",
+        "max_acceleration",
+        "max_jerk",
+        "min_velocity",
+        "min_acceleration",
+    ];
+
+    /// Makes field `k` (of `FIELDS`) of DOF `i` invalid.
+    fn spoil(p: &mut InputParameter<2>, k: usize, i: usize) {
+        let not_finite = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY][k % 3];
+        let not_signed = [f64::NAN, 0.0, -1.0][k % 3];
+        match k {
+            0 => p.current_position[i] = not_finite,
+            1 => p.current_velocity[i] = not_finite,
+            2 => p.current_acceleration[i] = not_finite,
+            3 => p.target_position[i] = not_finite,
+            4 => p.target_velocity[i] = not_finite,
+            5 => p.target_acceleration[i] = not_finite,
+            6 => p.max_velocity[i] = not_signed,
+            7 => p.max_acceleration[i] = not_signed,
+            8 => p.max_jerk[i] = not_signed,
+            9 => p.min_velocity.get_or_insert([-1.0, -2.0])[i] = -not_signed,
+            _ => p.min_acceleration.get_or_insert([-3.0, -4.0])[i] = -not_signed,
+        }
+    }
+
+    #[test]
+    fn every_bad_value_is_named_first_in_field_order() {
+        assert_eq!(field_of(&valid()), None);
+        for (k, &name) in FIELDS.iter().enumerate() {
+            for i in 0..2 {
+                let mut p = valid();
+                spoil(&mut p, k, i);
+                assert_eq!(field_of(&p), Some((i, name)));
+                // With every later field bad as well, this one is still named.
+                for later in k + 1..FIELDS.len() {
+                    spoil(&mut p, later, i);
+                }
+                assert_eq!(field_of(&p), Some((i, name)));
+            }
+        }
+        // The checks that combine limits.
+        let mut p = valid();
+        p.target_velocity[1] = -2.5;
+        assert_eq!(field_of(&p), Some((1, "target_velocity")));
+        let mut p = valid();
+        p.target_acceleration[0] = 3.5;
+        assert_eq!(field_of(&p), Some((0, "target_acceleration")));
+        let mut p = valid();
+        p.target_velocity[0] = 0.99;
+        p.target_acceleration[0] = -2.0;
+        assert_eq!(field_of(&p), Some((0, "target_acceleration")));
+        p.target_acceleration[0] = 2.0;
+        assert_eq!(field_of(&p), None);
+        let mut p = valid();
+        p.min_acceleration = Some([f64::NEG_INFINITY, -4.0]);
+        assert_eq!(field_of(&p), Some((0, "min_acceleration")));
     }
 }

@@ -2,7 +2,8 @@
 //! target state, for one or many degrees of freedom, fast enough to run every control cycle.
 //!
 //! Data in, data out: an [`InputParameter`] (current state, target state, limits, options)
-//! goes through [`Otg::calculate`] or, once per control cycle, [`Otg::update`], and comes out
+//! goes through [`Otg::calculate`] (or [`Otg::calculate_into`], into a trajectory the caller
+//! reuses) or, once per control cycle, [`Otg::update`], and comes out
 //! as an [`OtgTrajectory`] or an [`OutputParameter`], with an [`OtgResult`] status. Nothing on
 //! that path allocates when the number of degrees of freedom is a compile-time constant, and no
 //! input makes it panic: non-finite numbers are an `InvalidInput` result naming the field, the

@@ -124,7 +124,9 @@ impl Profile {
     /// differ from the current end state: second- and first-order profiles) and constant
     /// `jerk`.
     pub fn push_with(&mut self, duration: f64, v: f64, a: f64, jerk: f64) -> bool {
-        if !duration.is_finite() || duration < 0.0 || self.n >= MAX_SEGMENTS {
+        // (A range check compiles to two comparisons; NaN, negative and infinite durations
+        // fail it.)
+        if !(0.0..=f64::MAX).contains(&duration) || self.n >= MAX_SEGMENTS {
             return false;
         }
         if duration == 0.0 {
@@ -142,6 +144,40 @@ impl Profile {
         self.a[k + 1] = a1;
         self.n += 1;
         true
+    }
+
+    /// Appends the segments `(duration, jerk)` in order, each continuing from the end state,
+    /// exactly as that many calls of [`Profile::push`] would (the same integration, bit for
+    /// bit), with the running state kept in registers. Stops and returns false at the first
+    /// segment `push` would refuse (negative or non-finite duration, profile full); zero
+    /// durations are skipped.
+    #[inline]
+    pub(crate) fn push_run(&mut self, segs: &[(f64, f64)]) -> bool {
+        let mut k = self.n;
+        let (mut t, mut p, mut v, mut a) = (self.t[k], self.p[k], self.v[k], self.a[k]);
+        let mut ok = true;
+        for &(duration, jerk) in segs {
+            if !(0.0..=f64::MAX).contains(&duration) || k >= MAX_SEGMENTS {
+                ok = false;
+                break;
+            }
+            if duration == 0.0 {
+                continue;
+            }
+            self.v[k] = v;
+            self.a[k] = a;
+            self.j[k] = jerk;
+            self.d[k] = duration;
+            (p, v, a) = integrate(p, v, a, jerk, duration);
+            t += duration;
+            k += 1;
+            self.t[k] = t;
+            self.p[k] = p;
+        }
+        self.v[k] = v;
+        self.a[k] = a;
+        self.n = k;
+        ok
     }
 
     /// Sets the velocity and acceleration held after the end (for profiles whose last

@@ -26,6 +26,11 @@
 //! candidate is the result, and the durations of all valid candidates are kept as candidate
 //! durations for synchronization.
 //!
+//! Rest to rest (v₀ = a₀ = v_f = a_f = 0) has its own closed form (`rest_to_rest`): cruise or
+//! not, acceleration plateau or not, decided from the distance, the ≤ 7 segments written
+//! straight into the output and verified; only asymmetric acceleration limits without a cruise
+//! go through the enumeration below.
+//!
 //! Shortcuts, each checked against the differential suite: towards a target at rest a valid
 //! cruise at the velocity limit ends the search (nothing is faster), candidates that cannot be
 //! the fastest are not verified, and the peak family runs only for a moving target (where its
@@ -285,22 +290,24 @@ pub(crate) fn verify(dof: &Dof1, pr: &Profile) -> bool {
             let Some((_, d, st, j)) = pr.segment(k) else {
                 break;
             };
-            let vend = st.v + d * (st.a + d * j / 2.0);
             let aend = st.a + d * j;
-            let mut vmid = st.v;
-            if j != 0.0 {
-                let r = -st.a / j;
-                if r > 0.0 && r < d {
-                    vmid = st.v + r * (st.a + r * j / 2.0);
-                }
-            }
-            for v in [st.v, vmid, vend] {
-                if v > vmax || v < vmin {
-                    return false;
-                }
-            }
             if st.a > amax || st.a < amin || aend > amax || aend < amin {
                 return false;
+            }
+            let vend = st.v + d * (st.a + d * j / 2.0);
+            if st.v > vmax || st.v < vmin || vend > vmax || vend < vmin {
+                return false;
+            }
+            // The interior velocity extremum, at r = −a/j when 0 < r < d. The division is
+            // skipped where r > 0 cannot hold (acceleration zero or of the jerk's sign).
+            if (st.a > 0.0 && j < 0.0) || (st.a < 0.0 && j > 0.0) {
+                let r = -st.a / j;
+                if r > 0.0 && r < d {
+                    let vmid = st.v + r * (st.a + r * j / 2.0);
+                    if vmid > vmax || vmid < vmin {
+                        return false;
+                    }
+                }
             }
         }
         return true;
@@ -423,6 +430,10 @@ fn step1_run(
     spare: &mut Option<Profile>,
     fastest_only: bool,
 ) -> Option<([f64; MAX_CANDIDATES], usize)> {
+    let mut rest_cand = [0.0; MAX_CANDIDATES];
+    if let Some(n) = rest_to_rest(dof, profile, &mut rest_cand) {
+        return Some((rest_cand, n));
+    }
     profile.reset(State1 {
         p: dof.p0,
         v: dof.v0,
@@ -501,32 +512,31 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
             // Towards a target at rest, a valid cruise at the velocity limit is time-optimal:
             // the other families need not be tried.
             let mut cruise = false;
-            // From rest to rest, a cruise against the displacement never fits (τ < 0).
+            // From rest to rest, `rest_to_rest` (run by `step1_run` first) has already
+            // decided the cruise in closed form: it gets here only when no cruise fits (or
+            // its profile failed verification, as this family's would).
             let rest = dof.v0 == 0.0 && dof.a0 == 0.0 && dof.vf == 0.0 && dof.af == 0.0;
-            // In fastest-only mode the direction of the displacement first (a valid cruise
-            // there ends the search).
-            let dirs = if col.fastest_only && dof.pf < dof.p0 {
-                [true, false]
-            } else {
-                [false, true]
-            };
-            for mirror in dirs {
-                if rest && (dof.pf >= dof.p0) == mirror {
-                    continue;
-                }
-                let q = if mirror { dof.mirrored() } else { *dof };
-                let share = vel_family(&q, mirror, col);
-                cruise |= share.is_some();
-                // (Not when the cruise is so short that a family without one reaches the
-                // same profile, with a root as imprecise as a tangent's.)
-                if share.is_some_and(|c| c > 1e-4) && col.fastest_only && cruise_is_optimal(&q) {
-                    return;
+            if !rest {
+                // In fastest-only mode the direction of the displacement first (a valid
+                // cruise there ends the search).
+                let dirs = if col.fastest_only && dof.pf < dof.p0 {
+                    [true, false]
+                } else {
+                    [false, true]
+                };
+                for mirror in dirs {
+                    let q = if mirror { dof.mirrored() } else { *dof };
+                    let share = vel_family(&q, mirror, col);
+                    cruise |= share.is_some();
+                    // (Not when the cruise is so short that a family without one reaches the
+                    // same profile, with a root as imprecise as a tangent's.)
+                    if share.is_some_and(|c| c > 1e-4) && col.fastest_only && cruise_is_optimal(&q)
+                    {
+                        return;
+                    }
                 }
             }
             if cruise && dof.vf == 0.0 && dof.af == 0.0 {
-                return;
-            }
-            if !cruise && rest_to_rest_peak(dof, col) {
                 return;
             }
             let moving = dof.vf != 0.0 || dof.af != 0.0;
@@ -590,43 +600,146 @@ fn cruise_is_optimal(q: &Dof1) -> bool {
         && q.vf + q.af.max(0.0).powi(2) / j2 <= q.vmax
 }
 
-/// Rest to rest with symmetric acceleration limits and no cruise: the time-optimal profile
-/// accelerates to a peak velocity v_p and straight back, with D = v_p·t₁(v_p); closed form
-/// (t₁ = 2√(v_p/j) without an acceleration plateau, t₁ = v_p/a + a/j with one). Returns whether
-/// it offered a valid profile (otherwise the general families take over).
-fn rest_to_rest_peak(dof: &Dof1, col: &mut Collector<'_>) -> bool {
-    if dof.v0 != 0.0 || dof.a0 != 0.0 || dof.vf != 0.0 || dof.af != 0.0 || dof.amax != -dof.amin {
-        return false;
+/// Rest to rest (third order, position interface, v₀ = a₀ = v_f = a_f = 0) in closed form,
+/// written straight into `pr`: the time-optimal profile changes velocity as fast as possible
+/// from rest to a peak velocity v_p in the direction of the displacement D and straight back,
+/// cruising at the velocity limit V in between when the two changes alone do not cover D.
+///
+/// A change between rest and v under jerk J and acceleration limit A ramps for r = √(v/J)
+/// (no plateau, when J·v ≤ A²) or for r = A/J with a plateau h = v/A − A/J, and covers
+/// v·(2r + h)/2 (its velocity is point-symmetric about its midpoint). With v = V the cruise
+/// lasts D/V − (t₁ + t₂)/2; when that is negative, v_p < V covers D exactly:
+/// D = 2J·r³ without plateaus (r = ∛(D/(2J))), or D = v_p·(v_p/A + A/J) with them, a
+/// quadratic in v_p. The limits are those of the direction (V = v_max or −v_min, the first
+/// change accelerating with a_max or −a_min and the second braking with the other).
+///
+/// The profile is built by integrating its segments and verified like every candidate. Its
+/// duration is the only candidate (nothing else is valid and faster, and towards rest the
+/// candidates serve only the minimum). Returns `None`, leaving `pr` to the general
+/// enumeration, when the problem is not rest to rest, the displacement is zero or not finite,
+/// the acceleration limits are asymmetric and no cruise fits, or verification fails.
+fn rest_to_rest(dof: &Dof1, pr: &mut Profile, cand: &mut [f64; MAX_CANDIDATES]) -> Option<usize> {
+    if dof.v0 != 0.0
+        || dof.a0 != 0.0
+        || dof.vf != 0.0
+        || dof.af != 0.0
+        || dof.interface != ControlInterface::Position
+        || dof.order() != ProfileOrder::Third
+    {
+        return None;
     }
-    let d = (dof.pf - dof.p0).abs();
-    if d == 0.0 {
-        return false;
+    let dist = dof.pf - dof.p0;
+    if dist == 0.0 || !dist.is_finite() {
+        return None;
     }
-    let (a, j) = (dof.amax, dof.jmax);
-    let tri = (d * d * j / 4.0).cbrt();
-    let vp = if tri <= a * a / j {
-        tri
+    let (s, d, v, a_up, a_down) = if dist > 0.0 {
+        (1.0, dist, dof.vmax, dof.amax, -dof.amin)
     } else {
-        let k = a / j;
-        (-k + (k * k + 4.0 * d / a).sqrt()) * a / 2.0
+        (-1.0, -dist, -dof.vmin, -dof.amin, dof.amax)
     };
-    let vp = if dof.pf >= dof.p0 { vp } else { -vp };
-    let order = ProfileOrder::Third;
-    let (Some(c1), Some(c2)) = (
-        fastest(order, 0.0, 0.0, vp, 0.0, j, dof.amax, dof.amin),
-        fastest(order, vp, 0.0, 0.0, 0.0, j, dof.amax, dof.amin),
-    ) else {
-        return false;
+    let j = dof.jmax;
+    let shape = if v.is_finite() {
+        let (r1, h1) = rest_change(v, a_up, j);
+        let (r2, h2) = rest_change(v, a_down, j);
+        let cruise = d / v - (2.0 * (r1 + r2) + h1 + h2) / 2.0;
+        if cruise >= 0.0 {
+            RestShape {
+                r1,
+                h1,
+                r2,
+                h2,
+                vp: v,
+                cruise,
+            }
+        } else {
+            peak(d, j, a_up, a_down)?
+        }
+    } else {
+        peak(d, j, a_up, a_down)?
     };
-    let pr = col.scratch(State1 {
-        p: dof.p0,
-        v: 0.0,
-        a: 0.0,
-    });
-    push_change(pr, order, &c1, 0.0);
-    pr.snap(vp, 0.0);
-    push_change(pr, order, &c2, vp);
-    col.submit()
+    if !shape.write(pr, dof.p0, s, j) || !verify(dof, pr) {
+        return None;
+    }
+    cand[0] = pr.duration();
+    Some(1)
+}
+
+/// The no-cruise case of [`rest_to_rest`] for symmetric acceleration limits; `None` for
+/// asymmetric ones.
+fn peak(d: f64, j: f64, a_up: f64, a_down: f64) -> Option<RestShape> {
+    if a_up != a_down {
+        return None;
+    }
+    let a = a_up;
+    let ramp_max = a / j;
+    let r = (d / (2.0 * j)).cbrt();
+    let (r, h, vp) = if r <= ramp_max {
+        (r, 0.0, j * r * r)
+    } else {
+        // v_p²/A + v_p·A/J − D = 0, positive root, as v_p/A.
+        let k = ramp_max;
+        let vpa = 0.5 * (-k + (k * k + 4.0 * d / a).sqrt());
+        (k, (vpa - k).max(0.0), a * vpa)
+    };
+    Some(RestShape {
+        r1: r,
+        h1: h,
+        r2: r,
+        h2: h,
+        vp,
+        cruise: 0.0,
+    })
+}
+
+/// Ramp and plateau durations of the fastest change between rest and velocity `v` > 0 under
+/// jerk limit `j` and acceleration limit `a`: (√(v/j), 0) when j·v ≤ a², otherwise
+/// (a/j, v/a − a/j). (The same values as [`fastest`] between (0, 0) and (v, 0).)
+#[inline]
+fn rest_change(v: f64, a: f64, j: f64) -> (f64, f64) {
+    let alpha = (j * v).sqrt();
+    if alpha <= a {
+        (alpha / j, 0.0)
+    } else {
+        (a / j, (v / a - a / j).max(0.0))
+    }
+}
+
+/// A motion from rest to rest in one direction: ramp r₁, plateau h₁, ramp r₁ up to the peak
+/// velocity v_p, a cruise there, then r₂, h₂, r₂ back to rest (steps 1 and 2).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RestShape {
+    pub r1: f64,
+    pub h1: f64,
+    pub r2: f64,
+    pub h2: f64,
+    /// Peak (cruise) velocity, > 0.
+    pub vp: f64,
+    pub cruise: f64,
+}
+
+impl RestShape {
+    /// Writes the shape into `pr` (emptied first), from rest at `p0` in direction `s` (±1)
+    /// with jerk limit `j`, integrating its segments; false when a duration is refused (then
+    /// `pr` is unspecified).
+    pub(crate) fn write(&self, pr: &mut Profile, p0: f64, s: f64, j: f64) -> bool {
+        let js = s * j;
+        pr.reset(State1 {
+            p: p0,
+            v: 0.0,
+            a: 0.0,
+        });
+        if !pr.push_run(&[(self.r1, js), (self.h1, 0.0), (self.r1, -js)]) {
+            return false;
+        }
+        // The exact peak velocity (removing the integration's round-off before the cruise).
+        pr.snap(s * self.vp, 0.0);
+        pr.push_run(&[
+            (self.cruise, 0.0),
+            (self.r2, -js),
+            (self.h2, 0.0),
+            (self.r2, js),
+        ])
+    }
 }
 
 /// Appends a velocity change to a profile.
@@ -1196,6 +1309,74 @@ fn square_window(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rest_to_rest_closed_form_matches_the_enumeration() {
+        // The closed form against the families it replaces (cruise and the closed families,
+        // both directions), on seeded random limits and distances, direction-dependent
+        // limits included.
+        let mut r = crate::rng::SplitMix64::new(17);
+        let (mut cruise, mut peak, mut plateau, mut fell_back) = (0, 0, 0, 0);
+        for k in 0..6000 {
+            let vmax = r.uniform(0.05, 3.0);
+            let amax = r.uniform(0.2, 20.0);
+            let jmax = 10f64.powf(r.uniform(-1.0, 4.5));
+            let dist = r.uniform(-2.0, 2.0) * 10f64.powf(r.uniform(-4.0, 1.0));
+            let mut d = Dof1::rest_to_rest(0.3, 0.3 + dist, vmax, amax, jmax);
+            if k % 2 == 1 {
+                d.vmin = -r.uniform(0.05, 3.0);
+            }
+            if k % 4 >= 2 {
+                d.amin = -r.uniform(0.2, 20.0);
+            }
+            let mut pr = Profile::default();
+            let mut cand = [0.0; MAX_CANDIDATES];
+            let fast = rest_to_rest(&d, &mut pr, &mut cand);
+            let (mut out, mut own) = (Profile::default(), None);
+            let mut col = Collector::new(&d, &mut out, &mut own, false);
+            let mut cruised = false;
+            for mirror in [false, true] {
+                let q = if mirror { d.mirrored() } else { d };
+                cruised |= vel_family(&q, mirror, &mut col).is_some();
+                closed_families(&q, mirror, &mut col);
+            }
+            let t_enum = col
+                .best()
+                .expect("the enumeration finds a profile")
+                .duration();
+            let Some(n) = fast else {
+                // Only asymmetric acceleration limits without a cruise are left to the
+                // enumeration.
+                assert!(d.amax != -d.amin && !cruised, "{d:?}");
+                fell_back += 1;
+                continue;
+            };
+            assert_eq!((n, cand[0]), (1, pr.duration()));
+            assert!(verify(&d, &pr));
+            let t = pr.duration();
+            assert!(
+                (t - t_enum).abs() <= 1e-12 * t_enum,
+                "{d:?}: {t} vs {t_enum}"
+            );
+            let (lo, hi) = pr.velocity_range();
+            let v_peak = if dist > 0.0 { hi } else { -lo };
+            let v_lim = if dist > 0.0 { d.vmax } else { -d.vmin };
+            if cruised {
+                cruise += 1;
+                assert!((v_peak - v_lim).abs() <= 1e-12 * v_lim);
+            } else {
+                peak += 1;
+                assert!(v_peak < v_lim);
+                let (alo, ahi) = pr.acceleration_range();
+                if ahi.max(-alo) >= d.amax * (1.0 - 1e-12) {
+                    plateau += 1;
+                }
+            }
+        }
+        // Every case was exercised.
+        assert!(cruise > 500 && peak > 500 && plateau > 100 && fell_back > 100);
+        assert!(peak > plateau);
+    }
 
     #[test]
     fn seed_example_trapezoid_and_scurve() {

@@ -19,7 +19,9 @@ use super::families::two_changes;
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
 use super::roots::{find_roots, find_roots_coarse, MAX_ROOTS};
-use super::step1::{for_each_piece, kink, push_change, velocity_cap, velocity_window, verify};
+use super::step1::{
+    for_each_piece, kink, push_change, velocity_cap, velocity_window, verify, RestShape,
+};
 use super::velocity_change::{fastest, VelChange};
 
 /// A verified profile for `dof` (whose start state is safe) lasting `t` seconds, if one of the
@@ -107,9 +109,10 @@ fn other_families(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<
 /// Closed-form cruise velocity for a rest-to-rest move with symmetric acceleration limits (the
 /// common case of synchronization): with t₁ the time of each velocity change and D the distance,
 /// v_c·(t − t₁(v_c)) = D. Without an acceleration plateau t₁ = 2√(v_c/j), a cubic in √v_c;
-/// with one t₁ = v_c/a + a/j, a quadratic. False (the general family takes over) when the
-/// case does not apply or the profile fails verification. Builds in `pr`; returns whether it
-/// left a verified profile there.
+/// with one t₁ = v_c/a + a/j, a quadratic. Third order writes the segments straight from
+/// those durations (no velocity-change construction). False (the general family takes over)
+/// when the case does not apply or the profile fails verification. Builds in `pr`; returns
+/// whether it left a verified profile there.
 fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool, pr: &mut Profile) -> bool {
     if dof.v0 != 0.0 || dof.a0 != 0.0 || dof.vf != 0.0 || dof.af != 0.0 || dof.amax != -dof.amin {
         return false;
@@ -117,6 +120,7 @@ fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool, pr: &mut Pro
     let order = dof.order();
     let d = (dof.pf - dof.p0).abs();
     let (a, j) = (dof.amax, dof.jmax);
+    let sgn = if dof.pf >= dof.p0 { 1.0 } else { -1.0 };
     let vc = match order {
         // v_c² / a − t·v_c + D = 0, smaller root.
         ProfileOrder::Second => {
@@ -127,6 +131,7 @@ fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool, pr: &mut Pro
             2.0 * d / (t + disc.sqrt())
         }
         ProfileOrder::Third => {
+            // Each change: ramps r and a plateau h; the segments are written directly.
             let tp = t - a / j;
             let disc = tp * tp - 4.0 * d / a;
             let plateau = if disc >= 0.0 {
@@ -134,10 +139,10 @@ fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool, pr: &mut Pro
             } else {
                 f64::NAN
             };
-            if plateau >= a * a / j {
-                plateau
+            let (vc, r, h) = if plateau >= a * a / j {
+                (plateau, a / j, (plateau / a - a / j).max(0.0))
             } else {
-                // (2/√j)·s³ − t·s² + D = 0 for s = √v_c on [0, min(t√j/4, a/√j)].
+                // (2/√j)·s³ − t·s² + D = 0 for s = √v_c on [0, min(t√j/4, a/√j)]; r = s/√j.
                 let sj = j.sqrt();
                 let hi = (t * sj / 4.0).min(a / sj);
                 let mut roots = [0.0; crate::poly::roots::MAX_DEGREE];
@@ -145,12 +150,22 @@ fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool, pr: &mut Pro
                 if n == 0 {
                     return false;
                 }
-                roots[0] * roots[0]
-            }
+                (roots[0] * roots[0], roots[0] / sj, 0.0)
+            };
+            let tau = t - 2.0 * (2.0 * r + h);
+            let shape = RestShape {
+                r1: r,
+                h1: h,
+                r2: r,
+                h2: h,
+                vp: vc,
+                cruise: tau,
+            };
+            return tau >= 0.0 && shape.write(pr, dof.p0, sgn, j) && ok(pr);
         }
         ProfileOrder::First => return false,
     };
-    let vc = if dof.pf >= dof.p0 { vc } else { -vc };
+    let vc = sgn * vc;
     let (Some(c1), Some(c2)) = (
         fastest(order, 0.0, 0.0, vc, 0.0, j, dof.amax, dof.amin),
         fastest(order, vc, 0.0, 0.0, 0.0, j, dof.amax, dof.amin),
@@ -170,9 +185,7 @@ fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool, pr: &mut Pro
     pr.snap(vc, 0.0);
     pr.push_with(tau, vc, 0.0, 0.0);
     push_change(pr, order, &c2, vc);
-    if order == ProfileOrder::Second {
-        pr.set_final(0.0, 0.0);
-    }
+    pr.set_final(0.0, 0.0);
     ok(pr)
 }
 
