@@ -135,6 +135,7 @@ impl<const DOF: usize> InputParameter<DOF> {
             amin: self.min_acceleration.as_ref().map(|v| &v[..]),
             enabled: &self.enabled,
             options: self.options,
+            same_lengths: true,
         }
     }
 }
@@ -213,6 +214,7 @@ impl DynInputParameter {
             amin: self.min_acceleration.as_deref(),
             enabled: &self.enabled,
             options: self.options,
+            same_lengths: false,
         }
     }
 }
@@ -232,6 +234,9 @@ pub(crate) struct InputView<'a> {
     pub amin: Option<&'a [f64]>,
     pub enabled: &'a [bool],
     pub options: Options,
+    /// Whether all vectors have the same length by construction (arrays of one compile-time
+    /// size): then [`InputView::check_shape`] need not compare them.
+    pub same_lengths: bool,
 }
 
 const NOT_FINITE: &str = "is not a finite number";
@@ -259,17 +264,18 @@ impl InputView<'_> {
     pub fn check_shape(&self, delta_time: f64) -> Result<(), OtgResult> {
         let n = self.dof();
         // The common case in plain comparisons; a mismatch is named by `length_error`.
-        let same = self.cv.len() == n
-            && self.ca.len() == n
-            && self.tp.len() == n
-            && self.tv.len() == n
-            && self.ta.len() == n
-            && self.vmax.len() == n
-            && self.amax.len() == n
-            && self.jmax.len() == n
-            && self.enabled.len() == n
-            && self.vmin.is_none_or(|v| v.len() == n)
-            && self.amin.is_none_or(|a| a.len() == n);
+        let same = self.same_lengths
+            || self.cv.len() == n
+                && self.ca.len() == n
+                && self.tp.len() == n
+                && self.tv.len() == n
+                && self.ta.len() == n
+                && self.vmax.len() == n
+                && self.amax.len() == n
+                && self.jmax.len() == n
+                && self.enabled.len() == n
+                && self.vmin.is_none_or(|v| v.len() == n)
+                && self.amin.is_none_or(|a| a.len() == n);
         if !same {
             self.length_error()?;
         }
@@ -550,5 +556,25 @@ mod tests {
         let mut p = valid();
         p.min_acceleration = Some([f64::NEG_INFINITY, -4.0]);
         assert_eq!(field_of(&p), Some((0, "min_acceleration")));
+    }
+
+    #[test]
+    fn run_time_sizes_are_checked_in_field_order() {
+        let mut p = DynInputParameter::new(3);
+        assert!(p.view().check_shape(0.001).is_ok());
+        p.enabled.pop();
+        p.min_acceleration = Some(vec![-1.0; 4]);
+        p.max_jerk.push(1.0);
+        let field = |p: &DynInputParameter| match p.view().check_shape(0.001) {
+            Err(OtgResult::InvalidInput { dof, field, .. }) => Some((dof, field)),
+            _ => None,
+        };
+        assert_eq!(field(&p), Some((usize::MAX, "max_jerk")));
+        p.max_jerk.pop();
+        assert_eq!(field(&p), Some((usize::MAX, "enabled")));
+        p.enabled.push(true);
+        assert_eq!(field(&p), Some((usize::MAX, "min_acceleration")));
+        p.min_acceleration = Some(vec![-1.0; 3]);
+        assert_eq!(field(&p), None);
     }
 }

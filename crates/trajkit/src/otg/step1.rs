@@ -708,12 +708,17 @@ fn rest_change(v: f64, a: f64, j: f64) -> (f64, f64) {
 /// velocity v_p, a cruise there, then r₂, h₂, r₂ back to rest (steps 1 and 2).
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct RestShape {
+    /// Ramp duration of the change up to the peak velocity.
     pub r1: f64,
+    /// Acceleration plateau of the change up (0 without one).
     pub h1: f64,
+    /// Ramp duration of the change back to rest.
     pub r2: f64,
+    /// Acceleration plateau of the change back to rest (0 without one).
     pub h2: f64,
     /// Peak (cruise) velocity, > 0.
     pub vp: f64,
+    /// Cruise duration at the peak velocity (0 without a cruise).
     pub cruise: f64,
 }
 
