@@ -921,12 +921,21 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     // its polynomial are computed.
     let dscale = (amax - amin) / j;
     let hopeless = |t: f64, size: f64| t < -1e-12 * dscale.max(1e-300) - 1e-9 * size;
-    // acc0: s = α₂, plateau τ₁ at a_max.
+    // Where a plateau family passes a velocity peak (the acceleration turning from positive
+    // to negative), the peak must not exceed v_max (or the start's velocity, when the brake
+    // left it above): a necessary condition that narrows the parameter windows below, with
+    // a margin far above round-off (verification accepts 0.5e-12 relative). The peak
+    // velocity is a function of the parameter in closed form.
+    let vtop = q.vmax.max(v0) + 1e-9 * (q.vmax.abs().min(1e300) + v0.abs() + vf.abs());
+    // acc0: s = α₂, plateau τ₁ at a_max. For α₂ < 0 the peak is v_f + (2α₂² − a_f²)/(2j).
     let c0 = amax * amax + (af * af - a0 * a0) / 2.0 - j * dv;
-    let (xlo, xhi) = (amin - tol, amax.min(af) + tol);
+    let peak_lo = -(af * af / 2.0 + j * (vtop - vf)).max(0.0).sqrt();
+    let (xlo, xhi) = ((amin - tol).max(peak_lo - tol), amax.min(af) + tol);
     let t1_at = |x: f64| (x * x - c0) / (j * amax);
     let t1_size = |x: f64| (x * x + c0.abs()) / (j * amax);
-    let n = if hopeless(t1_at(xlo), t1_size(xlo)) && hopeless(t1_at(xhi), t1_size(xhi)) {
+    let n = if xlo > xhi
+        || (hopeless(t1_at(xlo), t1_size(xlo)) && hopeless(t1_at(xhi), t1_size(xhi)))
+    {
         0
     } else {
         s1_acc0(a0, af, v0, vf, d, j, amax).roots(xlo, xhi, &mut roots)
@@ -952,8 +961,12 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     let t2_size = |x: f64| {
         ((2.0 * x * x + a0 * a0 + 2.0 * amin * amin + af * af) / (2.0 * j) + dv.abs()) / -amin
     };
-    let (xlo, xhi) = (a0c - tol, amax + tol);
-    let n = if hopeless(t2_of(xlo), t2_size(xlo)) && hopeless(t2_of(xhi), t2_size(xhi)) {
+    // For α₁ > 0 the peak is v₀ + (2α₁² − a₀²)/(2j).
+    let peak_hi = (j * (vtop - v0) + a0 * a0 / 2.0).max(0.0).sqrt();
+    let (xlo, xhi) = (a0c - tol, amax.min(peak_hi) + tol);
+    let n = if xlo > xhi
+        || (hopeless(t2_of(xlo), t2_size(xlo)) && hopeless(t2_of(xhi), t2_size(xhi)))
+    {
         0
     } else {
         s1_acc1(a0, af, v0, vf, d, j, amin).roots(xlo, xhi, &mut roots)
@@ -972,11 +985,13 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     }
     // acc0_acc1: s = τ₁ (τ₂ grows with τ₁: its largest value is at the window's end).
     let (vlo, vhi) = velocity_window(q);
-    let t1_hi = ((vhi - vlo).abs() + dv.abs()) / amax;
+    // The peak is v₀ + (2a_max² − a₀²)/(2j) + a_max·τ₁.
+    let t1_peak = (vtop - v0 - (2.0 * amax * amax - a0 * a0) / (2.0 * j)) / amax;
+    let t1_hi = (((vhi - vlo).abs() + dv.abs()) / amax).min(t1_peak);
     let k01 = (2.0 * amax * amax - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j);
     let t2_at = |x: f64| (k01 + amax * x - dv) / -amin;
     let size = (k01.abs() + amax * t1_hi + dv.abs()) / -amin;
-    let n = if hopeless(t2_at(t1_hi), size) {
+    let n = if t1_hi < 0.0 || hopeless(t2_at(t1_hi), size) {
         0
     } else {
         s1_acc01(a0, af, v0, vf, d, j, amax, amin).roots(0.0, t1_hi, &mut roots)
