@@ -189,6 +189,35 @@ impl<'a> Collector<'a> {
         self.wants_all() || self.best().is_none_or(|b| t < b.duration())
     }
 
+    /// Whether a family whose profiles keep their velocity within `[v_low, v_high]` (with a
+    /// margin of 1e-9 relative) can be skipped for displacement `d`: covering `d` (to the
+    /// position tolerance) takes at least |d|/|v| at the velocity bound v on its side. It is
+    /// skipped when no valid profile can cover `d` (both modes: nothing valid is lost), or, in
+    /// fastest-only mode, when covering it takes longer than the fastest so far.
+    #[inline]
+    pub fn cannot_cover(&self, d: f64, v_low: f64, v_high: f64) -> bool {
+        let need = d.abs() - TOL_POSITION;
+        if need.is_nan() || need <= 0.0 {
+            return false;
+        }
+        let slack = 1e-9 * (v_low.abs().min(1e300) + v_high.abs().min(1e300));
+        let v = if d > 0.0 {
+            v_high + slack
+        } else {
+            slack - v_low
+        };
+        if v.is_nan() {
+            return false;
+        }
+        if v <= 0.0 {
+            return true;
+        }
+        match self.best() {
+            Some(b) if self.fastest_only => need / v > b.duration() * (1.0 + 1e-9),
+            _ => false,
+        }
+    }
+
     /// The spare buffer, emptied and starting at `s`, to build a candidate in.
     #[inline]
     pub fn scratch(&mut self, s: State1) -> &mut Profile {
@@ -530,7 +559,7 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
                 return;
             }
             let moving = dof.vf != 0.0 || dof.af != 0.0;
-            for mirror in [false, true] {
+            for mirror in dirs {
                 let q = if mirror { dof.mirrored() } else { *dof };
                 closed_families(&q, mirror, col);
                 // The up-down-up-down shapes (two velocity changes in the same direction).
@@ -544,7 +573,12 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
                 let k0 = kink(ProfileOrder::Third, q.v0, q.a0, q.jmax, 1.0);
                 let kf = kink(ProfileOrder::Third, q.vf, q.af, q.jmax, -1.0);
                 let slack = 1e-9 * (k0.abs() + kf.abs()) + 1e-300;
-                if moving && k0 <= kf + slack {
+                // Both changes go up: the velocity stays between the start's dip and the
+                // target's approach from above.
+                let j2 = 2.0 * q.jmax;
+                let v_low = q.v0 - q.a0.min(0.0).powi(2) / j2;
+                let v_high = q.vf + q.af.min(0.0).powi(2) / j2;
+                if moving && k0 <= kf + slack && !col.cannot_cover(q.pf - q.p0, v_low, v_high) {
                     let (vlo, vhi) = velocity_window(&q);
                     two_changes(&q, 1.0, 1.0, None, vlo, vhi, &mut |pr| {
                         let mut pr = *pr;
@@ -887,6 +921,12 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
         return;
     }
     let a0c = a0.min(amax);
+    // Every family here ramps the acceleration up, down, up (a₀ ↗ α₁ ↘ α₂ ↗ a_f): the
+    // velocity never falls below the start's dip or the target's approach from below.
+    let v_low = (v0 - a0.min(0.0).powi(2) / (2.0 * j)).min(vf - af.max(0.0).powi(2) / (2.0 * j));
+    if col.cannot_cover(d, v_low, q.vmax.max(v0)) {
+        return;
+    }
     let emit = |seq: &Seq, col: &mut Collector<'_>| seq.offer(q, mirror, col);
     // Durations may come out negative at round-off level on a family's edge.
     let okd = |x: f64, scale: f64| x >= -1e-12 * scale.max(1e-300);
