@@ -419,9 +419,7 @@ pub(crate) fn step1_into(
     spare: &mut Option<Profile>,
     cand: &mut [f64; MAX_CANDIDATES],
 ) -> Option<usize> {
-    let (cands, ncand) = step1_run(dof, profile, spare, false)?;
-    cand[..ncand].copy_from_slice(&cands[..ncand]);
-    Some(ncand)
+    step1_run(dof, profile, spare, Some(cand))
 }
 
 /// Step 1 in fastest-only mode: only the time-optimal profile, into `profile` (with `spare`
@@ -441,17 +439,21 @@ pub(crate) fn step1_fastest_into(
     profile: &mut Profile,
     spare: &mut Option<Profile>,
 ) -> Option<()> {
-    step1_run(dof, profile, spare, true).map(|_| ())
+    step1_run(dof, profile, spare, None).map(|_| ())
 }
 
-/// Step 1 (brake, then the main profile's families) into `profile`; returns the candidate
-/// durations (brake included; none when `fastest_only`).
+/// Step 1 (brake, then the main profile's families) into `profile`; with `cand`, the
+/// candidate durations (brake included) go there and their number is returned (the full
+/// mode), without it only the fastest profile is wanted (fastest-only mode; returns 0).
+/// Inlined into both callers, so that each mode's code is specialised.
+#[inline(always)]
 fn step1_run(
     dof: &Dof1,
     profile: &mut Profile,
     spare: &mut Option<Profile>,
-    fastest_only: bool,
-) -> Option<([f64; MAX_CANDIDATES], usize)> {
+    cand: Option<&mut [f64; MAX_CANDIDATES]>,
+) -> Option<usize> {
+    let fastest_only = cand.is_none();
     profile.reset(State1 {
         p: dof.p0,
         v: dof.v0,
@@ -470,7 +472,12 @@ fn step1_run(
     let mut col = Collector::new(&main_dof, profile, spare, fastest_only);
     solve_main(&main_dof, &mut col);
     col.best_index()?;
-    let (mut cands, ncand) = (col.cand, col.ncand);
+    let ncand = col.ncand;
+    if let Some(cand) = cand {
+        for (c, &t) in cand.iter_mut().zip(&col.cand[..ncand]) {
+            *c = t + tb;
+        }
+    }
     match brake_pr {
         None => col.settle(),
         Some(b) => {
@@ -481,13 +488,12 @@ fn step1_run(
             }
         }
     }
-    for t in &mut cands[..ncand] {
-        *t += tb;
-    }
-    Some((cands, ncand))
+    Some(ncand)
 }
 
-/// Enumerates the main-profile candidates of a problem whose start state is safe.
+/// Enumerates the main-profile candidates of a problem whose start state is safe. (Inlined
+/// into each mode's step 1, as it was into the one step 1 before the fastest-only mode.)
+#[inline(always)]
 fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
     let start = State1 {
         p: dof.p0,
