@@ -34,7 +34,11 @@
 //! condition fails by far more than the acceptance tolerance over its whole parameter window:
 //! its plateau duration is negative at the window's ends (the duration is convex in the
 //! parameter), or velocity continuity cannot hold there. Such a family has no valid root, so
-//! skipping it changes no result.
+//! skipping it changes no result. Likewise the parameter window of a plateau family ends
+//! where its velocity peak (closed form in the parameter) exceeds the limit by more than
+//! 1e-9 relative, and a direction's closed families (or the two-change shapes) are skipped
+//! when their velocity range, bounded by the start's dip and the target's approach, has no
+//! velocity on the side of the displacement (`Collector::cannot_cover`).
 //!
 //! Fastest-only mode (`step1_fastest_into`): where the candidate durations are not needed,
 //! candidates slower than the fastest so far are not verified, and a valid cruise at the
@@ -44,7 +48,9 @@
 //! envelope, so a shorter one covers less distance) and the cruise is at least 10⁻⁴ of the
 //! duration. (Shorter, a family without a cruise reaches nearly the same profile through a
 //! root as imprecise as a tangent's, which may pass verification a few 1e-11 faster; the
-//! search then continues as in the full mode.)
+//! search then continues as in the full mode.) The closed families go in the direction of
+//! the displacement first, and a direction is skipped when covering the displacement at its
+//! extreme velocity takes longer than the fastest so far.
 //!
 //! Candidates are built in place (`Collector`): in the caller's output profile and one spare
 //! buffer, the fastest kept by swapping the two roles, so no profile is copied while the
