@@ -39,7 +39,11 @@
 //! condition fails by far more than the acceptance tolerance over its whole parameter window:
 //! its plateau duration is negative at the window's ends (the duration is convex in the
 //! parameter), or velocity continuity cannot hold there. Such a family has no valid root, so
-//! skipping it changes no result.
+//! skipping it changes no result. Likewise the parameter window of a plateau family ends
+//! where its velocity peak (closed form in the parameter) exceeds the limit by more than
+//! 1e-9 relative, and a direction's closed families (or the two-change shapes) are skipped
+//! when their velocity range, bounded by the start's dip and the target's approach, has no
+//! velocity on the side of the displacement (`Collector::cannot_cover`).
 //!
 //! Fastest-only mode (`step1_fastest_into`): where the candidate durations are not needed,
 //! candidates slower than the fastest so far are not verified, and a valid cruise at the
@@ -49,7 +53,9 @@
 //! envelope, so a shorter one covers less distance) and the cruise is at least 10⁻⁴ of the
 //! duration. (Shorter, a family without a cruise reaches nearly the same profile through a
 //! root as imprecise as a tangent's, which may pass verification a few 1e-11 faster; the
-//! search then continues as in the full mode.)
+//! search then continues as in the full mode.) The closed families go in the direction of
+//! the displacement first, and a direction is skipped when covering the displacement at its
+//! extreme velocity takes longer than the fastest so far.
 //!
 //! Candidates are built in place (`Collector`): in the caller's output profile and one spare
 //! buffer, the fastest kept by swapping the two roles, so no profile is copied while the
@@ -192,6 +198,35 @@ impl<'a> Collector<'a> {
     #[inline]
     pub fn wants(&self, t: f64) -> bool {
         self.wants_all() || self.best().is_none_or(|b| t < b.duration())
+    }
+
+    /// Whether a family whose profiles keep their velocity within `[v_low, v_high]` (with a
+    /// margin of 1e-9 relative) can be skipped for displacement `d`: covering `d` (to the
+    /// position tolerance) takes at least |d|/|v| at the velocity bound v on its side. It is
+    /// skipped when no valid profile can cover `d` (both modes: nothing valid is lost), or, in
+    /// fastest-only mode, when covering it takes longer than the fastest so far.
+    #[inline]
+    pub fn cannot_cover(&self, d: f64, v_low: f64, v_high: f64) -> bool {
+        let need = d.abs() - TOL_POSITION;
+        if need.is_nan() || need <= 0.0 {
+            return false;
+        }
+        let slack = 1e-9 * (v_low.abs().min(1e300) + v_high.abs().min(1e300));
+        let v = if d > 0.0 {
+            v_high + slack
+        } else {
+            slack - v_low
+        };
+        if v.is_nan() {
+            return false;
+        }
+        if v <= 0.0 {
+            return true;
+        }
+        match self.best() {
+            Some(b) if self.fastest_only => need / v > b.duration() * (1.0 + 1e-9),
+            _ => false,
+        }
     }
 
     /// The spare buffer, emptied and starting at `s`, to build a candidate in.
@@ -397,9 +432,7 @@ pub(crate) fn step1_into(
     spare: &mut Option<Profile>,
     cand: &mut [f64; MAX_CANDIDATES],
 ) -> Option<usize> {
-    let (cands, ncand) = step1_run(dof, profile, spare, false)?;
-    cand[..ncand].copy_from_slice(&cands[..ncand]);
-    Some(ncand)
+    step1_run(dof, profile, spare, Some(cand))
 }
 
 /// Step 1 in fastest-only mode: only the time-optimal profile, into `profile` (with `spare`
@@ -419,21 +452,31 @@ pub(crate) fn step1_fastest_into(
     profile: &mut Profile,
     spare: &mut Option<Profile>,
 ) -> Option<()> {
-    step1_run(dof, profile, spare, true).map(|_| ())
+    step1_run(dof, profile, spare, None).map(|_| ())
 }
 
-/// Step 1 (brake, then the main profile's families) into `profile`; returns the candidate
-/// durations (brake included; none when `fastest_only`).
+/// Step 1 (brake, then the main profile's families) into `profile`; with `cand`, the
+/// candidate durations (brake included) go there and their number is returned (the full
+/// mode), without it only the fastest profile is wanted (fastest-only mode; returns 0).
+/// Inlined into both callers, so that each mode's code is specialised.
+#[inline(always)]
 fn step1_run(
     dof: &Dof1,
     profile: &mut Profile,
     spare: &mut Option<Profile>,
-    fastest_only: bool,
-) -> Option<([f64; MAX_CANDIDATES], usize)> {
-    let mut rest_cand = [0.0; MAX_CANDIDATES];
-    if let Some(n) = rest_to_rest(dof, profile, &mut rest_cand) {
-        return Some((rest_cand, n));
+    cand: Option<&mut [f64; MAX_CANDIDATES]>,
+) -> Option<usize> {
+    if rest_to_rest(dof, profile).is_some() {
+        // Its duration is the only candidate.
+        return Some(match cand {
+            Some(c) => {
+                c[0] = profile.duration();
+                1
+            }
+            None => 0,
+        });
     }
+    let fastest_only = cand.is_none();
     profile.reset(State1 {
         p: dof.p0,
         v: dof.v0,
@@ -452,7 +495,12 @@ fn step1_run(
     let mut col = Collector::new(&main_dof, profile, spare, fastest_only);
     solve_main(&main_dof, &mut col);
     col.best_index()?;
-    let (mut cands, ncand) = (col.cand, col.ncand);
+    let ncand = col.ncand;
+    if let Some(cand) = cand {
+        for (c, &t) in cand.iter_mut().zip(&col.cand[..ncand]) {
+            *c = t + tb;
+        }
+    }
     match brake_pr {
         None => col.settle(),
         Some(b) => {
@@ -463,13 +511,12 @@ fn step1_run(
             }
         }
     }
-    for t in &mut cands[..ncand] {
-        *t += tb;
-    }
-    Some((cands, ncand))
+    Some(ncand)
 }
 
-/// Enumerates the main-profile candidates of a problem whose start state is safe.
+/// Enumerates the main-profile candidates of a problem whose start state is safe. (Inlined
+/// into each mode's step 1, as it was into the one step 1 before the fastest-only mode.)
+#[inline(always)]
 fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
     let start = State1 {
         p: dof.p0,
@@ -516,14 +563,14 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
             // decided the cruise in closed form: it gets here only when no cruise fits (or
             // its profile failed verification, as this family's would).
             let rest = dof.v0 == 0.0 && dof.a0 == 0.0 && dof.vf == 0.0 && dof.af == 0.0;
+            // In fastest-only mode the direction of the displacement first (a valid cruise
+            // there ends the search).
+            let dirs = if col.fastest_only && dof.pf < dof.p0 {
+                [true, false]
+            } else {
+                [false, true]
+            };
             if !rest {
-                // In fastest-only mode the direction of the displacement first (a valid
-                // cruise there ends the search).
-                let dirs = if col.fastest_only && dof.pf < dof.p0 {
-                    [true, false]
-                } else {
-                    [false, true]
-                };
                 for mirror in dirs {
                     let q = if mirror { dof.mirrored() } else { *dof };
                     let share = vel_family(&q, mirror, col);
@@ -540,7 +587,7 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
                 return;
             }
             let moving = dof.vf != 0.0 || dof.af != 0.0;
-            for mirror in [false, true] {
+            for mirror in dirs {
                 let q = if mirror { dof.mirrored() } else { *dof };
                 closed_families(&q, mirror, col);
                 // The up-down-up-down shapes (two velocity changes in the same direction).
@@ -554,7 +601,12 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
                 let k0 = kink(ProfileOrder::Third, q.v0, q.a0, q.jmax, 1.0);
                 let kf = kink(ProfileOrder::Third, q.vf, q.af, q.jmax, -1.0);
                 let slack = 1e-9 * (k0.abs() + kf.abs()) + 1e-300;
-                if moving && k0 <= kf + slack {
+                // Both changes go up: the velocity stays between the start's dip and the
+                // target's approach from above.
+                let j2 = 2.0 * q.jmax;
+                let v_low = q.v0 - q.a0.min(0.0).powi(2) / j2;
+                let v_high = q.vf + q.af.min(0.0).powi(2) / j2;
+                if moving && k0 <= kf + slack && !col.cannot_cover(q.pf - q.p0, v_low, v_high) {
                     let (vlo, vhi) = velocity_window(&q);
                     two_changes(&q, 1.0, 1.0, None, vlo, vhi, &mut |pr| {
                         let mut pr = *pr;
@@ -618,7 +670,7 @@ fn cruise_is_optimal(q: &Dof1) -> bool {
 /// candidates serve only the minimum). Returns `None`, leaving `pr` to the general
 /// enumeration, when the problem is not rest to rest, the displacement is zero or not finite,
 /// the acceleration limits are asymmetric and no cruise fits, or verification fails.
-fn rest_to_rest(dof: &Dof1, pr: &mut Profile, cand: &mut [f64; MAX_CANDIDATES]) -> Option<usize> {
+fn rest_to_rest(dof: &Dof1, pr: &mut Profile) -> Option<()> {
     if dof.v0 != 0.0
         || dof.a0 != 0.0
         || dof.vf != 0.0
@@ -660,8 +712,7 @@ fn rest_to_rest(dof: &Dof1, pr: &mut Profile, cand: &mut [f64; MAX_CANDIDATES]) 
     if !shape.write(pr, dof.p0, s, j) || !verify(dof, pr) {
         return None;
     }
-    cand[0] = pr.duration();
-    Some(1)
+    Some(())
 }
 
 /// The no-cruise case of [`rest_to_rest`] for symmetric acceleration limits; `None` for
@@ -1005,6 +1056,12 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
         return;
     }
     let a0c = a0.min(amax);
+    // Every family here ramps the acceleration up, down, up (a₀ ↗ α₁ ↘ α₂ ↗ a_f): the
+    // velocity never falls below the start's dip or the target's approach from below.
+    let v_low = (v0 - a0.min(0.0).powi(2) / (2.0 * j)).min(vf - af.max(0.0).powi(2) / (2.0 * j));
+    if col.cannot_cover(d, v_low, q.vmax.max(v0)) {
+        return;
+    }
     let emit = |seq: &Seq, col: &mut Collector<'_>| seq.offer(q, mirror, col);
     // Durations may come out negative at round-off level on a family's edge.
     let okd = |x: f64, scale: f64| x >= -1e-12 * scale.max(1e-300);
@@ -1039,12 +1096,21 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     // its polynomial are computed.
     let dscale = (amax - amin) / j;
     let hopeless = |t: f64, size: f64| t < -1e-12 * dscale.max(1e-300) - 1e-9 * size;
-    // acc0: s = α₂, plateau τ₁ at a_max.
+    // Where a plateau family passes a velocity peak (the acceleration turning from positive
+    // to negative), the peak must not exceed v_max (or the start's velocity, when the brake
+    // left it above): a necessary condition that narrows the parameter windows below, with
+    // a margin far above round-off (verification accepts 0.5e-12 relative). The peak
+    // velocity is a function of the parameter in closed form.
+    let vtop = q.vmax.max(v0) + 1e-9 * (q.vmax.abs().min(1e300) + v0.abs() + vf.abs());
+    // acc0: s = α₂, plateau τ₁ at a_max. For α₂ < 0 the peak is v_f + (2α₂² − a_f²)/(2j).
     let c0 = amax * amax + (af * af - a0 * a0) / 2.0 - j * dv;
-    let (xlo, xhi) = (amin - tol, amax.min(af) + tol);
+    let peak_lo = -(af * af / 2.0 + j * (vtop - vf)).max(0.0).sqrt();
+    let (xlo, xhi) = ((amin - tol).max(peak_lo - tol), amax.min(af) + tol);
     let t1_at = |x: f64| (x * x - c0) / (j * amax);
     let t1_size = |x: f64| (x * x + c0.abs()) / (j * amax);
-    let n = if hopeless(t1_at(xlo), t1_size(xlo)) && hopeless(t1_at(xhi), t1_size(xhi)) {
+    let n = if xlo > xhi
+        || (hopeless(t1_at(xlo), t1_size(xlo)) && hopeless(t1_at(xhi), t1_size(xhi)))
+    {
         0
     } else {
         s1_acc0(a0, af, v0, vf, d, j, amax).roots(xlo, xhi, &mut roots)
@@ -1070,8 +1136,12 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     let t2_size = |x: f64| {
         ((2.0 * x * x + a0 * a0 + 2.0 * amin * amin + af * af) / (2.0 * j) + dv.abs()) / -amin
     };
-    let (xlo, xhi) = (a0c - tol, amax + tol);
-    let n = if hopeless(t2_of(xlo), t2_size(xlo)) && hopeless(t2_of(xhi), t2_size(xhi)) {
+    // For α₁ > 0 the peak is v₀ + (2α₁² − a₀²)/(2j).
+    let peak_hi = (j * (vtop - v0) + a0 * a0 / 2.0).max(0.0).sqrt();
+    let (xlo, xhi) = (a0c - tol, amax.min(peak_hi) + tol);
+    let n = if xlo > xhi
+        || (hopeless(t2_of(xlo), t2_size(xlo)) && hopeless(t2_of(xhi), t2_size(xhi)))
+    {
         0
     } else {
         s1_acc1(a0, af, v0, vf, d, j, amin).roots(xlo, xhi, &mut roots)
@@ -1090,11 +1160,13 @@ fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     }
     // acc0_acc1: s = τ₁ (τ₂ grows with τ₁: its largest value is at the window's end).
     let (vlo, vhi) = velocity_window(q);
-    let t1_hi = ((vhi - vlo).abs() + dv.abs()) / amax;
+    // The peak is v₀ + (2a_max² − a₀²)/(2j) + a_max·τ₁.
+    let t1_peak = (vtop - v0 - (2.0 * amax * amax - a0 * a0) / (2.0 * j)) / amax;
+    let t1_hi = (((vhi - vlo).abs() + dv.abs()) / amax).min(t1_peak);
     let k01 = (2.0 * amax * amax - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j);
     let t2_at = |x: f64| (k01 + amax * x - dv) / -amin;
     let size = (k01.abs() + amax * t1_hi + dv.abs()) / -amin;
-    let n = if hopeless(t2_at(t1_hi), size) {
+    let n = if t1_hi < 0.0 || hopeless(t2_at(t1_hi), size) {
         0
     } else {
         s1_acc01(a0, af, v0, vf, d, j, amax, amin).roots(0.0, t1_hi, &mut roots)
@@ -1335,8 +1407,7 @@ mod tests {
                 d.amin = -r.uniform(0.2, 20.0);
             }
             let mut pr = Profile::default();
-            let mut cand = [0.0; MAX_CANDIDATES];
-            let fast = rest_to_rest(&d, &mut pr, &mut cand);
+            let fast = rest_to_rest(&d, &mut pr);
             let (mut out, mut own) = (Profile::default(), None);
             let mut col = Collector::new(&d, &mut out, &mut own, false);
             let mut cruised = false;
@@ -1349,14 +1420,13 @@ mod tests {
                 .best()
                 .expect("the enumeration finds a profile")
                 .duration();
-            let Some(n) = fast else {
+            let Some(()) = fast else {
                 // Only asymmetric acceleration limits without a cruise are left to the
                 // enumeration.
                 assert!(d.amax != -d.amin && !cruised, "{d:?}");
                 fell_back += 1;
                 continue;
             };
-            assert_eq!((n, cand[0]), (1, pr.duration()));
             assert!(verify(&d, &pr));
             let t = pr.duration();
             assert!(

@@ -36,6 +36,12 @@ fn fastest_only_matches_the_full_mode() {
                 panic!("{cat:?} #{k}: the suite's problem is invalid");
             };
             let (full, fast) = both(&q);
+            // The public entry point is the fastest-only mode.
+            let public = super::time_optimal(&q).map(|p| p.duration());
+            assert_eq!(
+                public, fast,
+                "{cat:?} #{k}: time_optimal vs fastest-only: {q:?}"
+            );
             match (full, fast) {
                 (Some(a), Some(b)) => {
                     let rel = (a - b).abs() / a.abs().max(f64::MIN_POSITIVE);
