@@ -84,29 +84,64 @@ fn to_ruckig<const N: usize>(p: &InputParameter<N>) -> rsruckig::prelude::InputP
 type RuckigOtg<const N: usize> =
     rsruckig::prelude::Ruckig<N, rsruckig::prelude::IgnoreErrorHandler>;
 
+/// One problem set for both libraries: the problems in each library's input type, and for
+/// each a generator and a trajectory reused across calls (the same calling pattern).
+struct Pair<const N: usize> {
+    ours: Vec<InputParameter<N>>,
+    theirs: Vec<rsruckig::prelude::InputParameter<N>>,
+    otg: Otg<N>,
+    ot: FixedTrajectory<N>,
+    rk: RuckigOtg<N>,
+    tr: rsruckig::prelude::Trajectory<N>,
+}
+
+impl<const N: usize> Pair<N> {
+    fn new(general: bool) -> Self {
+        let ours = problems::<N>(general, 7 + N as u64 + general as u64);
+        let theirs = ours.iter().map(to_ruckig).collect();
+        Pair {
+            ours,
+            theirs,
+            otg: Otg::new(0.001),
+            ot: FixedTrajectory::default(),
+            rk: RuckigOtg::new(None, 0.001),
+            tr: rsruckig::prelude::Trajectory::new(None),
+        }
+    }
+
+    /// trajkit on problem `k`.
+    #[inline(always)]
+    fn ours(&mut self, k: usize) {
+        let _ = self
+            .otg
+            .calculate_into(black_box(&self.ours[k]), &mut self.ot);
+        black_box(self.ot.duration());
+    }
+
+    /// rsruckig on problem `k`.
+    #[inline(always)]
+    fn theirs(&mut self, k: usize) {
+        let _ = self.rk.calculate(black_box(&self.theirs[k]), &mut self.tr);
+        black_box(self.tr.get_duration());
+    }
+}
+
 fn group<const N: usize>(c: &mut Criterion, general: bool) {
     let name = format!("otg/{}dof_{}", N, if general { "general" } else { "rest" });
-    let ours = problems::<N>(general, 7 + N as u64 + general as u64);
-    let theirs: Vec<_> = ours.iter().map(to_ruckig).collect();
+    let mut pair = Pair::<N>::new(general);
     let mut g = c.benchmark_group(&name);
-    let otg = Otg::<N>::new(0.001);
-    let mut ot = FixedTrajectory::<N>::default();
     g.bench_function("trajkit", |b| {
         let mut k = 0;
         b.iter(|| {
             k = (k + 1) % PROBLEMS;
-            let _ = otg.calculate_into(black_box(&ours[k]), &mut ot);
-            black_box(ot.duration())
+            pair.ours(k)
         })
     });
-    let mut rk = RuckigOtg::<N>::new(None, 0.001);
-    let mut tr = rsruckig::prelude::Trajectory::<N>::new(None);
     g.bench_function("rsruckig", |b| {
         let mut k = 0;
         b.iter(|| {
             k = (k + 1) % PROBLEMS;
-            let _ = rk.calculate(black_box(&theirs[k]), &mut tr);
-            black_box(tr.get_duration())
+            pair.theirs(k)
         })
     });
     g.finish();
@@ -129,22 +164,15 @@ fn stats(mut ns: Vec<f64>) -> (f64, f64) {
 }
 
 fn p99<const N: usize>(general: bool) {
-    let ours = problems::<N>(general, 7 + N as u64 + general as u64);
-    let theirs: Vec<_> = ours.iter().map(to_ruckig).collect();
-    let otg = Otg::<N>::new(0.001);
-    let mut ot = FixedTrajectory::<N>::default();
-    let mut rk = RuckigOtg::<N>::new(None, 0.001);
-    let mut tr = rsruckig::prelude::Trajectory::<N>::new(None);
+    let mut pair = Pair::<N>::new(general);
     let (mut a, mut b) = (Vec::new(), Vec::new());
     for _round in 0..40 {
         for k in 0..PROBLEMS {
             let t0 = Instant::now();
-            let _ = otg.calculate_into(black_box(&ours[k]), &mut ot);
-            black_box(ot.duration());
+            pair.ours(k);
             a.push(t0.elapsed().as_nanos() as f64);
             let t0 = Instant::now();
-            let _ = rk.calculate(black_box(&theirs[k]), &mut tr);
-            black_box(tr.get_duration());
+            pair.theirs(k);
             b.push(t0.elapsed().as_nanos() as f64);
         }
     }
@@ -163,24 +191,17 @@ fn p99<const N: usize>(general: bool) {
 
 /// Minimum over repetitions of the mean time per call (ns) of both libraries, alternating.
 fn minrep<const N: usize>(general: bool, reps: usize) {
-    let ours = problems::<N>(general, 7 + N as u64 + general as u64);
-    let theirs: Vec<_> = ours.iter().map(to_ruckig).collect();
-    let otg = Otg::<N>::new(0.001);
-    let mut ot = FixedTrajectory::<N>::default();
-    let mut rk = RuckigOtg::<N>::new(None, 0.001);
-    let mut tr = rsruckig::prelude::Trajectory::<N>::new(None);
+    let mut pair = Pair::<N>::new(general);
     let (mut a, mut b) = (f64::INFINITY, f64::INFINITY);
     for _ in 0..reps {
         let t0 = Instant::now();
-        for p in &ours {
-            let _ = otg.calculate_into(black_box(p), &mut ot);
-            black_box(ot.duration());
+        for k in 0..PROBLEMS {
+            pair.ours(k);
         }
         a = a.min(t0.elapsed().as_nanos() as f64 / PROBLEMS as f64);
         let t0 = Instant::now();
-        for q in &theirs {
-            let _ = rk.calculate(black_box(q), &mut tr);
-            black_box(tr.get_duration());
+        for k in 0..PROBLEMS {
+            pair.theirs(k);
         }
         b = b.min(t0.elapsed().as_nanos() as f64 / PROBLEMS as f64);
     }
@@ -196,21 +217,14 @@ fn minrep<const N: usize>(general: bool, reps: usize) {
 /// Runs one library alone (trajkit, or rsruckig when `peer`) on one problem set for about
 /// `secs` seconds (for a profiler).
 fn profile_loop<const N: usize>(general: bool, peer: bool, secs: f64) {
-    let ours = problems::<N>(general, 7 + N as u64 + general as u64);
-    let theirs: Vec<_> = ours.iter().map(to_ruckig).collect();
-    let otg = Otg::<N>::new(0.001);
-    let mut ot = FixedTrajectory::<N>::default();
-    let mut rk = RuckigOtg::<N>::new(None, 0.001);
-    let mut tr = rsruckig::prelude::Trajectory::<N>::new(None);
+    let mut pair = Pair::<N>::new(general);
     let t0 = Instant::now();
     while t0.elapsed().as_secs_f64() < secs {
-        for (p, q) in ours.iter().zip(&theirs) {
+        for k in 0..PROBLEMS {
             if peer {
-                let _ = rk.calculate(black_box(q), &mut tr);
-                black_box(tr.get_duration());
+                pair.theirs(k);
             } else {
-                let _ = otg.calculate_into(black_box(p), &mut ot);
-                black_box(ot.duration());
+                pair.ours(k);
             }
         }
     }
