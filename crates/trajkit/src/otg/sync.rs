@@ -127,9 +127,12 @@ fn solve(sc: &mut Scratch, spare: &mut Spare, out: &mut Profile, full: bool) -> 
 /// not the position interface) or where the stop or the start would leave the velocity
 /// limits.
 ///
+/// Every duration from the bound on is feasible too: the profile can wait at rest between the
+/// stop and the move, so no blocked interval lies above the bound.
+///
 /// Synchronization uses it twice: the DOF with the largest bound runs step 1 first (it most
 /// likely sets the duration), and a DOF whose bound is at most the trial duration t needs no
-/// step 1 at all: its minimum is at most t, so step 2 succeeding at t proves t feasible.
+/// step 1 at all: t is feasible for it, and step 2 plans it.
 fn duration_bound(d: &Dof1) -> f64 {
     if d.interface != ControlInterface::Position || d.order() != ProfileOrder::Third {
         return f64::INFINITY;
@@ -223,11 +226,11 @@ fn starts_safe(d: &Dof1) -> bool {
 /// for the degrees of freedom that start with a brake, and for the one whose estimated
 /// minimum duration ([`duration_bound`]) is the largest. Every other synchronized degree of
 /// freedom whose duration bound ([`duration_bound`], a valid profile's duration) is at most the
-/// trial duration t goes straight to step 2 at t: its minimum is at most t, and step 2
-/// succeeding proves t outside its blocked intervals, so the duration found is the one a full
-/// step 1 for every degree of freedom would give. Otherwise (bound above t, or step 2 fails)
-/// step 1 runs for it: if its minimum exceeds t it becomes the new trial duration, otherwise t
-/// lies in one of its blocked intervals and its candidate durations join the search.
+/// trial duration t goes straight to step 2 at t: t is feasible for it (at least its minimum,
+/// above any blocked interval), so the duration found is the one a full step 1 for every
+/// degree of freedom would give. Otherwise (bound above t, or step 2 misses) step 1 runs for
+/// it: if its minimum exceeds t it becomes the new trial duration, otherwise its candidate
+/// durations join the search (t lies in one of its blocked intervals).
 pub(crate) fn calculate(
     view: &InputView<'_>,
     delta_time: f64,
@@ -545,16 +548,26 @@ fn try_all(
             continue;
         }
         if sc.solved == Solved::No {
-            // Its minimum is at most t: step 2 succeeding proves t feasible. (No brake, see
+            // t is feasible for it (see `duration_bound`): step 2 plans it. (No brake, see
             // `calculate`: step 2 from the start state.)
-            if sc.bound <= t && step2_into(&sc.dof, t, &mut out[i].profile) {
+            let certified = sc.bound <= t;
+            if certified && step2_into(&sc.dof, t, &mut out[i].profile) {
                 continue;
             }
-            if !solve(sc, &mut spare[i], &mut out[i].profile, false) {
+            // Certified, every duration from the bound on is feasible for it (the bound's
+            // profile can wait at rest after its stop), so step 2 failing is a miss of step 2
+            // (or t is numerically its minimum): handled like a failure of a solved DOF, with
+            // its candidates.
+            if !solve(sc, &mut spare[i], &mut out[i].profile, certified) {
                 return Err(Miss::Unsolvable(i));
             }
-            if t < sc.t_min && (t - sc.t_min).abs() > 1e-13 * t.max(1.0) {
+            let at_min = (t - sc.t_min).abs() <= 1e-13 * t.max(1.0);
+            if t < sc.t_min && !at_min {
                 return Err(Miss::Below(i));
+            }
+            if certified && !at_min {
+                // Step 2 has already failed at t.
+                return Err(Miss::At(i));
             }
         } else if t < sc.t_min {
             return Err(Miss::At(i));
@@ -785,7 +798,7 @@ mod tests {
     }
 
     #[test]
-    fn the_duration_bound_bounds_the_minimum_and_is_exact_from_rest_to_rest() {
+    fn the_duration_bound_bounds_the_minimum_is_exact_from_rest_to_rest_and_leaves_no_gap_above() {
         let mut r = crate::rng::SplitMix64::new(41);
         let mut finite = 0;
         for k in 0..6000 {
@@ -799,6 +812,11 @@ mod tests {
             );
             if b.is_finite() {
                 finite += 1;
+                // Every duration from the bound on is feasible: step 2 plans it.
+                for f in [1.0 + 1e-9, 1.05, 1.5, 3.0] {
+                    let p = crate::otg::with_duration(&d, b * f);
+                    assert!(p.is_some(), "case {k}: no profile of {} s\n{d:?}", b * f);
+                }
             }
             if !general && !asym {
                 assert!(
