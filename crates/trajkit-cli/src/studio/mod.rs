@@ -45,6 +45,9 @@ pub struct StudioArgs {
     /// Computations run at the same time (each on its own thread; further requests wait).
     #[arg(long, value_name = "N", default_value_t = default_workers(), value_parser = clap::value_parser!(u16).range(1..=64))]
     pub workers: u16,
+    /// Longest wait in seconds for a free worker before a request is refused with 503.
+    #[arg(long, value_name = "SECONDS", default_value_t = 20, value_parser = clap::value_parser!(u16).range(1..=3600))]
+    pub queue_timeout: u16,
 }
 
 fn default_workers() -> u16 {
@@ -88,7 +91,8 @@ pub fn run(a: &StudioArgs) -> CliResult<u8> {
         };
         println!("trajkit studio: http://{local}/ (Ctrl-C to stop)");
         let _ = std::io::stdout().flush();
-        let app = server::router(server::AppState::new(workers, hosts));
+        let wait = std::time::Duration::from_secs(u64::from(a.queue_timeout));
+        let app = server::router(server::AppState::new(workers, wait, hosts));
         axum::serve(listener, app)
             .with_graceful_shutdown(async {
                 let _ = tokio::signal::ctrl_c().await;

@@ -2,12 +2,12 @@
 //! every computation off the async executor.
 //!
 //! Each API request is answered in three steps: the executor checks the method, the content
-//! type and the body size (cheap, never blocks); the request then waits (at most
-//! [`QUEUE_WAIT`]) for one of `workers` permits; with a permit, `spawn_blocking` parses the
+//! type and the body size (cheap, never blocks); the request then waits (at most the queue
+//! timeout, `--queue-timeout`, 20 s by default) for one of `workers` permits; with a permit, `spawn_blocking` parses the
 //! JSON, calls the lesson's function and serializes the answer on tokio's blocking pool. A slow
 //! request therefore holds one worker and no executor thread: static files, refusals and the
-//! other workers keep going. When every worker stays busy past [`QUEUE_WAIT`], the request is
-//! refused with 503 instead of queueing forever.
+//! other workers keep going. When every worker stays busy past the queue timeout, the request
+//! is refused with 503 instead of queueing forever.
 
 use super::assets;
 use super::caps::MAX_BODY_BYTES;
@@ -28,25 +28,25 @@ use std::sync::Arc;
 use std::time::Duration;
 use tokio::sync::Semaphore;
 
-/// Longest wait for a free worker before a request is refused with 503.
-pub const QUEUE_WAIT: Duration = Duration::from_secs(20);
-
 /// Shared by every request.
 #[derive(Clone)]
 pub struct AppState {
     permits: Arc<Semaphore>,
     workers: usize,
+    queue_wait: Duration,
     /// `host:port` names accepted in the Host header (DNS-rebinding guard) when listening on
     /// loopback; empty when any host is accepted.
     hosts: Arc<Vec<String>>,
 }
 
 impl AppState {
-    /// `workers` computations at once; `hosts` as in the field's documentation.
-    pub fn new(workers: usize, hosts: Vec<String>) -> Self {
+    /// `workers` computations at once, each request waiting at most `queue_wait` for one;
+    /// `hosts` as in the field's documentation.
+    pub fn new(workers: usize, queue_wait: Duration, hosts: Vec<String>) -> Self {
         AppState {
             permits: Arc::new(Semaphore::new(workers)),
             workers,
+            queue_wait,
             hosts: Arc::new(hosts),
         }
     }
@@ -113,7 +113,8 @@ async fn compute<F>(st: &AppState, job: F) -> Reply
 where
     F: FnOnce() -> Reply + Send + 'static,
 {
-    let permit = match tokio::time::timeout(QUEUE_WAIT, st.permits.clone().acquire_owned()).await {
+    let permit = match tokio::time::timeout(st.queue_wait, st.permits.clone().acquire_owned()).await
+    {
         Ok(Ok(p)) => p,
         _ => {
             return Reply::error(&ApiError::plain(
@@ -121,7 +122,7 @@ where
                 format!(
                     "busy: all {} workers stayed busy for {} s; try again",
                     st.workers,
-                    QUEUE_WAIT.as_secs()
+                    st.queue_wait.as_secs()
                 ),
             ))
         }

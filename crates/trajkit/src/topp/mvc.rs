@@ -76,7 +76,11 @@ pub fn max_velocity_curve<P: Path>(problem: &Toppra<'_, P>, s: &[f64]) -> Result
         }
         rows.start = 0;
         let (lo, hi) = admissible_x(rows.half_planes(), x_lo, x_hi);
-        if !(lo <= hi) {
+        // Empty (or NaN): no velocity at all is admissible here.
+        if lo
+            .partial_cmp(&hi)
+            .is_none_or(|o| o == std::cmp::Ordering::Greater)
+        {
             let names: Vec<String> = problem.constraints_ref().iter().map(|c| c.name()).collect();
             return Err(Error::Infeasible(format!(
                 "at s = {si}: no path velocity satisfies {} (not even rest)",
@@ -193,7 +197,10 @@ mod tests {
         let mvc = max_velocity_curve(&problem, s).unwrap();
         let mut touches = 0;
         for (i, (&v, &m)) in profile.velocities().iter().zip(&mvc).enumerate() {
-            assert!(v <= m * (1.0 + 1e-6), "gridpoint {i}: ṡ = {v} above the MVC {m}");
+            assert!(
+                v <= m * (1.0 + 1e-6),
+                "gridpoint {i}: ṡ = {v} above the MVC {m}"
+            );
             if v >= m * (1.0 - 1e-6) {
                 touches += 1;
             }

@@ -70,6 +70,9 @@ pub struct Phase {
     pub duration: f64,
     /// Position, velocity and acceleration at its start.
     pub start: [f64; 3],
+    /// Position, velocity and acceleration at its end (the trapezoid's acceleration then jumps
+    /// to the next phase's start).
+    pub end: [f64; 3],
     /// Its jerk (0 for every segment of the trapezoid: its acceleration jumps between them).
     pub jerk: f64,
 }
@@ -84,13 +87,22 @@ fn profile(distance: f64, v: f64, a: f64, j: f64, samples: usize) -> ApiResult<P
         .map_err(|e| ApiError::plain(StatusCode::UNPROCESSABLE_ENTITY, format!("otg: {e}")))?;
     let p = &tr.dofs()[0].profile;
     let phases = (0..p.segments())
-        .filter_map(|k| p.segment(k))
-        .filter(|s| s.1 > 0.0)
-        .map(|(t, d, s, jerk)| Phase {
-            t,
-            duration: d,
-            start: [s.p, s.v, s.a],
-            jerk,
+        .filter_map(|k| {
+            let (t, d, s, jerk) = p.segment(k)?;
+            // The state reached at the end of this constant-jerk segment (before any jump of
+            // acceleration into the next one, which is the trapezoid's jerk impulse).
+            let end = [
+                s.p + d * (s.v + d * (s.a / 2.0 + d * jerk / 6.0)),
+                s.v + d * (s.a + d * jerk / 2.0),
+                s.a + d * jerk,
+            ];
+            (d > 0.0).then_some(Phase {
+                t,
+                duration: d,
+                start: [s.p, s.v, s.a],
+                end,
+                jerk,
+            })
         })
         .collect();
     Ok(Profile {
