@@ -926,16 +926,13 @@ fn primitives_dmp_goal_and_promp_via_point() {
 
 #[test]
 fn a_slow_request_does_not_block_the_others_and_a_full_pool_answers_503() {
-    // One worker, waits of at most 1 s.
+    // One worker per class, waits of at most 1 s.
     let s = Studio::start(&["--workers", "1", "--queue-timeout", "1"]);
     let addr = s.addr;
     let slow = std::thread::spawn(move || {
         let t = Instant::now();
-        let r = post(
-            addr,
-            "/api/plan",
-            &default_plan(json!({"method": "ni", "gridpoints": 20000})),
-        );
+        let body = default_plan(json!({"method": "ni", "gridpoints": 20000}));
+        let r = post(addr, "/api/plan", &body);
         (r.status, t.elapsed())
     });
     std::thread::sleep(Duration::from_millis(300));
@@ -944,8 +941,12 @@ fn a_slow_request_does_not_block_the_others_and_a_full_pool_answers_503() {
     assert_eq!(get(s.addr, "/api/health").status, 200);
     assert_eq!(get(s.addr, "/").status, 200);
     let quick = t.elapsed();
-    // The only worker is busy: a computation waits 1 s, then 503.
-    let r = post(s.addr, "/api/profiles", &json!({}));
+    // The lessons have their own workers: answered while the plan runs.
+    let t = Instant::now();
+    assert_eq!(post(s.addr, "/api/profiles", &json!({})).status, 200);
+    let lesson = t.elapsed();
+    // The only planning worker is busy: another plan waits 1 s, then 503.
+    let r = post(s.addr, "/api/plan", &default_plan(json!({})));
     let (status, took) = slow.join().unwrap();
     assert!(
         took > Duration::from_millis(1500),
@@ -953,7 +954,11 @@ fn a_slow_request_does_not_block_the_others_and_a_full_pool_answers_503() {
     );
     assert_eq!(status, 200);
     assert!(quick < Duration::from_millis(500), "{quick:?}");
+    assert!(lesson < took / 2, "{lesson:?} vs {took:?}");
     refused(&r, 503, "", "busy");
     // Afterwards the server is fine.
-    assert_eq!(post(s.addr, "/api/profiles", &json!({})).status, 200);
+    assert_eq!(
+        post(s.addr, "/api/plan", &default_plan(json!({}))).status,
+        200
+    );
 }

@@ -6,8 +6,9 @@
 //! (`lessons/`, [`plan`], [`otg`]); no algorithm is written in JavaScript. The page's files are
 //! embedded in the binary ([`assets`]), so it works offline.
 //!
-//! - [`server`]: routes, bodies (JSON only, size-capped), the bounded worker pool that keeps
-//!   computations off the async executor, 503 when every worker stays busy.
+//! - [`server`]: routes, bodies (JSON only, size-capped), the bounded worker pools (plans,
+//!   everything else) that keep computations off the async executor, 503 when every worker
+//!   stays busy.
 //! - [`error`]: the API's error type and its JSON form (status, message, field, value).
 //! - [`caps`]: the work one request may ask for (waypoints, gridpoints, samples, ...).
 //! - [`lessons`]: one module per lesson (polynomials, Catmull-Rom, B-spline/NURBS, trapezoid vs
@@ -42,7 +43,8 @@ pub struct StudioArgs {
     /// other machines.
     #[arg(long, value_name = "IP:PORT", default_value = "127.0.0.1:8765")]
     pub addr: SocketAddr,
-    /// Computations run at the same time (each on its own thread; further requests wait).
+    /// Computations run at the same time, per class (plans; everything else), each on its
+    /// own thread; further requests wait (see --queue-timeout).
     #[arg(long, value_name = "N", default_value_t = default_workers(), value_parser = clap::value_parser!(u16).range(1..=64))]
     pub workers: u16,
     /// Longest wait in seconds for a free worker before a request is refused with 503.
@@ -61,7 +63,7 @@ pub fn run(a: &StudioArgs) -> CliResult<u8> {
     let workers = usize::from(a.workers);
     let rt = tokio::runtime::Builder::new_multi_thread()
         .worker_threads(2)
-        .max_blocking_threads(workers + 2)
+        .max_blocking_threads(2 * workers + 2)
         .enable_all()
         .build()
         .map_err(|e| CliError(format!("studio: cannot start the runtime: {e}")))?;

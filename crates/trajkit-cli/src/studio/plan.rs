@@ -447,8 +447,18 @@ fn sample_table(
         .map_err(|e| ApiError::from_lib("rate", e))
 }
 
-/// Answers `POST /api/plan`.
-pub fn handle(req: Request, format: Format) -> ApiResult<Output> {
+/// A plan request read and checked, ready to plan: everything [`run`] needs.
+pub struct Prepared {
+    limits: Limits,
+    waypoints: Waypoints,
+    removed: usize,
+    options: Options,
+    rate: f64,
+}
+
+/// Reads and checks a plan request (limits, waypoints, options, caps): cheap, so that bad
+/// requests are refused without waiting for a planning worker.
+pub fn prepare(req: Request) -> ApiResult<Prepared> {
     let limits = req.limits.load()?;
     require(&limits, Order::Velocity, "planning")?;
     require(&limits, Order::Acceleration, "planning")?;
@@ -461,7 +471,25 @@ pub fn handle(req: Request, format: Format) -> ApiResult<Output> {
         ));
     }
     let options = Options::from_request(&req)?;
-    let (w, removed) = waypoints(&req, &limits)?;
+    let (waypoints, removed) = waypoints(&req, &limits)?;
+    Ok(Prepared {
+        limits,
+        waypoints,
+        removed,
+        options,
+        rate,
+    })
+}
+
+/// Plans a prepared request and answers it in `format`.
+pub fn run(p: Prepared, format: Format) -> ApiResult<Output> {
+    let Prepared {
+        limits,
+        waypoints: w,
+        removed,
+        options,
+        rate,
+    } = p;
     let planned = plan(&w, &limits, &options)?;
     let traj = &*planned.traj;
     // The check: every limit the trajectory was planned for, at 1 kHz (fewer samples for very

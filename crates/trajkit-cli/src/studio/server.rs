@@ -3,10 +3,13 @@
 //!
 //! Each API request is answered in three steps: the executor checks the method, the content
 //! type and the body size (cheap, never blocks); the request then waits (at most the queue
-//! timeout, `--queue-timeout`, 20 s by default) for one of `workers` permits; with a permit, `spawn_blocking` parses the
-//! JSON, calls the lesson's function and serializes the answer on tokio's blocking pool. A slow
-//! request therefore holds one worker and no executor thread: static files, refusals and the
-//! other workers keep going. When every worker stays busy past the queue timeout, the request
+//! timeout, `--queue-timeout`, 20 s by default) for one of `workers` permits of its class;
+//! with a permit, `spawn_blocking` parses the JSON, calls the lesson's function and serializes
+//! the answer on tokio's blocking pool. A slow request therefore holds one worker and no
+//! executor thread: static files, refusals and the other workers keep going. There are two
+//! classes with `workers` permits each: plans (`/api/plan`, up to about a second each) and
+//! everything else (milliseconds), so that the lessons' dragging stays responsive while plans
+//! are computed. When every worker of a class stays busy past the queue timeout, the request
 //! is refused with 503 instead of queueing forever.
 
 use super::assets;
@@ -31,7 +34,10 @@ use tokio::sync::Semaphore;
 /// Shared by every request.
 #[derive(Clone)]
 pub struct AppState {
-    permits: Arc<Semaphore>,
+    /// Permits of the plans.
+    heavy: Arc<Semaphore>,
+    /// Permits of every other computation.
+    light: Arc<Semaphore>,
     workers: usize,
     queue_wait: Duration,
     /// `host:port` names accepted in the Host header (DNS-rebinding guard) when listening on
@@ -40,11 +46,12 @@ pub struct AppState {
 }
 
 impl AppState {
-    /// `workers` computations at once, each request waiting at most `queue_wait` for one;
-    /// `hosts` as in the field's documentation.
+    /// `workers` computations at once per class, each request waiting at most `queue_wait`
+    /// for one; `hosts` as in the field's documentation.
     pub fn new(workers: usize, queue_wait: Duration, hosts: Vec<String>) -> Self {
         AppState {
-            permits: Arc::new(Semaphore::new(workers)),
+            heavy: Arc::new(Semaphore::new(workers)),
+            light: Arc::new(Semaphore::new(workers)),
             workers,
             queue_wait,
             hosts: Arc::new(hosts),
@@ -108,23 +115,24 @@ impl IntoResponse for ApiError {
     }
 }
 
-/// Runs `job` on the blocking pool once a worker is free (see the module documentation).
-async fn compute<F>(st: &AppState, job: F) -> Reply
+/// Runs `job` on the blocking pool once a worker of `pool` is free (see the module
+/// documentation); the refusal when none is free in time (503) or the job failed (500).
+async fn compute<F, T>(st: &AppState, pool: &Arc<Semaphore>, job: F) -> Result<T, Reply>
 where
-    F: FnOnce() -> Reply + Send + 'static,
+    F: FnOnce() -> T + Send + 'static,
+    T: Send + 'static,
 {
-    let permit = match tokio::time::timeout(st.queue_wait, st.permits.clone().acquire_owned()).await
-    {
+    let permit = match tokio::time::timeout(st.queue_wait, pool.clone().acquire_owned()).await {
         Ok(Ok(p)) => p,
         _ => {
-            return Reply::error(&ApiError::plain(
+            return Err(Reply::error(&ApiError::plain(
                 StatusCode::SERVICE_UNAVAILABLE,
                 format!(
-                    "busy: all {} workers stayed busy for {} s; try again",
+                    "busy: all {} workers of this kind of request stayed busy for {} s; try again",
                     st.workers,
                     st.queue_wait.as_secs()
                 ),
-            ))
+            )))
         }
     };
     match tokio::task::spawn_blocking(move || {
@@ -133,12 +141,16 @@ where
     })
     .await
     {
-        Ok(reply) => reply,
-        Err(e) => Reply::error(&ApiError::plain(
+        Ok(v) => Ok(v),
+        Err(e) => Err(Reply::error(&ApiError::plain(
             StatusCode::INTERNAL_SERVER_ERROR,
             format!("internal error (a bug in trajkit, please report it): {e}"),
-        )),
+        ))),
     }
+}
+
+fn either(r: Result<Reply, Reply>) -> Reply {
+    r.unwrap_or_else(|e| e)
 }
 
 /// The body of a JSON request, or the refusal: 413 beyond the cap, 415 without a JSON
@@ -181,10 +193,12 @@ where
                 Ok(b) => b,
                 Err(e) => return Reply::error(&e),
             };
-            compute(&st, move || {
-                Reply::json(parse_json::<Req>(&bytes).and_then(f))
-            })
-            .await
+            either(
+                compute(&st, &st.light, move || {
+                    Reply::json(parse_json::<Req>(&bytes).and_then(f))
+                })
+                .await,
+            )
         },
     )
 }
@@ -208,9 +222,18 @@ async fn plan_endpoint(
         Ok(b) => b,
         Err(e) => return Reply::error(&e),
     };
-    compute(&st, move || {
-        let out = parse_json::<plan::Request>(&bytes).and_then(|r| plan::handle(r, format));
-        match out {
+    // Read and check on a light worker (bad requests are refused at once), plan on a heavy one.
+    let prepared = match compute(&st, &st.light, move || {
+        parse_json::<plan::Request>(&bytes).and_then(plan::prepare)
+    })
+    .await
+    {
+        Ok(Ok(p)) => p,
+        Ok(Err(e)) => return Reply::error(&e),
+        Err(reply) => return reply,
+    };
+    either(
+        compute(&st, &st.heavy, move || match plan::run(prepared, format) {
             Ok(plan::Output::Summary(r)) => Reply::json(Ok(r)),
             Ok(plan::Output::Table(content_type, text)) => Reply {
                 status: StatusCode::OK,
@@ -223,9 +246,9 @@ async fn plan_endpoint(
                 }),
             },
             Err(e) => Reply::error(&e),
-        }
-    })
-    .await
+        })
+        .await,
+    )
 }
 
 async fn otg_endpoint(
@@ -237,7 +260,12 @@ async fn otg_endpoint(
         Ok(b) => b,
         Err(e) => return Reply::error(&e),
     };
-    compute(&st, move || Reply::json(otg::otg_request(&bytes))).await
+    either(
+        compute(&st, &st.light, move || {
+            Reply::json(otg::otg_request(&bytes))
+        })
+        .await,
+    )
 }
 
 fn static_file(name: &str) -> Response {
