@@ -19,6 +19,12 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 use studio_common::{default_waypoints_csv, request, Studio};
 
+/// Checks an answer (status, body); `Err` says what is wrong.
+type Check = Box<dyn Fn(u16, &[u8]) -> Result<(), String> + Send + Sync>;
+
+/// One answered request: its kind, latency and verdict.
+type Outcome = (usize, Duration, Result<(), String>);
+
 /// One kind of request: a name, how to send it, what the answer must be.
 struct Kind {
     name: &'static str,
@@ -26,8 +32,8 @@ struct Kind {
     path: &'static str,
     content_type: Option<&'static str>,
     body: Vec<u8>,
-    /// Checks the answer (status, body); `Err` says what is wrong.
-    check: Box<dyn Fn(u16, &[u8]) -> Result<(), String> + Send + Sync>,
+    /// Checks the answer.
+    check: Check,
 }
 
 fn json_body(v: Value) -> Vec<u8> {
@@ -331,8 +337,7 @@ fn thousands_of_mixed_requests_from_dozens_of_clients() {
         alone.push((k, d));
     }
     let next = Arc::new(AtomicUsize::new(0));
-    let results: Arc<Mutex<Vec<(usize, Duration, Result<(), String>)>>> =
-        Arc::new(Mutex::new(Vec::with_capacity(total)));
+    let results: Arc<Mutex<Vec<Outcome>>> = Arc::new(Mutex::new(Vec::with_capacity(total)));
     let deadline = Instant::now() + Duration::from_secs(600);
     let start = Instant::now();
     let threads: Vec<_> = (0..clients)
