@@ -151,13 +151,17 @@ test('bspline: dragging a control point changes the curve only near it', async (
   // The support of the dragged point is highlighted on the curve and in the basis plot.
   assert.ok((await page.locator('[data-testid=support-curve]').getAttribute('d')).length > 50);
   assert.equal(await page.locator('[data-testid=weight-label]').innerText(), 'weight of P6');
-  // NURBS: raise the weight of P6 to 5, the curve moves towards it.
+  // NURBS: select P3, raise its weight to 5: the curve is pulled towards it.
   await page.locator('[data-testid=check-nurbs]').check();
   await settled(page, await completed(page) - 1);
+  await page.locator('[data-handle=P3] circle').click();
+  assert.equal(await page.locator('[data-testid=weight-label]').innerText(), 'weight of P3');
+  const unweighted = await curve.getAttribute('d');
   const m = await completed(page);
   await page.locator('[data-testid=weight-5]').click();
   await settled(page, m);
   assert.match(await page.locator('[data-testid=weight-value]').innerText(), /w = 5/);
+  assert.notEqual(await curve.getAttribute('d'), unweighted);
   assert.deepEqual(errors, []);
   await page.screenshot({ path: join(SHOTS, 'bspline-dragged.png') });
   await page.close();
@@ -245,6 +249,7 @@ test('primitives: dragging the DMP goal moves the rollout\'s end', async () => {
   await settled(page, n);
   assert.notEqual(await rollout.getAttribute('d'), before);
   await page.locator('[data-testid=replay]').click();
+  await page.screenshot({ path: join(SHOTS, 'primitives-goal.png') });
   // ProMP: the conditioned mean is drawn.
   assert.ok(await page.locator('[data-testid=promp-svg] path.c2').count() > 0);
   assert.deepEqual(errors, []);

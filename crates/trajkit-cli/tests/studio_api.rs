@@ -962,3 +962,110 @@ fn a_slow_request_does_not_block_the_others_and_a_full_pool_answers_503() {
         200
     );
 }
+
+/// Every leaf of `v` (by JSON pointer), arrays' first two entries only.
+fn leaves(v: &Value, at: String, out: &mut Vec<String>) {
+    match v {
+        Value::Object(m) => {
+            for (k, x) in m {
+                leaves(x, format!("{at}/{k}"), out);
+            }
+        }
+        Value::Array(a) => {
+            for (i, x) in a.iter().enumerate().take(2) {
+                leaves(x, format!("{at}/{i}"), out);
+            }
+        }
+        _ => out.push(at),
+    }
+}
+
+#[test]
+fn no_input_makes_the_server_fail() {
+    // Each leaf of a valid request of every endpoint replaced by each of a set of hostile
+    // values: the answer is a success or a refusal (4xx) with an error naming it, never a
+    // server error, and the server stays up.
+    let mut s = Studio::start(&[]);
+    let t: Vec<f64> = (0..=10).map(|k| k as f64 / 10.0).collect();
+    let demo = json!({"t": t, "q": t.iter().map(|&x| [x, x * x]).collect::<Vec<_>>()});
+    let requests = [
+        (
+            "/api/polynomials",
+            json!({"delta_q": 1, "duration": 1, "samples": 11,
+            "limits": {"velocity": 2, "acceleration": 10, "jerk": 100}}),
+        ),
+        (
+            "/api/catmull-rom",
+            json!({"points": [[0, 0], [1, 2], [3, 1]], "kinds": ["chordal"], "samples_per_segment": 4}),
+        ),
+        (
+            "/api/bspline",
+            json!({"control_points": [[0, 0], [1, 2], [3, 1], [4, 0]], "degree": 2,
+            "weights": [1, 2, 1, 1], "compare_degree": 1, "samples": 11}),
+        ),
+        (
+            "/api/profiles",
+            json!({"distance": 1, "v_max": 0.6, "a_max": 1, "j_max": 4, "samples": 11}),
+        ),
+        (
+            "/api/otg",
+            json!({"current_position": [0, 1], "target_position": [1, 0], "max_velocity": [1, 1],
+            "max_acceleration": [2, 2], "max_jerk": [10, 10], "min_velocity": [-1, -1], "enabled": [true, true],
+            "minimum_duration": 1, "synchronization": "time", "dt": 0.1}),
+        ),
+        (
+            "/api/dmp",
+            json!({"demo": demo, "goal": [2, 1], "start": [0, 0], "duration": 1, "n_basis": 10, "samples": 11}),
+        ),
+        (
+            "/api/promp",
+            json!({"demos": [demo, demo], "via": [{"t": 0.5, "q": [0.5, 0.3], "variance": 0.01}],
+            "n_basis": 5, "samples": 11}),
+        ),
+        (
+            "/api/plan",
+            json!({"waypoints": [[0, 0], [0.5, 0.2], [1, -0.3]], "joint_names": ["a", "b"],
+            "limits": {"preset": "panda", "max_velocity": [1], "max_acceleration": [2], "max_jerk": [50],
+                "velocity_scale": 1, "acceleration_scale": 1, "jerk_scale": 1},
+            "method": "toppra", "path": "natural", "gridpoints": 50, "jerk_limit": true, "rate": 20, "phase_plane": true}),
+        ),
+    ];
+    let hostile = [
+        json!(0),
+        json!(-1),
+        json!(1e308),
+        json!(-1e308),
+        json!(18446744073709551615u64),
+        json!(0.5),
+        json!("x"),
+        json!(null),
+        json!([]),
+        json!({}),
+        json!(true),
+    ];
+    let mut count = 0;
+    for (path, body) in &requests {
+        let mut at = Vec::new();
+        leaves(body, String::new(), &mut at);
+        for pointer in &at {
+            for h in &hostile {
+                let mut b = body.clone();
+                *b.pointer_mut(pointer).unwrap() = h.clone();
+                let r = post(s.addr, path, &b);
+                count += 1;
+                assert!(
+                    r.status == 200 || (400..500).contains(&r.status),
+                    "{path} {pointer} = {h}: {} {}",
+                    r.status,
+                    String::from_utf8_lossy(&r.body)
+                );
+                if r.status != 200 {
+                    assert!(!r.error().0.is_empty());
+                }
+            }
+        }
+    }
+    assert!(count > 500, "{count}");
+    assert!(s.alive());
+    assert_eq!(get(s.addr, "/api/health").status, 200);
+}

@@ -261,6 +261,18 @@ impl Options {
     }
 }
 
+/// The phase plane when the request asks for it.
+fn maybe_phase<P: trajkit::Path + Clone>(
+    o: &Options,
+    raw: &trajkit::topp::messy::Sequence<trajkit::topp::Parametrized<P>>,
+    played: Option<&trajkit::topp::messy::Sequence<trajkit::topp::jerk::JerkLimited<P>>>,
+    limits: &Limits,
+) -> ApiResult<Option<PhasePlane>> {
+    o.phase_plane
+        .then(|| phase_plane(raw, played, limits))
+        .transpose()
+}
+
 /// Plans `w` under `limits` with `o`: the library calls of `trajkit plan`.
 pub fn plan(w: &Waypoints, limits: &Limits, o: &Options) -> ApiResult<Planned> {
     let lib = |e| ApiError::from_lib("", e);
@@ -307,17 +319,11 @@ pub fn plan(w: &Waypoints, limits: &Limits, o: &Options) -> ApiResult<Planned> {
                     raw.duration(),
                     100.0 * (jl.duration() / raw.duration() - 1.0)
                 ));
-                let phase = o
-                    .phase_plane
-                    .then(|| phase_plane(&raw, Some(&jl), limits))
-                    .transpose()?;
+                let phase = maybe_phase(o, &raw, Some(&jl), limits)?;
                 (Box::new(jl), phase)
             } else {
                 notes.push(format!("jerk: not bounded (jerk_limit false): {name}'s path acceleration is piecewise constant; jerk is not checked"));
-                let phase = o
-                    .phase_plane
-                    .then(|| phase_plane(&raw, None, limits))
-                    .transpose()?;
+                let phase = maybe_phase(o, &raw, None, limits)?;
                 (Box::new(raw), phase)
             }
         }
@@ -328,10 +334,7 @@ pub fn plan(w: &Waypoints, limits: &Limits, o: &Options) -> ApiResult<Planned> {
             };
             let raw = trajkit::topp::plan_totg(w.points(), w.dof(), limits, &opts).map_err(lib)?;
             notes.push(format!("jerk: not bounded: the blended path (max deviation {}) is only C¹, so joint acceleration jumps where arcs meet segments; jerk is not checked", o.max_deviation));
-            let phase = o
-                .phase_plane
-                .then(|| phase_plane(&raw, None, limits))
-                .transpose()?;
+            let phase = maybe_phase(o, &raw, None, limits)?;
             (Box::new(raw), phase)
         }
         Method::Poly => {
@@ -423,12 +426,8 @@ fn waypoints(r: &Request, limits: &Limits) -> ApiResult<(Waypoints, usize)> {
     Ok((w, removed))
 }
 
-/// Samples at `rate` with the caps on rows and values.
-fn sample_table(
-    traj: &dyn Trajectory,
-    rate: f64,
-    names: &[String],
-) -> ApiResult<trajkit::SampleTable> {
+/// The sample times at `rate`, within the caps on rows and values.
+fn sample_times(traj: &dyn Trajectory, rate: f64) -> ApiResult<Vec<f64>> {
     let rows = traj.duration() * rate;
     let cap = caps::MAX_SAMPLE_ROWS.min(caps::MAX_SAMPLE_VALUES / (4 * traj.dof()));
     if rows > cap as f64 {
@@ -442,7 +441,16 @@ fn sample_table(
             ),
         ));
     }
-    trajkit::sample::sample(traj, rate)
+    trajkit::sample::sample_times(traj.duration(), rate).map_err(|e| ApiError::from_lib("rate", e))
+}
+
+/// The sample table at `rate` (capped), with the joint names.
+fn sample_table(
+    traj: &dyn Trajectory,
+    rate: f64,
+    names: &[String],
+) -> ApiResult<trajkit::SampleTable> {
+    trajkit::sample::sample_at(traj, sample_times(traj, rate)?)
         .and_then(|t| t.with_names(names.to_vec()))
         .map_err(|e| ApiError::from_lib("rate", e))
 }
@@ -530,19 +538,19 @@ pub fn run(p: Prepared, format: Format) -> ApiResult<Output> {
         }
         Format::Summary => {}
     }
-    let times = sample_table(traj, rate, &names)?.times().to_vec();
+    let times = sample_times(traj, rate)?;
     let limits_out = limits
         .joints()
         .iter()
-        .map(|j| JointLimitsOut {
-            name: j.name.clone(),
-            position: [j.position_min, j.position_max],
-            velocity: [j.range(Order::Velocity).0, j.range(Order::Velocity).1],
-            acceleration: [
-                j.range(Order::Acceleration).0,
-                j.range(Order::Acceleration).1,
-            ],
-            jerk: [j.range(Order::Jerk).0, j.range(Order::Jerk).1],
+        .map(|j| {
+            let range = |o| <[f64; 2]>::from(j.range(o));
+            JointLimitsOut {
+                name: j.name.clone(),
+                position: [j.position_min, j.position_max],
+                velocity: range(Order::Velocity),
+                acceleration: range(Order::Acceleration),
+                jerk: range(Order::Jerk),
+            }
         })
         .collect();
     Ok(Output::Summary(Box::new(Response {
