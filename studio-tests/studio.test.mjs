@@ -232,6 +232,19 @@ test('plan: the default path is planned, plotted and downloadable', async () => 
   await settled(page, n);
   const totg = await page.locator('[data-testid=plan-duration]').innerText();
   assert.notEqual(totg, r.duration.toFixed(4));
+  // Upload limits: a MoveIt joint_limits.yaml, slower than the Panda; TOPP-RA again.
+  const joints = [1, 2, 3, 4, 5, 6, 7].map((j) => `  panda_joint${j}:\n    has_velocity_limits: true\n    max_velocity: 1.0\n`
+    + '    has_acceleration_limits: true\n    max_acceleration: 5.0\n    has_jerk_limits: true\n    max_jerk: 1000\n').join('');
+  await page.locator('[data-testid=limits-file]').setInputFiles({
+    name: 'joint_limits.yaml', mimeType: 'text/yaml', buffer: Buffer.from(`joint_limits:\n${joints}`),
+  });
+  await page.locator('[data-testid=select-method]').selectOption('toppra');
+  const m = await completed(page);
+  await page.locator('[data-testid=plan-button]').click();
+  await settled(page, m);
+  const slower = Number(await page.locator('[data-testid=plan-duration]').innerText());
+  assert.ok(slower > r.duration * 1.5, `${slower} vs ${r.duration}`);
+  assert.match(await page.locator('[data-testid=plan-check]').innerText(), /100\.0 %|99\.\d %/);
   assert.deepEqual(errors, []);
   await page.close();
 });

@@ -47,9 +47,20 @@ pub struct StudioArgs {
     /// own thread; further requests wait (see --queue-timeout).
     #[arg(long, value_name = "N", default_value_t = default_workers(), value_parser = clap::value_parser!(u16).range(1..=64))]
     pub workers: u16,
-    /// Longest wait in seconds for a free worker before a request is refused with 503.
-    #[arg(long, value_name = "SECONDS", default_value_t = 20, value_parser = clap::value_parser!(u16).range(1..=3600))]
-    pub queue_timeout: u16,
+    /// Longest wait in seconds for a free worker before a request is refused with 503
+    /// (0.01 to 3600).
+    #[arg(long, value_name = "SECONDS", default_value_t = 20.0, value_parser = parse_wait)]
+    pub queue_timeout: f64,
+}
+
+/// Parses `--queue-timeout`.
+fn parse_wait(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(v) if (0.01..=3600.0).contains(&v) => Ok(v),
+        _ => Err(format!(
+            "'{s}' is not a number of seconds from 0.01 to 3600"
+        )),
+    }
 }
 
 fn default_workers() -> u16 {
@@ -93,7 +104,7 @@ pub fn run(a: &StudioArgs) -> CliResult<u8> {
         };
         println!("trajkit studio: http://{local}/ (Ctrl-C to stop)");
         let _ = std::io::stdout().flush();
-        let wait = std::time::Duration::from_secs(u64::from(a.queue_timeout));
+        let wait = std::time::Duration::from_secs_f64(a.queue_timeout);
         let app = server::router(server::AppState::new(workers, wait, hosts));
         axum::serve(listener, app)
             .with_graceful_shutdown(async {

@@ -130,7 +130,7 @@ where
                 format!(
                     "busy: all {} workers of this kind of request stayed busy for {} s; try again",
                     st.workers,
-                    st.queue_wait.as_secs()
+                    st.queue_wait.as_secs_f64()
                 ),
             )))
         }
