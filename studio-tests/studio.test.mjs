@@ -263,6 +263,21 @@ test('primitives: dragging the DMP goal moves the rollout\'s end', async () => {
   assert.notEqual(await rollout.getAttribute('d'), before);
   await page.locator('[data-testid=replay]').click();
   await page.screenshot({ path: join(SHOTS, 'primitives-goal.png') });
+  // Draw a demonstration with the mouse: the DMP is learned from it.
+  await page.locator('[data-testid=draw-demo]').click();
+  const area = await page.locator('[data-testid=dmp-area]').boundingBox();
+  const n2 = await completed(page);
+  await page.mouse.move(area.x + 60, area.y + area.height - 60);
+  await page.mouse.down();
+  for (let k = 1; k <= 20; k += 1) {
+    await page.mouse.move(area.x + 60 + 20 * k, area.y + area.height - 60 - 10 * k + (k % 5) * 6);
+    await page.waitForTimeout(15);
+  }
+  await page.mouse.up();
+  await settled(page, n2);
+  const info = await page.locator('[data-testid=dmp-info]').innerText();
+  const samples = Number(info.match(/demonstration: (\d+) samples/)[1]);
+  assert.ok(samples >= 3 && samples !== 76, info);
   // ProMP: the conditioned mean is drawn.
   assert.ok(await page.locator('[data-testid=promp-svg] path.c2').count() > 0);
   assert.deepEqual(errors, []);
