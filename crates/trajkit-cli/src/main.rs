@@ -6,6 +6,7 @@
 #![forbid(unsafe_code)]
 
 mod cmd;
+mod studio;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -43,6 +44,9 @@ enum Command {
     Spline(cmd::spline::SplineArgs),
     /// Online generation: time-optimal jerk-limited motion from any state to a target state.
     Otg(cmd::otg::OtgArgs),
+    /// The interactive lessons in a browser: a local web server on the library (and its JSON
+    /// API).
+    Studio(studio::StudioArgs),
 }
 
 fn main() -> ExitCode {
@@ -76,6 +80,7 @@ fn main() -> ExitCode {
         Command::Kmp(a) => cmd::kmp::run(a),
         Command::Spline(a) => cmd::spline::run(a),
         Command::Otg(a) => cmd::otg::run(a),
+        Command::Studio(a) => studio::run(a),
     };
     match result {
         Ok(code) => ExitCode::from(code),

@@ -247,3 +247,99 @@ impl crate::Path for Nurbs {
         v
     }
 }
+
+impl Nurbs {
+    /// The rational basis functions `R_i(s) = N_{i,k}(s) w_i / Σ_j N_{j,k}(s) w_j` that are
+    /// non-zero at `s` (clamped to the base interval), written to `values[..=k]`; returns the
+    /// index of the first of them, so `C(s) = Σ_r values[r] · P_{first + r}`. They are
+    /// non-negative and sum to 1 (partition of unity, to rounding), and with equal weights
+    /// they are the B-spline basis. `values` must hold at least `k + 1` entries. NaN `s`
+    /// writes NaN and returns 0. No allocation.
+    ///
+    /// ```
+    /// use trajkit::spline::Nurbs;
+    /// let c = Nurbs::circle([0.0, 0.0], 1.0)?;
+    /// let mut r = [0.0; 3];
+    /// let first = c.rational_basis(0.3, &mut r);
+    /// assert!((r.iter().sum::<f64>() - 1.0).abs() < 1e-15);
+    /// assert!(first + 3 <= c.weights().len());
+    /// # Ok::<(), trajkit::Error>(())
+    /// ```
+    pub fn rational_basis(&self, s: f64, values: &mut [f64]) -> usize {
+        let k = self.k;
+        let values = &mut values[..=k];
+        if s.is_nan() {
+            values.fill(f64::NAN);
+            return 0;
+        }
+        let (a, b) = self.domain();
+        let s = s.clamp(a, b);
+        let l = find_span(&self.t, k, s);
+        let mut n = [0.0; K1];
+        basis_ders(&self.t, k, l, s, 0, &mut n);
+        let mut total = 0.0;
+        for r in 0..=k {
+            values[r] = n[r] * self.w[l - k + r];
+            total += values[r];
+        }
+        for v in values.iter_mut() {
+            *v /= total;
+        }
+        l - k
+    }
+}
+
+#[cfg(test)]
+mod rational_basis_tests {
+    use super::*;
+
+    #[test]
+    fn partition_of_unity_and_curve_reconstruction() {
+        // 7 control points in the plane, degree 3, one weight raised to 5.
+        let pts = [
+            0.0, 0.0, 1.0, 2.0, 2.0, -1.0, 3.0, 1.5, 4.0, 0.0, 5.0, 2.0, 6.0, 0.5,
+        ];
+        let w = [1.0, 1.0, 1.0, 5.0, 1.0, 1.0, 1.0];
+        let t = BSpline::clamped_uniform_knots(7, 3, 0.0, 1.0);
+        let c = Nurbs::new(&t, &pts, &w, 2, 3).unwrap();
+        let mut r = [0.0; 4];
+        let mut p = [0.0; 2];
+        for i in 0..=200 {
+            let s = i as f64 / 200.0;
+            let first = c.rational_basis(s, &mut r);
+            assert!(r.iter().all(|&v| v >= 0.0));
+            assert!((r.iter().sum::<f64>() - 1.0).abs() < 1e-14, "s = {s}");
+            let mut q = [0.0; 2];
+            for (m, rv) in r.iter().enumerate() {
+                q[0] += rv * pts[2 * (first + m)];
+                q[1] += rv * pts[2 * (first + m) + 1];
+            }
+            c.eval(s, 0, &mut p);
+            assert!((q[0] - p[0]).abs() < 1e-13 && (q[1] - p[1]).abs() < 1e-13);
+        }
+        // Out of range is clamped, NaN propagates.
+        let first = c.rational_basis(2.0, &mut r);
+        assert_eq!(first + 4, 7);
+        assert!((r[3] - 1.0).abs() < 1e-15);
+        c.rational_basis(f64::NAN, &mut r);
+        assert!(r.iter().all(|v| v.is_nan()));
+    }
+
+    #[test]
+    fn equal_weights_give_the_bspline_basis() {
+        let pts = [0.0, 1.0, 3.0, 2.0, 5.0, 4.0];
+        let t = BSpline::clamped_uniform_knots(6, 2, 0.0, 1.0);
+        let b = BSpline::new(&t, &pts, 1, 2).unwrap();
+        let c = Nurbs::new(&t, &pts, &[2.5; 6], 1, 2).unwrap();
+        let (mut rb, mut rn) = ([0.0; 3], [0.0; 3]);
+        for i in 0..=50 {
+            let s = i as f64 / 50.0;
+            let fb = b.basis(s, 0, &mut rb);
+            let fn_ = c.rational_basis(s, &mut rn);
+            assert_eq!(fb, fn_);
+            for m in 0..3 {
+                assert!((rb[m] - rn[m]).abs() < 1e-15);
+            }
+        }
+    }
+}

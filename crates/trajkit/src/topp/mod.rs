@@ -15,7 +15,8 @@
 //! - [`ni`]: numerical integration in the phase plane (Bobrow / TOPP-NI) on any path, with the
 //!   same constraints;
 //! - [`totg`]: time-optimal trajectory generation (Kunz & Stilman) on a blended path;
-//! - [`messy`]: planner output as it comes: duplicates, reversals, rest-to-rest pieces.
+//! - [`messy`]: planner output as it comes: duplicates, reversals, rest-to-rest pieces;
+//! - [`mvc`]: the maximum velocity curve of a problem (the phase-plane limit above a profile).
 //!
 //! ```
 //! use trajkit::topp::{Gridpoints, LinearPath, Toppra};
@@ -44,6 +45,7 @@ pub mod grid;
 pub mod jerk;
 pub mod lp;
 pub mod messy;
+pub mod mvc;
 pub mod ni;
 pub mod parametrized;
 pub mod paths;
