@@ -100,6 +100,121 @@ pub enum Error {
     /// zero); the message says where and why.
     #[error("infeasible: {0}")]
     Infeasible(String),
+    /// A limit the operation needs was given by no source. An absent limit is never read as
+    /// "unlimited": the caller supplies it, or states infinity explicitly.
+    #[error(
+        "{} has no {field} limit (none was given; supply one, or state it as unlimited explicitly)",
+        joint_label(*joint, name)
+    )]
+    MissingLimit {
+        /// 0-based joint index (messages print it 1-based).
+        joint: usize,
+        /// Joint name; may be empty.
+        name: String,
+        /// The missing field: `"velocity"`, `"acceleration"`, `"jerk"` or `"position range"`.
+        field: &'static str,
+    },
+    /// Waypoint columns and limits both name their joints, and some waypoint column has no
+    /// limits of that name.
+    #[error(
+        "no limits for waypoint joint(s) {}: the waypoints name [{}], the limits name [{}]",
+        missing.join(", "),
+        waypoint_names.join(", "),
+        limit_names.join(", ")
+    )]
+    JointNames {
+        /// The waypoint columns without limits.
+        missing: Vec<String>,
+        /// Every waypoint column name, in order.
+        waypoint_names: Vec<String>,
+        /// Every joint name of the limits, in order.
+        limit_names: Vec<String>,
+    },
+    /// A count the caller controls (waypoints, gridpoints, samples, basis functions, ...)
+    /// would need more memory or work than trajkit allows; checked before allocating.
+    #[error("{what} = {value} is above the limit of {limit} ({reason})")]
+    TooLarge {
+        /// What was counted, e.g. `"sample count (duration × rate)"`.
+        what: String,
+        /// The count asked for.
+        value: f64,
+        /// The largest count allowed.
+        limit: f64,
+        /// Why the limit is there, e.g. `"each sample of 7 joints takes 232 bytes; budget 1 GiB"`.
+        reason: String,
+    },
+    /// A trajectory leaves a joint's position range.
+    #[error(
+        "{} reaches {value} at t = {time} s, outside its position range [{lo}, {hi}] by {}",
+        joint_label(*joint, name),
+        excess(*value, *lo, *hi)
+    )]
+    OutOfRange {
+        /// 0-based joint index.
+        joint: usize,
+        /// Joint name; may be empty.
+        name: String,
+        /// When (seconds; the path parameter where no time exists yet).
+        time: f64,
+        /// The position reached.
+        value: f64,
+        /// Lower end of the range.
+        lo: f64,
+        /// Upper end of the range.
+        hi: f64,
+    },
+    /// A waypoint lies outside its joint's position range: no motion through it is allowed.
+    #[error(
+        "waypoint {waypoint} {} = {value} is outside the position range [{lo}, {hi}]",
+        joint_label(*joint, name)
+    )]
+    WaypointOutOfRange {
+        /// 0-based waypoint index (in the input, before duplicates are removed).
+        waypoint: usize,
+        /// 0-based joint index.
+        joint: usize,
+        /// Joint name; may be empty.
+        name: String,
+        /// The waypoint's position.
+        value: f64,
+        /// Lower end of the range.
+        lo: f64,
+        /// Upper end of the range.
+        hi: f64,
+    },
+    /// A trajectory exceeds a velocity, acceleration or jerk limit.
+    #[error(
+        "{} {field} {value} at t = {time} s is {ratio} × its limit",
+        joint_label(*joint, name)
+    )]
+    LimitExceeded {
+        /// 0-based joint index.
+        joint: usize,
+        /// Joint name; may be empty.
+        name: String,
+        /// `"velocity"`, `"acceleration"` or `"jerk"`.
+        field: &'static str,
+        /// The value reached.
+        value: f64,
+        /// Its ratio to the limit (directional limits respected).
+        ratio: f64,
+        /// When, in seconds.
+        time: f64,
+    },
+}
+
+/// `joint 3 (elbow)`, or `joint 3` when unnamed (`joint` is 0-based).
+pub(crate) fn joint_label(joint: usize, name: &str) -> String {
+    if name.is_empty() {
+        format!("joint {}", joint + 1)
+    } else {
+        format!("joint {} ({name})", joint + 1)
+    }
+}
+
+/// How far `value` lies outside `[lo, hi]` (0 inside).
+fn excess(value: f64, lo: f64, hi: f64) -> f64 {
+    (lo - value).max(value - hi).max(0.0)
 }
 
 /// Checks that `value` is finite; `field` names it in the error.
@@ -153,6 +268,35 @@ mod tests {
             "waypoint 3 repeats waypoint 2 (zero-length segment)"
         );
         assert!(finite(|| "t".into(), f64::NAN).is_err());
+        let e = Error::MissingLimit {
+            joint: 2,
+            name: "elbow".into(),
+            field: "acceleration",
+        };
+        assert!(e
+            .to_string()
+            .starts_with("joint 3 (elbow) has no acceleration limit"));
+        let e = Error::OutOfRange {
+            joint: 5,
+            name: String::new(),
+            time: 3.0,
+            value: 3.875,
+            lo: -0.0175,
+            hi: 3.75,
+        };
+        assert_eq!(
+            e.to_string(),
+            "joint 6 reaches 3.875 at t = 3 s, outside its position range [-0.0175, 3.75] by 0.125"
+        );
+        let e = Error::JointNames {
+            missing: vec!["c".into()],
+            waypoint_names: vec!["a".into(), "c".into()],
+            limit_names: vec!["a".into(), "b".into()],
+        };
+        assert_eq!(
+            e.to_string(),
+            "no limits for waypoint joint(s) c: the waypoints name [a, c], the limits name [a, b]"
+        );
         assert_eq!(finite(|| "t".into(), 2.0).unwrap(), 2.0);
     }
 }

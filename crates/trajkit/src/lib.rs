@@ -60,6 +60,7 @@ pub mod poly;
 pub mod primitives;
 pub mod rng;
 pub mod sample;
+pub mod size;
 pub mod spline;
 pub mod topp;
 pub mod traj;
