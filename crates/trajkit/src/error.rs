@@ -114,19 +114,21 @@ pub enum Error {
         /// The missing field: `"velocity"`, `"acceleration"`, `"jerk"` or `"position range"`.
         field: &'static str,
     },
-    /// Waypoint columns and limits both name their joints, and some waypoint column has no
-    /// limits of that name.
+    /// Data (waypoint or table columns) and limits both name their joints, and some data joint
+    /// has no limits of that name.
     #[error(
-        "no limits for waypoint joint(s) {}: the waypoints name [{}], the limits name [{}]",
+        "no limits for {data} joint(s) {}: {data} joints [{}], limit joints [{}]",
         missing.join(", "),
-        waypoint_names.join(", "),
+        names.join(", "),
         limit_names.join(", ")
     )]
     JointNames {
-        /// The waypoint columns without limits.
+        /// What names the joints: `"waypoint"`, `"table"`, `"filled"`.
+        data: &'static str,
+        /// The data joints without limits.
         missing: Vec<String>,
-        /// Every waypoint column name, in order.
-        waypoint_names: Vec<String>,
+        /// Every data joint name, in order.
+        names: Vec<String>,
         /// Every joint name of the limits, in order.
         limit_names: Vec<String>,
     },
@@ -217,6 +219,41 @@ fn excess(value: f64, lo: f64, hi: f64) -> f64 {
     (lo - value).max(value - hi).max(0.0)
 }
 
+/// The known name closest to `given` (edit distance, case-insensitive), when it is close
+/// enough to be a likely misspelling: at most 2 edits, or a third of the longer name. Used to
+/// suggest a field in "unknown field" errors.
+///
+/// ```
+/// use trajkit::error::closest_name;
+/// assert_eq!(closest_name("max_velocityy", &["max_velocity", "max_jerk"]), Some("max_velocity"));
+/// assert_eq!(closest_name("waypionts", &["waypoints", "joint_names"]), Some("waypoints"));
+/// assert_eq!(closest_name("colour", &["waypoints", "joint_names"]), None);
+/// ```
+pub fn closest_name<'a>(given: &str, known: &[&'a str]) -> Option<&'a str> {
+    let g: Vec<char> = given.to_lowercase().chars().collect();
+    let mut best: Option<(usize, &'a str)> = None;
+    for &k in known {
+        let kc: Vec<char> = k.to_lowercase().chars().collect();
+        // Levenshtein distance, one row at a time.
+        let mut row: Vec<usize> = (0..=kc.len()).collect();
+        for (i, &a) in g.iter().enumerate() {
+            let mut prev = row[0];
+            row[0] = i + 1;
+            for (j, &b) in kc.iter().enumerate() {
+                let cur = row[j + 1];
+                row[j + 1] = (prev + usize::from(a != b)).min(row[j] + 1).min(cur + 1);
+                prev = cur;
+            }
+        }
+        let d = row[kc.len()];
+        let allowed = 2.max(g.len().max(kc.len()) / 3);
+        if d <= allowed && best.is_none_or(|(bd, _)| d < bd) {
+            best = Some((d, k));
+        }
+    }
+    best.map(|(_, k)| k)
+}
+
 /// Checks that `value` is finite; `field` names it in the error.
 pub(crate) fn finite(field: impl FnOnce() -> String, value: f64) -> Result<f64> {
     if value.is_finite() {
@@ -289,13 +326,14 @@ mod tests {
             "joint 6 reaches 3.875 at t = 3 s, outside its position range [-0.0175, 3.75] by 0.125"
         );
         let e = Error::JointNames {
+            data: "waypoint",
             missing: vec!["c".into()],
-            waypoint_names: vec!["a".into(), "c".into()],
+            names: vec!["a".into(), "c".into()],
             limit_names: vec!["a".into(), "b".into()],
         };
         assert_eq!(
             e.to_string(),
-            "no limits for waypoint joint(s) c: the waypoints name [a, c], the limits name [a, b]"
+            "no limits for waypoint joint(s) c: waypoint joints [a, c], limit joints [a, b]"
         );
         assert_eq!(finite(|| "t".into(), 2.0).unwrap(), 2.0);
     }

@@ -2,16 +2,24 @@
 //!
 //! [`Limits`] holds one [`JointLimits`] per joint: a position range, maximum velocity,
 //! acceleration and jerk, and optional direction-dependent minima (the most negative velocity
-//! or acceleration allowed; by default the negated maximum). An absent limit is
-//! `f64::INFINITY`. Construction through [`Limits::new`] validates every number: NaN, zero or
-//! negative maxima, positive minima and empty or inverted position ranges are refused with an
-//! error that names the joint, the field and the value.
+//! or acceleration allowed; by default the negated maximum). In `Limits` every field is
+//! meant: `f64::INFINITY` is "unlimited", stated on purpose. Construction through
+//! [`Limits::new`] validates every number: NaN, zero or negative maxima, positive minima and
+//! empty or inverted position ranges are refused with an error that names the joint, the
+//! field and the value.
 //!
-//! Sources of limits: [`presets`] (manufacturer data), [`load`] (trajkit JSON/YAML limits
-//! files, MoveIt `joint_limits.yaml`, URDF `<limit>` tags).
+//! Sources of limits: [`presets`] (manufacturer data, complete), [`load`] (trajkit JSON/YAML
+//! limits files, MoveIt `joint_limits.yaml`, URDF `<limit>` tags). A file may leave limits
+//! out, so the loaders return [`PartialLimits`], which records what was given; an absent
+//! limit is never read as "unlimited": [`PartialLimits::complete`] refuses it where it is
+//! needed ([`crate::Error::MissingLimit`]). Data and limits are paired by joint name where
+//! both name their joints ([`match_names`], [`Limits::for_joints`]).
 
 pub mod load;
+mod partial;
 pub mod presets;
+
+pub use partial::{match_names, FillBy, Given, Needs, PartialLimits};
 
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
