@@ -184,6 +184,21 @@ pub enum Error {
         /// Upper end of the range.
         hi: f64,
     },
+    /// The chosen method cannot hold a limit it was given (a finite jerk limit for a method
+    /// whose jerk is unbounded, say); the reason says why and what to do.
+    #[error("{} {field} limit {value} cannot be held: {reason}", joint_label(*joint, name))]
+    CannotHold {
+        /// 0-based joint index.
+        joint: usize,
+        /// Joint name; may be empty.
+        name: String,
+        /// `"velocity"`, `"acceleration"`, `"jerk"`, `"effort"`.
+        field: &'static str,
+        /// The limit.
+        value: f64,
+        /// Why, and the way out.
+        reason: String,
+    },
     /// A trajectory exceeds a velocity, acceleration or jerk limit.
     #[error(
         "{} {field} {value} at t = {time} s is {ratio} × its limit",
@@ -206,7 +221,7 @@ pub enum Error {
 }
 
 /// `joint 3 (elbow)`, or `joint 3` when unnamed (`joint` is 0-based).
-pub(crate) fn joint_label(joint: usize, name: &str) -> String {
+pub fn joint_label(joint: usize, name: &str) -> String {
     if name.is_empty() {
         format!("joint {}", joint + 1)
     } else {

@@ -358,9 +358,9 @@ impl PartialLimits {
 impl Limits {
     /// The joints at `indices` (into these limits), in that order.
     pub fn select(&self, indices: &[usize]) -> Result<Limits> {
-        Ok(PartialLimits::from(self.clone())
+        PartialLimits::from(self.clone())
             .select(indices)?
-            .complete(Needs::NONE)?)
+            .complete(Needs::NONE)
     }
 
     /// These limits for data (`what`: `"waypoint"`, `"table"`) whose joints are `names`

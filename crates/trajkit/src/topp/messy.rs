@@ -348,8 +348,20 @@ pub fn plan_waypoints(
     options: &PlanOptions,
 ) -> Result<Sequence<Parametrized<PiecePath>>> {
     let paths = piece_paths(waypoints, dim, limits, options)?;
+    time_pieces(paths, limits, options, &mut |_, _| {})
+}
+
+/// Times the pieces of [`piece_paths`] as [`plan_waypoints`] does, calling `progress(done,
+/// total)` after each piece.
+pub fn time_pieces(
+    paths: PiecePaths,
+    limits: &Limits,
+    options: &PlanOptions,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Sequence<Parametrized<PiecePath>>> {
     let kept = paths.kept;
-    let mut pieces = Vec::with_capacity(paths.pieces.len());
+    let total = paths.pieces.len();
+    let mut pieces = Vec::with_capacity(total);
     for (p, PiecePlan { from, to, path }) in paths.pieces.into_iter().enumerate() {
         let opts = Options {
             start_velocity: 0.0,
@@ -367,6 +379,7 @@ pub fn plan_waypoints(
         }
         .map_err(|e| in_piece(e, p, kept[from], kept[to]))?;
         pieces.push(traj);
+        progress(p + 1, total);
     }
     Sequence::new(pieces)
 }
