@@ -39,7 +39,7 @@ impl fmt::Display for Location {
 #[non_exhaustive]
 pub enum Error {
     /// A number is not acceptable for the named field (NaN, infinite, zero, negative, ...).
-    #[error("{field} = {value} {reason}")]
+    #[error("{field} = {} {reason}", show(*value))]
     InvalidValue {
         /// The field, e.g. `"joint 2 velocity limit"`.
         field: String,
@@ -134,7 +134,7 @@ pub enum Error {
     },
     /// A count the caller controls (waypoints, gridpoints, samples, basis functions, ...)
     /// would need more memory or work than trajkit allows; checked before allocating.
-    #[error("{what} = {value} is above the limit of {limit} ({reason})")]
+    #[error("{what} = {} is above the limit of {} ({reason})", show(*value), show(*limit))]
     TooLarge {
         /// What was counted, e.g. `"sample count (duration × rate)"`.
         what: String,
@@ -229,6 +229,17 @@ pub fn joint_label(joint: usize, name: &str) -> String {
     }
 }
 
+/// A number for messages: Rust's shortest form, in exponent notation when it would run to
+/// more than 16 digits (`1e300`, not three hundred zeros).
+fn show(v: f64) -> String {
+    let a = v.abs();
+    if v.is_finite() && a != 0.0 && !(1e-5..1e16).contains(&a) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
+}
+
 /// How far `value` lies outside `[lo, hi]` (0 inside).
 fn excess(value: f64, lo: f64, hi: f64) -> f64 {
     (lo - value).max(value - hi).max(0.0)
@@ -320,6 +331,12 @@ mod tests {
             "waypoint 3 repeats waypoint 2 (zero-length segment)"
         );
         assert!(finite(|| "t".into(), f64::NAN).is_err());
+        let e = Error::InvalidValue {
+            field: "goal".into(),
+            value: 1e300,
+            reason: "is far",
+        };
+        assert_eq!(e.to_string(), "goal = 1e300 is far");
         let e = Error::MissingLimit {
             joint: 2,
             name: "elbow".into(),

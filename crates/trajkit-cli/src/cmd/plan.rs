@@ -428,20 +428,33 @@ fn summary(
         s.push('\n');
     }
     let _ = writeln!(s, "worst limit ratio per joint (velocity / acceleration / jerk, pointwise and finite-difference):");
-    let names = plan.samples.names();
+    let names: Vec<String> = plan
+        .samples
+        .names()
+        .iter()
+        .enumerate()
+        .map(|(j, n)| {
+            if n.is_empty() {
+                format!("q{}", j + 1)
+            } else {
+                n.clone()
+            }
+        })
+        .collect();
+    let width = names
+        .iter()
+        .map(|n| n.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(14);
     for (j, jr) in plan.report.joints.iter().enumerate() {
         let r = |k: usize| jr.derivatives[k].worst();
         let jl = plan.limits.joint(j);
-        let name = if names[j].is_empty() {
-            format!("q{}", j + 1)
-        } else {
-            names[j].clone()
-        };
         let _ = writeln!(
             s,
-            "  {:>2} {:<14} {:.4} / {:.4} / {:.4}   position {:+.4} .. {:+.4} (range {:+.4} .. {:+.4})",
+            "  {:>2} {:<width$} {:.4} / {:.4} / {:.4}   position {:+.4} .. {:+.4} (range {:+.4} .. {:+.4})",
             j + 1,
-            name,
+            names[j],
             r(0),
             r(1),
             r(2),
