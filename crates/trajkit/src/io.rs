@@ -826,9 +826,9 @@ mod tests {
         assert!(e.contains("'units': unknown field (known:"), "{e}");
     }
 
-    #[test]
-    fn named_tables_round_trip() {
-        let t = SampleTable::new(
+    /// Two joints, two samples, positions and velocities.
+    fn small_table() -> SampleTable {
+        SampleTable::new(
             2,
             vec![0.0, 0.5],
             [
@@ -839,8 +839,13 @@ mod tests {
             ],
         )
         .unwrap()
-        .with_names(vec!["elbow".into(), "wrist_1".into()])
-        .unwrap();
+    }
+
+    #[test]
+    fn named_tables_round_trip() {
+        let t = small_table()
+            .with_names(vec!["elbow".into(), "wrist_1".into()])
+            .unwrap();
         let csv = table_to_csv(&t);
         assert!(
             csv.starts_with("t,q_elbow,q_wrist_1,qd_elbow,qd_wrist_1\n"),
@@ -880,17 +885,7 @@ mod tests {
 
     #[test]
     fn table_round_trips() {
-        let t = SampleTable::new(
-            2,
-            vec![0.0, 0.5],
-            [
-                Some(vec![1.0, 2.0, 3.0, 4.0]),
-                Some(vec![0.1, 0.2, 0.3, 0.4]),
-                None,
-                None,
-            ],
-        )
-        .unwrap();
+        let t = small_table();
         let csv = table_to_csv(&t);
         assert!(csv.starts_with("t,q1,q2,qd1,qd2\n"));
         assert_eq!(table_from_csv(&csv, "x.csv").unwrap(), t);

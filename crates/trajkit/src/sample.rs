@@ -211,12 +211,24 @@ pub fn sample<T: Trajectory + ?Sized>(traj: &T, rate_hz: f64) -> Result<SampleTa
 /// Refuses a sampling of `duration` seconds at `rate_hz` for `dof` joints whose table (time,
 /// position, velocity, acceleration, jerk) would exceed [`crate::size::MEMORY_BUDGET`].
 pub fn check_sample_count(duration: f64, rate_hz: f64, dof: usize) -> Result<usize> {
+    check_sample_memory(duration, rate_hz, dof, 8.0, "")
+}
+
+/// [`check_sample_count`] for `bytes_per_value` bytes per number (8 for the table, more when
+/// its text is kept too, which `what` then says, e.g. `" with its text"`).
+pub fn check_sample_memory(
+    duration: f64,
+    rate_hz: f64,
+    dof: usize,
+    bytes_per_value: f64,
+    what: &str,
+) -> Result<usize> {
     crate::error::positive(|| "sample rate (Hz)".into(), rate_hz)?;
     crate::size::check_memory(
         "sample count (duration × rate)",
         (duration * rate_hz).floor() + 2.0,
-        8.0 * (1.0 + 4.0 * dof as f64),
-        &format!("a sample of {dof} joint(s)"),
+        bytes_per_value * (1.0 + 4.0 * dof as f64),
+        &format!("a sample of {dof} joint(s){what}"),
     )
 }
 

@@ -11,24 +11,19 @@ use trajkit::topp::messy::PathKind;
 use trajkit::topp::Gridpoints;
 use trajkit::{Error, Limits, Order};
 
+mod topp_common;
+
 /// The 7-waypoint standard problem (`toppra_panda.json`, `standard_7wp_natural_N1000`).
 fn std7() -> Waypoints {
-    let p = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/fixtures/topp/toppra_panda.json"
-    );
-    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
-    let prob = v["problems"]
-        .as_array()
-        .unwrap()
-        .iter()
+    let prob = topp_common::fixtures()
+        .into_iter()
         .find(|p| p["name"] == "standard_7wp_natural_N1000")
         .unwrap();
     let rows: Vec<f64> = prob["waypoints"]
         .as_array()
         .unwrap()
         .iter()
-        .flat_map(|r| r.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()))
+        .flat_map(topp_common::floats)
         .collect();
     Waypoints::new(rows, 7, vec![]).unwrap()
 }
@@ -97,15 +92,7 @@ fn standard_problem_stays_inside_joint_6_range() {
 #[test]
 fn names_pair_columns_with_limits() {
     let panda = Limits::preset("panda").unwrap();
-    let names = [
-        "panda_joint1",
-        "panda_joint2",
-        "panda_joint3",
-        "panda_joint4",
-        "panda_joint5",
-        "panda_joint6",
-        "panda_joint7",
-    ];
+    let names: Vec<String> = panda.joints().iter().map(|j| j.name.clone()).collect();
     let rows = [
         [0.0, 0.0, 0.0, -1.5, 0.0, 1.5, 0.0],
         [0.4, 0.2, -0.2, -1.2, 0.1, 1.8, 0.3],
@@ -116,7 +103,7 @@ fn names_pair_columns_with_limits() {
         ..PlanOptions::default()
     };
     let make = |order: &[usize]| {
-        let header: Vec<String> = order.iter().map(|&j| names[j].to_string()).collect();
+        let header: Vec<String> = order.iter().map(|&j| names[j].clone()).collect();
         let pts: Vec<f64> = rows
             .iter()
             .flat_map(|r| order.iter().map(move |&j| r[j]))
@@ -230,7 +217,7 @@ fn sizes_are_refused_before_allocating() {
     let w = Waypoints::new(many, 1, vec![]).unwrap();
     let e = plan(&w, &one, &PlanOptions::default()).unwrap_err();
     assert!(
-        matches!(e, Error::TooLarge { limit, .. } if limit == 100_000.0),
+        matches!(e, Error::TooLarge { limit, .. } if limit == trajkit::plan::MAX_WAYPOINTS as f64),
         "{e}"
     );
     let w = Waypoints::new(vec![0.0, 0.5], 1, vec![]).unwrap();

@@ -428,6 +428,21 @@ fn rollback(staged: &[Staged]) {
     }
 }
 
+/// Joint names for people: the given ones, `qJ` (1-based) where a name is empty.
+pub fn display_names(names: &[String]) -> Vec<String> {
+    names
+        .iter()
+        .enumerate()
+        .map(|(j, n)| {
+            if n.is_empty() {
+                format!("q{}", j + 1)
+            } else {
+                n.clone()
+            }
+        })
+        .collect()
+}
+
 /// Parses a comma-separated list of numbers given to `flag`.
 pub fn finite_list(flag: &str, v: &[f64]) -> CliResult<()> {
     for (i, x) in v.iter().enumerate() {

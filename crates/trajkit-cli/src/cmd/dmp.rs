@@ -37,18 +37,7 @@ pub fn read_demo(path: &Path) -> CliResult<DemoFile> {
         q,
         dof: table.dof(),
         named: table.names().iter().all(|n| !n.is_empty()),
-        names: table
-            .names()
-            .iter()
-            .enumerate()
-            .map(|(j, n)| {
-                if n.is_empty() {
-                    format!("q{}", j + 1)
-                } else {
-                    n.clone()
-                }
-            })
-            .collect(),
+        names: super::common::display_names(table.names()),
     })
 }
 

@@ -254,38 +254,52 @@ fn torque_model(
     )))
 }
 
-/// A progress line on standard error, from the first second on, when it is a terminal.
-fn progress_printer() -> impl FnMut(Progress) {
+/// Runs `f` with a progress callback; when standard error is a terminal, a line there shows
+/// the stage and the elapsed time from the first second on (refreshed four times a second by
+/// a helper thread, so a long single solve shows it is alive), and is cleared at the end.
+fn with_progress<T>(f: impl FnOnce(&mut dyn FnMut(Progress)) -> T) -> T {
     use std::io::IsTerminal;
-    let tty = std::io::stderr().is_terminal();
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::Mutex;
+    if !std::io::stderr().is_terminal() {
+        return f(&mut |_| {});
+    }
+    let state = Mutex::new(Progress {
+        stage: Stage::Path,
+        done: 0,
+        total: 1,
+    });
+    let finished = AtomicBool::new(false);
     let start = std::time::Instant::now();
-    let mut shown = false;
-    move |p: Progress| {
-        if !tty || start.elapsed().as_secs_f64() < 1.0 {
-            return;
-        }
-        let stage = match p.stage {
-            Stage::Path => "building the path",
-            Stage::Timing => "timing the path",
-            Stage::Jerk => "bounding jerk",
-            Stage::Torque => "holding torques",
-            Stage::Verifying => "sampling and checking",
-        };
-        let done = p.stage == Stage::Verifying && p.done == p.total;
-        if done {
+    std::thread::scope(|scope| {
+        let ticker = scope.spawn(|| {
+            let mut shown = false;
+            while !finished.load(Ordering::Relaxed) {
+                std::thread::sleep(std::time::Duration::from_millis(250));
+                let secs = start.elapsed().as_secs_f64();
+                if secs < 1.0 || finished.load(Ordering::Relaxed) {
+                    continue;
+                }
+                let p = *state.lock().unwrap_or_else(|e| e.into_inner());
+                let stage = match p.stage {
+                    Stage::Path => "building the path".to_string(),
+                    Stage::Timing => format!("timing piece {} of {}", p.done + 1, p.total),
+                    Stage::Jerk => "bounding jerk".to_string(),
+                    Stage::Torque => "holding torques".to_string(),
+                    Stage::Verifying => "sampling and checking".to_string(),
+                };
+                eprint!("\r\x1b[Kplanning: {stage} ({secs:.0} s)");
+                shown = true;
+            }
             if shown {
                 eprint!("\r\x1b[K");
             }
-            return;
-        }
-        shown = true;
-        eprint!(
-            "\r\x1b[Kplanning: {stage} {}/{} ({:.0} s)",
-            p.done,
-            p.total,
-            start.elapsed().as_secs_f64()
-        );
-    }
+        });
+        let out = f(&mut |p| *state.lock().unwrap_or_else(|e| e.into_inner()) = p);
+        finished.store(true, Ordering::Relaxed);
+        let _ = ticker.join();
+        out
+    })
 }
 
 /// Adds the way out to errors whose fix is a flag.
@@ -344,7 +358,7 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
         torque: torque.as_ref().map(|(m, _)| m.clone()),
         sample_rate: a.output.rate,
     };
-    let plan = trajkit::plan::plan_with_progress(&w, &limits, &options, &mut progress_printer())
+    let plan = with_progress(|p| trajkit::plan::plan_with_progress(&w, &limits, &options, p))
         .map_err(|e| match e {
             trajkit::Error::WaypointOutOfRange { .. } | trajkit::Error::JointNames { .. } => {
                 CliError(format!("{src}: {e}"))
@@ -428,19 +442,7 @@ fn summary(
         s.push('\n');
     }
     let _ = writeln!(s, "worst limit ratio per joint (velocity / acceleration / jerk, pointwise and finite-difference):");
-    let names: Vec<String> = plan
-        .samples
-        .names()
-        .iter()
-        .enumerate()
-        .map(|(j, n)| {
-            if n.is_empty() {
-                format!("q{}", j + 1)
-            } else {
-                n.clone()
-            }
-        })
-        .collect();
+    let names = super::common::display_names(plan.samples.names());
     let width = names
         .iter()
         .map(|n| n.chars().count())

@@ -201,6 +201,20 @@ impl JointLimits {
     }
 }
 
+/// One value for every joint (`values` of length 1) or one per joint, as a vector of `dof`
+/// values; `what` names them in the error.
+pub(crate) fn per_joint<T: Copy>(values: &[T], dof: usize, what: &str) -> Result<Vec<T>> {
+    match values.len() {
+        1 => Ok(vec![values[0]; dof]),
+        n if n == dof => Ok(values.to_vec()),
+        n => Err(Error::DimensionMismatch {
+            what: what.to_string(),
+            expected: dof,
+            found: n,
+        }),
+    }
+}
+
 /// Validated limits for every joint of a robot.
 ///
 /// ```
@@ -272,22 +286,37 @@ impl Limits {
         }
     }
 
+    /// Refuses a waypoint (rows of row-major `points`, one value per joint) outside its joint's
+    /// position range: [`Error::WaypointOutOfRange`] naming the waypoint (`index[i]` when given,
+    /// the row otherwise), the joint, the value and the range.
+    pub fn check_waypoints(&self, points: &[f64], index: Option<&[usize]>) -> Result<()> {
+        for (i, row) in points.chunks(self.dof()).enumerate() {
+            for (j, &q) in row.iter().enumerate() {
+                let jl = &self.joints[j];
+                if q < jl.position_min || q > jl.position_max {
+                    return Err(Error::WaypointOutOfRange {
+                        waypoint: index.map_or(i, |k| k[i]),
+                        joint: j,
+                        name: jl.name.clone(),
+                        value: q,
+                        lo: jl.position_min,
+                        hi: jl.position_max,
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Replaces the limits of derivative `order` (1..=3) on every joint with the given values
     /// (one per joint, or one for all), then re-validates.
     pub fn with_override(mut self, order: crate::Order, values: &[f64]) -> Result<Self> {
-        if values.len() != 1 && values.len() != self.dof() {
-            return Err(Error::DimensionMismatch {
-                what: format!("{} limit values", order.name()),
-                expected: self.dof(),
-                found: values.len(),
-            });
-        }
-        for (j, jl) in self.joints.iter_mut().enumerate() {
-            let v = if values.len() == 1 {
-                values[0]
-            } else {
-                values[j]
-            };
+        let values = per_joint(
+            values,
+            self.dof(),
+            &format!("{} limit values", order.name()),
+        )?;
+        for (jl, &v) in self.joints.iter_mut().zip(&values) {
             match order {
                 crate::Order::Velocity => {
                     jl.velocity = v;

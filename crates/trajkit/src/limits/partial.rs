@@ -229,19 +229,8 @@ impl PartialLimits {
     /// Replaces every joint's position range with `ranges` (one `(lo, hi)` for every joint, or
     /// one per joint; infinite ends state "unbounded") and marks them given.
     pub fn with_position_range(mut self, ranges: &[(f64, f64)]) -> Result<Self> {
-        if ranges.len() != 1 && ranges.len() != self.dof() {
-            return Err(Error::DimensionMismatch {
-                what: "position ranges".into(),
-                expected: self.dof(),
-                found: ranges.len(),
-            });
-        }
-        for (j, (jl, g)) in self.joints.iter_mut().zip(&mut self.given).enumerate() {
-            let (lo, hi) = if ranges.len() == 1 {
-                ranges[0]
-            } else {
-                ranges[j]
-            };
+        let ranges = super::per_joint(ranges, self.dof(), "position ranges")?;
+        for ((jl, g), &(lo, hi)) in self.joints.iter_mut().zip(&mut self.given).zip(&ranges) {
             jl.position_min = lo;
             jl.position_max = hi;
             g.position_min = true;

@@ -31,7 +31,14 @@ pub(crate) fn verified_samples(
     let tol = Tolerance::default();
     let mut scale = 1.0;
     for round in 0..=MAX_GUARD_ROUNDS {
-        crate::sample::check_sample_count(traj.duration(), rate, traj.dof())?;
+        // The table and its CSV or JSON text (about 24 characters a value): written whole.
+        crate::sample::check_sample_memory(
+            traj.duration(),
+            rate,
+            traj.dof(),
+            32.0,
+            " with its text",
+        )?;
         let table = crate::sample::sample(&*traj, rate)?.with_names(names.to_vec())?;
         let report = check_samples(&table, limits)?;
         if report.passes(&tol) {

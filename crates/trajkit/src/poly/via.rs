@@ -272,21 +272,7 @@ impl ViaTrajectory {
         limits: &Limits,
     ) -> Result<(Self, usize)> {
         limits.expect_dof(dof, "waypoints")?;
-        for (i, row) in waypoints.chunks(dof.max(1)).enumerate() {
-            for (j, &q) in row.iter().enumerate() {
-                let jl = limits.joint(j);
-                if q < jl.position_min || q > jl.position_max {
-                    return Err(Error::WaypointOutOfRange {
-                        waypoint: i,
-                        joint: j,
-                        name: jl.name.clone(),
-                        value: q,
-                        lo: jl.position_min,
-                        hi: jl.position_max,
-                    });
-                }
-            }
-        }
+        limits.check_waypoints(waypoints, None)?;
         let mut tr = ViaTrajectory::new(
             waypoints,
             dof,

@@ -433,7 +433,7 @@ pub fn piece_paths(
             found: count,
         });
     }
-    check_in_range(&w, &kept, limits)?;
+    limits.check_waypoints(&w, Some(&kept))?;
     let max_turn = if options.kind == PathKind::Linear {
         1e-9
     } else {
@@ -451,27 +451,6 @@ pub fn piece_paths(
         kept,
         pieces: paths,
     })
-}
-
-/// Refuses a waypoint outside its joint's position range (`kept` maps to input indices).
-fn check_in_range(w: &[f64], kept: &[usize], limits: &Limits) -> Result<()> {
-    let dim = limits.dof();
-    for (i, row) in w.chunks(dim).enumerate() {
-        for (j, &q) in row.iter().enumerate() {
-            let jl = limits.joint(j);
-            if q < jl.position_min || q > jl.position_max {
-                return Err(Error::WaypointOutOfRange {
-                    waypoint: kept[i],
-                    joint: j,
-                    name: jl.name.clone(),
-                    value: q,
-                    lo: jl.position_min,
-                    hi: jl.position_max,
-                });
-            }
-        }
-    }
-    Ok(())
 }
 
 /// Builds the path from waypoint `a` to `b` (inclusive) and appends it, split into several
