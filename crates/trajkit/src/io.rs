@@ -246,19 +246,7 @@ impl Waypoints {
         let (rows, names) = match &v {
             serde_json::Value::Array(_) => (&v, Vec::new()),
             serde_json::Value::Object(m) => {
-                const KNOWN: [&str; 2] = ["joint_names", "waypoints"];
-                if let Some(k) = m.keys().find(|k| !KNOWN.contains(&k.as_str())) {
-                    let hint = match crate::error::closest_name(k, &KNOWN) {
-                        Some(c) => format!("did you mean '{c}'? "),
-                        None => String::new(),
-                    };
-                    return Err(parse_err(
-                        source,
-                        0,
-                        k.as_str(),
-                        format!("unknown field ({hint}known: joint_names, waypoints)"),
-                    ));
-                }
+                reject_unknown_keys(m, &["joint_names", "waypoints"], source)?;
                 let rows = m
                     .get("waypoints")
                     .ok_or_else(|| parse_err(source, 0, "waypoints", "missing"))?;
@@ -334,6 +322,27 @@ impl Waypoints {
             Waypoints::from_csv(&text, &src)
         }
     }
+}
+
+/// An error for the first key of `m` that is not in `known`, suggesting the closest known one.
+fn reject_unknown_keys(
+    m: &serde_json::Map<String, serde_json::Value>,
+    known: &[&str],
+    source: &str,
+) -> Result<()> {
+    let Some(k) = m.keys().find(|k| !known.contains(&k.as_str())) else {
+        return Ok(());
+    };
+    let hint = match crate::error::closest_name(k, known) {
+        Some(c) => format!("did you mean '{c}'? "),
+        None => String::new(),
+    };
+    Err(parse_err(
+        source,
+        0,
+        k.as_str(),
+        format!("unknown field ({hint}known: {})", known.join(", ")),
+    ))
 }
 
 /// Reads a whole file as UTF-8 text; errors name the path. A regular file above
@@ -556,57 +565,76 @@ fn classify_columns(
         .collect();
     let has_index_q = idx.iter().any(|m| matches!(m, Some((0, _))));
     let has_named_q = named.iter().any(|m| matches!(m, Some((0, _))));
-    if has_index_q && has_named_q {
-        return Err(parse_err(
+    match (has_index_q, has_named_q) {
+        (true, true) => Err(parse_err(
             source,
             line,
             "",
             "header mixes q<k> and q_<name> position columns",
+        )),
+        (false, true) => named_columns(raw, &named, tcol, source, line),
+        (has_index_q, false) => indexed_columns(idx, has_index_q, cols, tcol, source, line),
+    }
+}
+
+/// The header's `q_<name>` columns: joints in the order of the position columns, derivative
+/// columns paired by name.
+fn named_columns(
+    raw: &[String],
+    named: &[Option<(usize, String)>],
+    tcol: usize,
+    source: &str,
+    line: usize,
+) -> Result<ColumnMap> {
+    let names: Vec<String> = named
+        .iter()
+        .filter_map(|m| match m {
+            Some((0, n)) => Some(n.clone()),
+            _ => None,
+        })
+        .collect();
+    if let Some(j) = (0..names.len()).find(|&j| names[..j].contains(&names[j])) {
+        return Err(parse_err(
+            source,
+            line,
+            format!("{}_{}", PREFIX[0], names[j]),
+            "names a joint twice",
         ));
     }
-    if has_named_q {
-        let names: Vec<String> = named
-            .iter()
-            .filter_map(|m| match m {
-                Some((0, n)) => Some(n.clone()),
-                _ => None,
-            })
-            .collect();
-        if let Some(j) = (0..names.len()).find(|&j| names[..j].contains(&names[j])) {
-            return Err(parse_err(
+    let mut map = vec![None; raw.len()];
+    for (i, m) in named.iter().enumerate() {
+        let Some((k, n)) = m else { continue };
+        let j = names.iter().position(|x| x == n).ok_or_else(|| {
+            parse_err(
                 source,
                 line,
-                format!("{}_{}", PREFIX[0], names[j]),
-                "names a joint twice",
-            ));
-        }
-        let mut map = vec![None; raw.len()];
-        for (i, m) in named.iter().enumerate() {
-            let Some((k, n)) = m else { continue };
-            let j = names.iter().position(|x| x == n).ok_or_else(|| {
-                parse_err(
-                    source,
-                    line,
-                    raw[i].as_str(),
-                    format!("joint '{n}' has no {}_{n} position column", PREFIX[0]),
-                )
-            })?;
-            map[i] = Some((*k, j + 1));
-        }
-        for (i, m) in map.iter().enumerate() {
-            if i != tcol && m.is_none() {
-                return Err(parse_err(
-                    source,
-                    line,
-                    raw[i].as_str(),
-                    "is neither a q_/qd_/qdd_/qddd_<name> column nor the time",
-                ));
-            }
-        }
-        let dof = names.len();
-        return Ok((map, dof, Some(names)));
+                raw[i].as_str(),
+                format!("joint '{n}' has no {}_{n} position column", PREFIX[0]),
+            )
+        })?;
+        map[i] = Some((*k, j + 1));
     }
-    let mut map = idx;
+    if let Some(i) = (0..map.len()).find(|&i| i != tcol && map[i].is_none()) {
+        return Err(parse_err(
+            source,
+            line,
+            raw[i].as_str(),
+            "is neither a q_/qd_/qdd_/qddd_<name> column nor the time",
+        ));
+    }
+    let dof = names.len();
+    Ok((map, dof, Some(names)))
+}
+
+/// The header's `q<k>` columns, or (without any) a foreign header read as positions.
+fn indexed_columns(
+    mut map: Vec<Option<(usize, usize)>>,
+    has_index_q: bool,
+    cols: &[String],
+    tcol: usize,
+    source: &str,
+    line: usize,
+) -> Result<ColumnMap> {
     if !has_index_q {
         // Foreign table: every non-time column is a position.
         let mut j = 0;

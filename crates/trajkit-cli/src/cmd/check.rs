@@ -3,7 +3,7 @@
 use super::common::{CliError, CliResult, LimitsArgs};
 use clap::Args;
 use std::path::PathBuf;
-use trajkit::check::{check_samples, Tolerance};
+use trajkit::check::{check_samples, LimitReport, Tolerance};
 use trajkit::limits::{Needs, PartialLimits};
 
 /// Arguments of `trajkit check`.
@@ -65,19 +65,23 @@ pub fn run(a: &CheckArgs) -> CliResult<u8> {
         .resolve("table", named.then_some(table.names()), table.dof(), None)
         .map_err(|e| CliError(format!("{src}: {e}")))?;
     let limits = resolved.limits.complete(Needs::NONE)?;
-    let not_checked = not_checked(&resolved.limits);
     let report = check_samples(&table, &limits)?;
     let tol = Tolerance {
         ratio: a.tolerance,
         position: a.position_tolerance,
     };
+    print_report(a, &report, &tol, &resolved.limits);
+    Ok(if report.passes(&tol) { 0 } else { 1 })
+}
+
+/// Prints the report (text or JSON) with what could not be checked.
+fn print_report(a: &CheckArgs, report: &LimitReport, tol: &Tolerance, limits: &PartialLimits) {
     if a.json {
         let mut v = report.to_json();
         if let Some(o) = v.as_object_mut() {
-            o.insert("passes".into(), report.passes(&tol).into());
-            o.insert("violations".into(), report.violations(&tol).into());
-            let nc: Vec<serde_json::Value> = resolved
-                .limits
+            o.insert("passes".into(), report.passes(tol).into());
+            o.insert("violations".into(), report.violations(tol).into());
+            let nc: Vec<serde_json::Value> = limits
                 .missing(Needs::ALL)
                 .iter()
                 .map(|(j, f)| serde_json::json!({"joint": j, "field": f}))
@@ -87,10 +91,11 @@ pub fn run(a: &CheckArgs) -> CliResult<u8> {
         println!("{v}");
     } else {
         print!("{}", report.to_text());
+        let not_checked = not_checked(limits);
         if !not_checked.is_empty() {
             println!("not checked (no limit given): {}", not_checked.join("; "));
         }
-        let bad = report.violations(&tol);
+        let bad = report.violations(tol);
         if bad.is_empty() {
             println!(
                 "PASS: worst ratio {:.6} (tolerance {})",
@@ -103,7 +108,6 @@ pub fn run(a: &CheckArgs) -> CliResult<u8> {
             }
         }
     }
-    Ok(if report.passes(&tol) { 0 } else { 1 })
 }
 
 /// "acceleration of joints 1, 2, 3" for every field no source gave, per field.

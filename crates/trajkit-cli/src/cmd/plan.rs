@@ -142,7 +142,7 @@ pub struct PlanArgs {
     /// Plan without jerk limits: every joint's jerk limit becomes unlimited, and toppra and ni
     /// keep their raw result (piecewise-constant path acceleration). `trajkit check` agrees
     /// with --max-jerk inf.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "max_jerk")]
     pub no_jerk_limit: bool,
     /// With --method toppra or ni: also hold each joint's torque within its `effort` limit, using the
     /// rigid-body dynamics of a URDF (see --dynamics). The torque is checked again after jerk
@@ -441,31 +441,7 @@ fn summary(
         }
         s.push('\n');
     }
-    let _ = writeln!(s, "worst limit ratio per joint (velocity / acceleration / jerk, pointwise and finite-difference):");
-    let names = super::common::display_names(plan.samples.names());
-    let width = names
-        .iter()
-        .map(|n| n.chars().count())
-        .max()
-        .unwrap_or(0)
-        .max(14);
-    for (j, jr) in plan.report.joints.iter().enumerate() {
-        let r = |k: usize| jr.derivatives[k].worst();
-        let jl = plan.limits.joint(j);
-        let _ = writeln!(
-            s,
-            "  {:>2} {:<width$} {:.4} / {:.4} / {:.4}   position {:+.4} .. {:+.4} (range {:+.4} .. {:+.4})",
-            j + 1,
-            names[j],
-            r(0),
-            r(1),
-            r(2),
-            jr.position.min,
-            jr.position.max,
-            jl.position_min,
-            jl.position_max
-        );
-    }
+    s.push_str(&joint_lines(plan));
     let unlimited: Vec<&str> = [
         (Order::Velocity, "velocity"),
         (Order::Acceleration, "acceleration"),
@@ -492,6 +468,38 @@ fn summary(
     let _ = write!(s, "wrote {}", a.out.display());
     if let Some(p) = &a.output.plot {
         let _ = write!(s, " and {}", p.display());
+    }
+    s
+}
+
+/// The per-joint lines of the summary: worst ratios and the position range used.
+fn joint_lines(plan: &Plan) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
+    let _ = writeln!(s, "worst limit ratio per joint (velocity / acceleration / jerk, pointwise and finite-difference):");
+    let names = super::common::display_names(plan.samples.names());
+    let width = names
+        .iter()
+        .map(|n| n.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(14);
+    for (j, jr) in plan.report.joints.iter().enumerate() {
+        let r = |k: usize| jr.derivatives[k].worst();
+        let jl = plan.limits.joint(j);
+        let _ = writeln!(
+            s,
+            "  {:>2} {:<width$} {:.4} / {:.4} / {:.4}   position {:+.4} .. {:+.4} (range {:+.4} .. {:+.4})",
+            j + 1,
+            names[j],
+            r(0),
+            r(1),
+            r(2),
+            jr.position.min,
+            jr.position.max,
+            jl.position_min,
+            jl.position_max
+        );
     }
     s
 }
