@@ -16,6 +16,9 @@
 //! samples can report a modest pointwise acceleration on both sides of the jump, while the
 //! finite difference of the velocity shows the jump for what it is.
 //!
+//! When the table and the limits both name their joints, each column is checked against the
+//! limits of its name, in any order ([`crate::limits::match_names`]); otherwise by position.
+//!
 //! Use of a limit is a ratio, computed with [`JointLimits::ratio`]: `value / max` for
 //! non-negative values and `value / min` for negative ones (so direction-dependent minima are
 //! respected); 1.0 is exactly at the limit, and an unlimited (infinite) limit gives 0.

@@ -22,7 +22,7 @@
 //!
 //! ## Map
 //! - [`plan()`]: the main job in one call: waypoints and limits in, a trajectory that keeps
-//!   every limit (position range included) out, checked ([`plan`] module).
+//!   every limit (position range included) out, checked ([`mod@plan`] module).
 //! - [`traj`]: the trajectory model ([`Trajectory`], [`Order`]), shared by every family.
 //! - [`path`]: geometric paths σ(s), the input of time parameterization.
 //! - [`limits`]: per-joint limits, robot presets, limits files and URDF.

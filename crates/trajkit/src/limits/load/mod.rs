@@ -43,7 +43,7 @@
 //! limits). The top-level `default_velocity_scaling_factor` and
 //! `default_acceleration_scaling_factor` are checked to be numbers and **ignored**: they are
 //! MoveIt's default request scaling, not robot limits; scale limits explicitly with
-//! [`Limits::scaled`] instead. A MoveIt maximum replaces the base joint's limit in both
+//! [`crate::Limits::scaled`] instead. A MoveIt maximum replaces the base joint's limit in both
 //! directions (any direction-dependent minimum is dropped).
 //!
 //! # URDF
