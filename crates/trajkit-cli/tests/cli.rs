@@ -21,7 +21,12 @@ fn plan_default_passes_check_against_panda() {
     assert!(out.contains("within limits"), "{out}");
     assert!(d.join("trajectory.csv").exists() && d.join("t.svg").exists());
     let text = std::fs::read_to_string(d.join("trajectory.csv")).unwrap();
-    assert!(text.starts_with("t,q1,q2,q3,q4,q5,q6,q7,qd1,"));
+    // The columns carry the joint names.
+    assert!(
+        text.starts_with("t,q_panda_joint1,q_panda_joint2,"),
+        "{}",
+        &text[..80]
+    );
     // The default method: TOPP-RA, then jerk bounded; every Panda limit holds, jerk included.
     assert!(out.contains("jerk: bounded (TOPP-RA"), "{out}");
     let o = trajkit(&["check", "trajectory.csv", "--limits", "panda"], &d);
@@ -29,7 +34,7 @@ fn plan_default_passes_check_against_panda() {
     // Raw TOPP-RA on request: velocity and acceleration hold, jerk is not limited (and said so).
     let o = trajkit(&["plan", "--no-jerk-limit", "--out", "raw.csv"], &d);
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stdout(&o).contains("jerk: not limited"), "{}", stdout(&o));
+    assert!(stdout(&o).contains("jerk: not bounded"), "{}", stdout(&o));
     let o = trajkit(
         &["check", "raw.csv", "--limits", "panda", "--max-jerk", "inf"],
         &d,
@@ -57,7 +62,7 @@ fn plan_default_passes_check_against_panda() {
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(d.join("t.json")).unwrap()).unwrap();
     assert_eq!(v["dof"], 7);
-    let o = trajkit(&["check", "t.json", "--json"], &d);
+    let o = trajkit(&["check", "t.json", "--json", "--limits", "panda"], &d);
     assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
     let r: serde_json::Value = serde_json::from_str(stdout(&o).trim()).unwrap();
     assert_eq!(r["passes"], true);
@@ -119,7 +124,7 @@ fn poly_move_to_stdout_and_min_duration() {
         &d,
     );
     assert!(o.status.success(), "{}", stderr(&o));
-    let o = trajkit(&["check", "m.csv"], &d);
+    let o = trajkit(&["check", "m.csv", "--limits", "panda"], &d);
     assert_eq!(o.status.code(), Some(0), "{}", stdout(&o));
 }
 
@@ -144,7 +149,7 @@ fn check_fails_on_a_violating_trajectory() {
     let d = scratch("check-fail");
     let o = trajkit(&too_fast_cubic("fast.csv"), &d);
     assert!(o.status.success());
-    let o = trajkit(&["check", "fast.csv"], &d);
+    let o = trajkit(&["check", "fast.csv", "--limits", "panda"], &d);
     assert_eq!(o.status.code(), Some(1));
     assert!(stdout(&o).contains("FAIL: joint 1"), "{}", stdout(&o));
 }
@@ -190,11 +195,11 @@ fn bad_inputs_exit_2_with_one_line_and_no_output() {
             &["dups.csv", "found 1"],
         ),
         (
-            &["plan", "--waypoints", "three.csv"],
-            &["three.csv", "expected 3, found 7"],
+            &["plan", "--waypoints", "three.csv", "--limits", "panda"],
+            &["three.csv", "the limits have 7 joints, the waypoints 3"],
         ),
         (
-            &["plan", "--waypoints", "range.csv"],
+            &["plan", "--waypoints", "range.csv", "--limits", "panda"],
             &["range.csv", "waypoint 1 joint 1", "3.5", "position range"],
         ),
         (&["plan", "--waypoints", "missing.csv"], &["missing.csv"]),
@@ -354,7 +359,7 @@ fn plan_toppra_paths_gridpoints_and_messy_waypoints() {
     .unwrap();
     std::fs::write(
         d.join("two.json"),
-        r#"{"joints":[{"name":"a","velocity":1,"acceleration":2,"jerk":100},{"name":"b","velocity":1,"acceleration":2,"jerk":100}]}"#,
+        r#"{"joints":[{"name":"a","position":[-2,2],"velocity":1,"acceleration":2,"jerk":100},{"name":"b","position":[-2,2],"velocity":1,"acceleration":2,"jerk":100}]}"#,
     )
     .unwrap();
     for extra in [
@@ -423,14 +428,18 @@ fn check_reads_standard_input() {
     let o = trajkit(&["plan", "--out", "t.json"], &d);
     assert!(o.status.success(), "{}", stderr(&o));
     let json = std::fs::read_to_string(d.join("t.json")).unwrap();
-    let o = trajkit_stdin(&["check", "-", "--json"], &d, Some(&json));
+    let o = trajkit_stdin(
+        &["check", "-", "--json", "--limits", "panda"],
+        &d,
+        Some(&json),
+    );
     assert_eq!(o.status.code(), Some(0), "{}{}", stdout(&o), stderr(&o));
     let v: serde_json::Value = serde_json::from_str(stdout(&o).trim()).unwrap();
     assert_eq!(v["passes"], true);
     // A violation read from standard input still exits 1.
     let o = trajkit(&too_fast_cubic("-"), &d);
     assert!(o.status.success(), "{}", stderr(&o));
-    let o = trajkit_stdin(&["check"], &d, Some(&stdout(&o)));
+    let o = trajkit_stdin(&["check", "--limits", "panda"], &d, Some(&stdout(&o)));
     assert_eq!(o.status.code(), Some(1), "{}{}", stdout(&o), stderr(&o));
     // Empty or malformed standard input: exit 2, one line naming <stdin>.
     for bad in ["", "t,q1\n0,x\n", "{\"t\": [0, 1]"] {

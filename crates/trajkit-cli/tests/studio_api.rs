@@ -469,7 +469,7 @@ fn plan_matches_the_cli_and_checks_its_output() {
     let s = Studio::start(&[]);
     for (method, args) in [
         ("toppra", vec![]),
-        ("totg", vec!["--method", "totg"]),
+        ("totg", vec!["--method", "totg", "--no-jerk-limit"]),
         ("poly", vec!["--method", "poly"]),
     ] {
         let r = post(
@@ -515,7 +515,11 @@ fn plan_matches_the_cli_and_checks_its_output() {
         .unwrap()
         .contains("trajectory.csv"));
     let text = String::from_utf8_lossy(&r.body);
-    assert!(text.starts_with("t,q1,q2,q3,q4,q5,q6,q7,qd1,"));
+    assert!(
+        text.starts_with("t,q_panda_joint1,q_panda_joint2,"),
+        "{}",
+        &text[..80]
+    );
     assert_eq!(text.lines().count(), 1 + 1338);
     let r = post(
         s.addr,
@@ -552,7 +556,8 @@ fn plan_limits_from_files_and_missing_limits() {
         "max_acceleration": [3, 2], "max_jerk": [30, 20]}});
     let r = post(s.addr, "/api/plan", &body);
     assert_eq!(r.status, 200, "{:?}", r.error());
-    assert_eq!(r.json()["joint_names"], json!(["q1", "q2"]));
+    // Unnamed waypoint columns take the names of the limits' joints.
+    assert_eq!(r.json()["joint_names"], json!(["j1", "j2"]));
     assert_eq!(r.json()["limits"][1]["velocity"], json!([-1.0, 1.0]));
     // Without jerk limits, the jerk stage refuses; raw TOPP-RA does not need them.
     let mut raw = json!({"waypoints": wp, "limits": {"file": {"name": "two.urdf", "text": urdf},
@@ -561,7 +566,7 @@ fn plan_limits_from_files_and_missing_limits() {
         &post(s.addr, "/api/plan", &raw),
         400,
         "limits (joint 1 j1 jerk)",
-        "jerk stage",
+        "jerk_limit false",
     );
     raw["jerk_limit"] = json!(false);
     let r = post(s.addr, "/api/plan", &raw);
@@ -572,14 +577,22 @@ fn plan_limits_from_files_and_missing_limits() {
         .contains("not bounded"));
     // MoveIt joint_limits.yaml, recognized by its top-level key.
     let moveit = "joint_limits:\n  a:\n    has_velocity_limits: true\n    max_velocity: 1.0\n    has_acceleration_limits: true\n    max_acceleration: 2.0\n    has_jerk_limits: true\n    max_jerk: 20\n";
+    // A MoveIt file alone has no position ranges: refused, then given explicitly.
     let r = post(
         s.addr,
         "/api/plan",
         &json!({"waypoints": [[0], [1]], "limits": {"file": {"name": "joint_limits.yaml", "text": moveit}}}),
     );
+    refused(&r, 400, "limits (joint 1 a position range)", "position");
+    let r = post(
+        s.addr,
+        "/api/plan",
+        &json!({"waypoints": [[0], [1]], "limits": {"file": {"name": "joint_limits.yaml", "text": moveit},
+            "position_range": [[-2, 2]]}}),
+    );
     assert_eq!(r.status, 200, "{:?}", r.error());
     // trajkit JSON limits.
-    let lj = r#"{"joints": [{"velocity": 1, "acceleration": 2, "jerk": 10}]}"#;
+    let lj = r#"{"joints": [{"position": [-2, 2], "velocity": 1, "acceleration": 2, "jerk": 10}]}"#;
     let r = post(
         s.addr,
         "/api/plan",

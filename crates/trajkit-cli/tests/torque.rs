@@ -8,7 +8,8 @@ use common::trajkit;
 /// A two-link arm in the vertical x-z plane, with effort limits that bind.
 const ARM: &str = include_str!("../../trajkit/tests/fixtures/two_link_arm.urdf");
 
-const WAYPOINTS: &str = "q1,q2\n0,0\n1.2,-1.0\n0.3,1.0\n-0.5,0.2\n";
+/// Named like the URDF's joints (the columns take the limits of their name).
+const WAYPOINTS: &str = "shoulder,elbow\n0,0\n1.2,-1.0\n0.3,1.0\n-0.5,0.2\n";
 
 /// A fresh directory holding the arm's URDF and the waypoints.
 fn scratch(name: &str) -> PathBuf {
@@ -82,6 +83,8 @@ fn plan_with_torque_limits_holds_the_efforts() {
             "--dynamics",
             "arm.urdf",
             "--no-jerk-limit",
+            "--max-acceleration",
+            "40",
             "--out",
             "raw.csv",
         ],
@@ -102,7 +105,7 @@ fn sampled_torque_ratio(csv: &Path) -> f64 {
     let mut lines = table.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "t,q1,q2,qd1,qd2,qdd1,qdd2,qddd1,qddd2"
+        "t,q_shoulder,q_elbow,qd_shoulder,qd_elbow,qdd_shoulder,qdd_elbow,qddd_shoulder,qddd_elbow"
     );
     let mut worst: f64 = 0.0;
     let mut tau = [0.0; 2];
@@ -147,6 +150,10 @@ fn torque_limits_bad_input_is_one_line_and_writes_nothing() {
             "w.csv",
             "--limits",
             "noeff.urdf",
+            "--max-acceleration",
+            "40",
+            "--max-jerk",
+            "2000",
             "--torque-limits",
         ],
         &d,
@@ -172,6 +179,10 @@ fn torque_limits_bad_input_is_one_line_and_writes_nothing() {
             "--torque-limits",
             "--dynamics",
             "bad.urdf",
+            "--max-acceleration",
+            "40",
+            "--max-jerk",
+            "2000",
         ],
         &d,
     );
@@ -191,6 +202,10 @@ fn torque_limits_bad_input_is_one_line_and_writes_nothing() {
             "--limits",
             "arm.urdf",
             "--torque-limits",
+            "--max-acceleration",
+            "40",
+            "--max-jerk",
+            "2000",
             "--method",
             "poly",
         ],

@@ -25,11 +25,21 @@ fn duration(summary: &str) -> f64 {
 #[test]
 fn totg_and_ni_plans_pass_the_checker() {
     let d = scratch("totg-ok");
+    // TOTG cannot bound jerk: with the Panda's jerk limits it refuses, saying how to go on.
+    let o = trajkit(&["plan", "--method", "totg", "--out", "totg.csv"], &d);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    let err = text(&o);
+    assert!(
+        err.contains("jerk limit 7500 cannot be held") && err.contains("--no-jerk-limit"),
+        "{err}"
+    );
+    assert!(entries(&d).is_empty());
     let o = trajkit(
         &[
             "plan",
             "--method",
             "totg",
+            "--no-jerk-limit",
             "--max-deviation",
             "0.1",
             "--out",
@@ -62,6 +72,7 @@ fn totg_and_ni_plans_pass_the_checker() {
             "plan",
             "--method",
             "totg",
+            "--no-jerk-limit",
             "--max-deviation",
             "0.02",
             "--out",

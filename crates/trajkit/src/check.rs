@@ -16,6 +16,9 @@
 //! samples can report a modest pointwise acceleration on both sides of the jump, while the
 //! finite difference of the velocity shows the jump for what it is.
 //!
+//! When the table and the limits both name their joints, each column is checked against the
+//! limits of its name, in any order ([`crate::limits::match_names`]); otherwise by position.
+//!
 //! Use of a limit is a ratio, computed with [`JointLimits::ratio`]: `value / max` for
 //! non-negative values and `value / min` for negative ones (so direction-dependent minima are
 //! respected); 1.0 is exactly at the limit, and an unlimited (infinite) limit gives 0.
@@ -408,9 +411,17 @@ fn check_position(jl: &JointLimits, times: &[f64], q: &[f64]) -> PositionCheck {
 
 /// Checks a sample table against limits (see the module documentation).
 ///
-/// Errors: [`Error::DimensionMismatch`] when the table and the limits have different joint
-/// counts; [`Error::InvalidValue`] for a table without samples.
+/// When the table and the limits both name their joints, columns take the limits of their
+/// name, in any order (limit joints no column names are not used); otherwise they pair by
+/// position ([`crate::limits::match_names`]).
+///
+/// Errors: [`Error::JointNames`] for a named column without limits of its name;
+/// [`Error::DimensionMismatch`] when unnamed tables and limits have different joint counts;
+/// [`Error::InvalidValue`] for a table without samples.
 pub fn check_samples(table: &SampleTable, limits: &Limits) -> Result<LimitReport> {
+    let named = table.names().iter().all(|n| !n.is_empty());
+    let (limits, _) = limits.for_joints("table", named.then_some(table.names()))?;
+    let limits = &limits;
     limits.expect_dof(table.dof(), "the sample table")?;
     if table.is_empty() {
         return Err(Error::InvalidValue {
@@ -693,6 +704,33 @@ mod tests {
             check_trajectory(&Ramp, &Limits::uniform(3, 1.0, 1.0, 1.0).unwrap(), 10.0).is_err()
         );
         assert!(check_trajectory(&Ramp, &lim, 0.0).is_err());
+    }
+
+    #[test]
+    fn named_columns_take_the_limits_of_their_name() {
+        // Joint "b" moves at 1.5 rad/s; "a" is still. Limits list "a" (1.0) then "b" (2.0).
+        let t = grid(3, 1.0);
+        let q = vec![0.0, 0.0, 0.0, 1.5, 0.0, 3.0];
+        let tb = table(2, t, [Some(q), None, None, None])
+            .with_names(vec!["a".into(), "b".into()])
+            .unwrap();
+        let mut a = JointLimits::symmetric(1.0, 10.0, 100.0);
+        a.name = "a".into();
+        let mut b = JointLimits::symmetric(2.0, 10.0, 100.0);
+        b.name = "b".into();
+        let mut c = JointLimits::symmetric(2.0, 10.0, 100.0);
+        c.name = "c".into();
+        // In the limits' order the columns are (b, a): b at 1.5 of 2.0 is 0.75.
+        let r = check_samples(
+            &tb,
+            &Limits::new(vec![c.clone(), b.clone(), a.clone()]).unwrap(),
+        )
+        .unwrap();
+        assert!((r.worst() - 0.75).abs() < 1e-12);
+        assert_eq!(r.joints[1].name, "b");
+        // A column whose name the limits do not have.
+        let e = check_samples(&tb, &Limits::new(vec![a, c]).unwrap()).unwrap_err();
+        assert!(matches!(e, Error::JointNames { .. }), "{e}");
     }
 
     #[test]

@@ -5,22 +5,36 @@
 //!   (any non-numeric field makes it a header). Blank lines and lines starting with `#` are
 //!   skipped.
 //! - JSON: either an array of rows `[[q1, q2, ...], ...]` or an object
-//!   `{"joint_names": [...], "waypoints": [[...], ...]}`.
+//!   `{"joint_names": [...], "waypoints": [[...], ...]}`; any other key is an error that
+//!   suggests the closest known one.
+//!
+//! A CSV header or `joint_names` *names* the joints ([`Waypoints::has_names`]): limits are
+//! then matched to the columns by name ([`crate::limits::match_names`]). Without them the
+//! joints are `q1..qn` and matched by position.
 //!
 //! # Sample tables
 //! - CSV: header `t,q1..qn,qd1..qdn,qdd1..qddn,qddd1..qdddn` (derivative groups optional when
-//!   reading). A foreign table whose header has a `t` (or `time`) column but no `q<k>` columns
-//!   is read as times plus positions, one column per joint.
+//!   reading). A table whose joints have names writes them instead of the indices:
+//!   `t,q_<name>..,qd_<name>..,qdd_<name>..,qddd_<name>..` (`q_panda_joint1`), in joint
+//!   order; reading pairs derivative columns with position columns by name. Names with a
+//!   comma, semicolon, tab, quote or line break cannot be CSV headers: such a table is written
+//!   with indices. A foreign table whose header has a `t` (or `time`) column but no `q<k>` or
+//!   `q_<name>` columns is read as times plus positions, one column per joint.
 //! - JSON: `{"joint_names": [...], "t": [...], "q": [[...]...], "qd": ..., "qdd": ..., "qddd": ...}`
 //!   (`qd`, `qdd`, `qddd` optional when reading).
 //!
 //! Every error names the source, the line (CSV; JSON where the parser knows it) and the field.
-//! Non-finite numbers (`nan`, `inf`) are refused.
+//! Non-finite numbers (`nan`, `inf`) are refused. Files above [`MAX_FILE_BYTES`] are refused
+//! before they are read ([`Error::TooLarge`]).
 
 use crate::error::{Error, Location, Result};
 use crate::sample::SampleTable;
 use crate::traj::Order;
 use std::fmt::Write as _;
+
+/// Largest input file read ([`read_text`]): a quarter of [`crate::size::MEMORY_BUDGET`], since
+/// the parsed numbers can take several times the text's size.
+pub const MAX_FILE_BYTES: u64 = (crate::size::MEMORY_BUDGET / 4) as u64;
 
 /// Waypoints: `len() × dof` positions, row-major, with optional joint names.
 #[derive(Debug, Clone, PartialEq)]
@@ -28,6 +42,7 @@ pub struct Waypoints {
     dof: usize,
     points: Vec<f64>,
     names: Vec<String>,
+    named: bool,
 }
 
 fn parse_err(
@@ -93,6 +108,7 @@ impl Waypoints {
                 reason: "is not a finite number",
             });
         }
+        let named = !names.is_empty();
         let names = if names.is_empty() {
             (1..=dof).map(|j| format!("q{j}")).collect()
         } else if names.len() != dof {
@@ -104,7 +120,33 @@ impl Waypoints {
         } else {
             names
         };
-        Ok(Waypoints { dof, points, names })
+        if named {
+            for (j, n) in names.iter().enumerate() {
+                if n.is_empty() || names[..j].contains(n) {
+                    return Err(Error::InvalidValue {
+                        field: format!("joint name '{n}' (column {})", j + 1),
+                        value: j as f64 + 1.0,
+                        reason: "is empty or names an earlier column too",
+                    });
+                }
+            }
+        }
+        Ok(Waypoints {
+            dof,
+            points,
+            names,
+            named,
+        })
+    }
+
+    /// True when the input named its joints (a CSV header, JSON `joint_names`).
+    pub fn has_names(&self) -> bool {
+        self.named
+    }
+
+    /// The joint names when the input gave them, for [`crate::limits::match_names`].
+    pub fn given_names(&self) -> Option<&[String]> {
+        self.named.then_some(&self.names[..])
     }
 
     /// Number of joints.
@@ -204,6 +246,7 @@ impl Waypoints {
         let (rows, names) = match &v {
             serde_json::Value::Array(_) => (&v, Vec::new()),
             serde_json::Value::Object(m) => {
+                reject_unknown_keys(m, &["joint_names", "waypoints"], source)?;
                 let rows = m
                     .get("waypoints")
                     .ok_or_else(|| parse_err(source, 0, "waypoints", "missing"))?;
@@ -281,12 +324,47 @@ impl Waypoints {
     }
 }
 
-/// Reads a whole file as UTF-8 text; errors name the path.
+/// An error for the first key of `m` that is not in `known`, suggesting the closest known one.
+fn reject_unknown_keys(
+    m: &serde_json::Map<String, serde_json::Value>,
+    known: &[&str],
+    source: &str,
+) -> Result<()> {
+    let Some(k) = m.keys().find(|k| !known.contains(&k.as_str())) else {
+        return Ok(());
+    };
+    let hint = match crate::error::closest_name(k, known) {
+        Some(c) => format!("did you mean '{c}'? "),
+        None => String::new(),
+    };
+    Err(parse_err(
+        source,
+        0,
+        k.as_str(),
+        format!("unknown field ({hint}known: {})", known.join(", ")),
+    ))
+}
+
+/// Reads a whole file as UTF-8 text; errors name the path. A regular file above
+/// [`MAX_FILE_BYTES`] is refused before it is read ([`Error::TooLarge`]).
 pub fn read_text(path: &std::path::Path) -> Result<String> {
-    std::fs::read_to_string(path).map_err(|e| Error::Io {
+    let io = |e: std::io::Error| Error::Io {
         path: path.display().to_string(),
         message: e.to_string(),
-    })
+    };
+    let meta = std::fs::metadata(path).map_err(io)?;
+    if meta.is_file() && meta.len() > MAX_FILE_BYTES {
+        return Err(Error::TooLarge {
+            what: format!("{} size (bytes)", path.display()),
+            value: meta.len() as f64,
+            limit: MAX_FILE_BYTES as f64,
+            reason: format!(
+                "input files are read whole; {} at most",
+                crate::size::human_bytes(MAX_FILE_BYTES as f64)
+            ),
+        });
+    }
+    std::fs::read_to_string(path).map_err(io)
 }
 
 /// True when the path's extension is `.json` (case-insensitive).
@@ -299,10 +377,25 @@ pub fn is_json(path: &std::path::Path) -> bool {
 const PREFIX: [&str; 4] = ["q", "qd", "qdd", "qddd"];
 const JSON_KEYS: [&str; 4] = ["q", "qd", "qdd", "qddd"];
 
-/// Writes a sample table as CSV (header `t,q1..,qd1..,qdd1..,qddd1..`; only the derivative
-/// groups the table has). Numbers use Rust's shortest round-trip representation.
+/// The table's joint names when they can be CSV headers: every name non-empty, distinct, and
+/// free of separators, quotes and line breaks.
+fn csv_names(table: &SampleTable) -> Option<&[String]> {
+    let names = table.names();
+    let ok = names.iter().enumerate().all(|(j, n)| {
+        !n.is_empty()
+            && n.trim() == n
+            && !n.contains([',', ';', '\t', '"', '\n', '\r'])
+            && !names[..j].contains(n)
+    });
+    ok.then_some(names)
+}
+
+/// Writes a sample table as CSV (header `t,q1..,qd1..,qdd1..,qddd1..`, or with the joint names
+/// `t,q_<name>..,qd_<name>..` when the table has names that fit a CSV header; only the
+/// derivative groups the table has). Numbers use Rust's shortest round-trip representation.
 pub fn table_to_csv(table: &SampleTable) -> String {
     let dof = table.dof();
+    let names = csv_names(table);
     let orders: Vec<Order> = Order::ALL
         .iter()
         .copied()
@@ -312,7 +405,14 @@ pub fn table_to_csv(table: &SampleTable) -> String {
     s.push('t');
     for o in &orders {
         for j in 1..=dof {
-            let _ = write!(s, ",{}{j}", PREFIX[o.index()]);
+            match names {
+                Some(n) => {
+                    let _ = write!(s, ",{}_{}", PREFIX[o.index()], n[j - 1]);
+                }
+                None => {
+                    let _ = write!(s, ",{}{j}", PREFIX[o.index()]);
+                }
+            }
         }
     }
     s.push('\n');
@@ -354,66 +454,16 @@ pub fn table_from_csv(text: &str, source: &str) -> Result<SampleTable> {
     let (hl, header) = lines
         .next()
         .ok_or_else(|| parse_err(source, 0, "", "empty file: no header"))?;
-    let cols: Vec<String> = split_fields(header)
-        .iter()
-        .map(|s| s.to_ascii_lowercase())
-        .collect();
+    let raw_cols: Vec<String> = split_fields(header).iter().map(|s| s.to_string()).collect();
+    let cols: Vec<String> = raw_cols.iter().map(|s| s.to_ascii_lowercase()).collect();
     let tcol = cols
         .iter()
         .position(|c| c == "t" || c == "time" || c == "time_from_start")
         .ok_or_else(|| parse_err(source, hl + 1, "t", "header has no 't' (time) column"))?;
-    // Map each column to (order, joint index 1-based) when named q<k>, qd<k>, ...
-    let classify = |c: &str| -> Option<(usize, usize)> {
-        for (k, p) in PREFIX.iter().enumerate().rev() {
-            if let Some(rest) = c.strip_prefix(p) {
-                if let Ok(j) = rest.parse::<usize>() {
-                    if j >= 1 {
-                        return Some((k, j));
-                    }
-                }
-            }
-        }
-        None
-    };
-    let mut map: Vec<Option<(usize, usize)>> = cols.iter().map(|c| classify(c)).collect();
-    map[tcol] = None;
-    let named = map.iter().any(|m| matches!(m, Some((0, _))));
-    if !named {
-        // Foreign table: every non-time column is a position.
-        let mut j = 0;
-        for (i, m) in map.iter_mut().enumerate() {
-            if i != tcol {
-                j += 1;
-                *m = Some((0, j));
-            }
-        }
-    }
-    let dof = map
-        .iter()
-        .filter_map(|m| *m)
-        .filter(|(k, _)| *k == 0)
-        .map(|(_, j)| j)
-        .max()
-        .unwrap_or(0);
-    if dof == 0 {
-        return Err(parse_err(
-            source,
-            hl + 1,
-            "",
-            "header has no position columns",
-        ));
-    }
+    let (map, dof, names) = classify_columns(&raw_cols, &cols, tcol, source, hl + 1)?;
     let mut present = [false; 4];
     let mut counts = [0usize; 4];
-    for (k, j) in map.iter().flatten() {
-        if *j > dof {
-            return Err(parse_err(
-                source,
-                hl + 1,
-                &cols[0],
-                format!("column {}{} beyond {dof} joints", PREFIX[*k], j),
-            ));
-        }
+    for (k, _) in map.iter().flatten() {
         present[*k] = true;
         counts[*k] += 1;
     }
@@ -459,8 +509,168 @@ pub fn table_from_csv(text: &str, source: &str) -> Result<SampleTable> {
     }
     let [d0, d1, d2, d3] = data;
     let opt = |k: usize, d: Vec<f64>| if present[k] { Some(d) } else { None };
-    SampleTable::new(dof, t, [opt(0, d0), opt(1, d1), opt(2, d2), opt(3, d3)])
-        .map_err(|e| parse_err(source, 0, "", e.to_string()))
+    let table = SampleTable::new(dof, t, [opt(0, d0), opt(1, d1), opt(2, d2), opt(3, d3)])
+        .map_err(|e| parse_err(source, 0, "", e.to_string()))?;
+    match names {
+        Some(n) => table.with_names(n),
+        None => Ok(table),
+    }
+}
+
+/// Per column: its (order, 1-based joint) or `None` (time, ignored); the joint count; the
+/// joint names when the header names joints (`q_<name>` columns).
+type ColumnMap = (Vec<Option<(usize, usize)>>, usize, Option<Vec<String>>);
+
+/// Reads a table header (see the module docs): `q<k>` columns by index, `q_<name>` columns by
+/// name (joint order: the order of the `q_` columns), or a foreign header whose non-time
+/// columns are all positions.
+fn classify_columns(
+    raw: &[String],
+    cols: &[String],
+    tcol: usize,
+    source: &str,
+    line: usize,
+) -> Result<ColumnMap> {
+    let by_index = |c: &str| -> Option<(usize, usize)> {
+        for (k, p) in PREFIX.iter().enumerate().rev() {
+            if let Some(rest) = c.strip_prefix(p) {
+                if let Ok(j) = rest.parse::<usize>() {
+                    if j >= 1 {
+                        return Some((k, j));
+                    }
+                }
+            }
+        }
+        None
+    };
+    let by_name = |c: &str| -> Option<(usize, String)> {
+        for (k, p) in PREFIX.iter().enumerate().rev() {
+            if let Some(rest) = c.strip_prefix(p).and_then(|r| r.strip_prefix('_')) {
+                if !rest.is_empty() {
+                    return Some((k, rest.to_string()));
+                }
+            }
+        }
+        None
+    };
+    let idx: Vec<Option<(usize, usize)>> = cols
+        .iter()
+        .enumerate()
+        .map(|(i, c)| if i == tcol { None } else { by_index(c) })
+        .collect();
+    let named: Vec<Option<(usize, String)>> = raw
+        .iter()
+        .enumerate()
+        .map(|(i, c)| if i == tcol { None } else { by_name(c) })
+        .collect();
+    let has_index_q = idx.iter().any(|m| matches!(m, Some((0, _))));
+    let has_named_q = named.iter().any(|m| matches!(m, Some((0, _))));
+    match (has_index_q, has_named_q) {
+        (true, true) => Err(parse_err(
+            source,
+            line,
+            "",
+            "header mixes q<k> and q_<name> position columns",
+        )),
+        (false, true) => named_columns(raw, &named, tcol, source, line),
+        (has_index_q, false) => indexed_columns(idx, has_index_q, cols, tcol, source, line),
+    }
+}
+
+/// The header's `q_<name>` columns: joints in the order of the position columns, derivative
+/// columns paired by name.
+fn named_columns(
+    raw: &[String],
+    named: &[Option<(usize, String)>],
+    tcol: usize,
+    source: &str,
+    line: usize,
+) -> Result<ColumnMap> {
+    let names: Vec<String> = named
+        .iter()
+        .filter_map(|m| match m {
+            Some((0, n)) => Some(n.clone()),
+            _ => None,
+        })
+        .collect();
+    if let Some(j) = (0..names.len()).find(|&j| names[..j].contains(&names[j])) {
+        return Err(parse_err(
+            source,
+            line,
+            format!("{}_{}", PREFIX[0], names[j]),
+            "names a joint twice",
+        ));
+    }
+    let mut map = vec![None; raw.len()];
+    for (i, m) in named.iter().enumerate() {
+        let Some((k, n)) = m else { continue };
+        let j = names.iter().position(|x| x == n).ok_or_else(|| {
+            parse_err(
+                source,
+                line,
+                raw[i].as_str(),
+                format!("joint '{n}' has no {}_{n} position column", PREFIX[0]),
+            )
+        })?;
+        map[i] = Some((*k, j + 1));
+    }
+    if let Some(i) = (0..map.len()).find(|&i| i != tcol && map[i].is_none()) {
+        return Err(parse_err(
+            source,
+            line,
+            raw[i].as_str(),
+            "is neither a q_/qd_/qdd_/qddd_<name> column nor the time",
+        ));
+    }
+    let dof = names.len();
+    Ok((map, dof, Some(names)))
+}
+
+/// The header's `q<k>` columns, or (without any) a foreign header read as positions.
+fn indexed_columns(
+    mut map: Vec<Option<(usize, usize)>>,
+    has_index_q: bool,
+    cols: &[String],
+    tcol: usize,
+    source: &str,
+    line: usize,
+) -> Result<ColumnMap> {
+    if !has_index_q {
+        // Foreign table: every non-time column is a position.
+        let mut j = 0;
+        for (i, m) in map.iter_mut().enumerate() {
+            if i != tcol {
+                j += 1;
+                *m = Some((0, j));
+            }
+        }
+    }
+    let dof = map
+        .iter()
+        .filter_map(|m| *m)
+        .filter(|(k, _)| *k == 0)
+        .map(|(_, j)| j)
+        .max()
+        .unwrap_or(0);
+    if dof == 0 {
+        return Err(parse_err(
+            source,
+            line,
+            "",
+            "header has no position columns",
+        ));
+    }
+    for (k, j) in map.iter().flatten() {
+        if *j > dof {
+            return Err(parse_err(
+                source,
+                line,
+                &cols[0],
+                format!("column {}{} beyond {dof} joints", PREFIX[*k], j),
+            ));
+        }
+    }
+    Ok((map, dof, None))
 }
 
 /// Reads a sample table from JSON (see the module docs).
@@ -622,6 +832,74 @@ mod tests {
     }
 
     #[test]
+    fn names_are_given_or_not_and_json_is_strict() {
+        let w = Waypoints::from_csv("a,b\n0,1\n", "w.csv").unwrap();
+        assert!(w.has_names());
+        assert_eq!(w.given_names().unwrap(), ["a", "b"]);
+        let w = Waypoints::from_csv("0,1\n2,3\n", "w.csv").unwrap();
+        assert!(!w.has_names() && w.given_names().is_none());
+        assert_eq!(w.names(), ["q1", "q2"]);
+        let e = Waypoints::from_csv("a,a\n0,1\n", "w.csv").unwrap_err();
+        assert!(e.to_string().contains("'a' (column 2)"), "{e}");
+        let e = Waypoints::from_json(r#"{"waypionts": [[0, 1]]}"#, "w.json")
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "w.json field 'waypionts': unknown field (did you mean 'waypoints'? known: joint_names, waypoints)"
+        );
+        let e = Waypoints::from_json(r#"{"waypoints": [[0, 1]], "units": "deg"}"#, "w.json")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("'units': unknown field (known:"), "{e}");
+    }
+
+    /// Two joints, two samples, positions and velocities.
+    fn small_table() -> SampleTable {
+        SampleTable::new(
+            2,
+            vec![0.0, 0.5],
+            [
+                Some(vec![1.0, 2.0, 3.0, 4.0]),
+                Some(vec![0.1, 0.2, 0.3, 0.4]),
+                None,
+                None,
+            ],
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn named_tables_round_trip() {
+        let t = small_table()
+            .with_names(vec!["elbow".into(), "wrist_1".into()])
+            .unwrap();
+        let csv = table_to_csv(&t);
+        assert!(
+            csv.starts_with("t,q_elbow,q_wrist_1,qd_elbow,qd_wrist_1\n"),
+            "{csv}"
+        );
+        let back = table_from_csv(&csv, "n.csv").unwrap();
+        assert_eq!(back, t);
+        // Columns in any order are paired by name.
+        let shuffled = "t,qd_wrist_1,q_elbow,qd_elbow,q_wrist_1\n0,0.2,1,0.1,2\n";
+        let b = table_from_csv(shuffled, "s.csv").unwrap();
+        assert_eq!(b.names(), ["elbow", "wrist_1"]);
+        assert_eq!(b.row(Order::Velocity, 0).unwrap(), [0.1, 0.2]);
+        for bad in [
+            "t,q_a,qd_b\n0,1,2\n",
+            "t,q_a,q_a\n0,1,2\n",
+            "t,q_a,q2\n0,1,2\n",
+            "t,q_a,x\n0,1,2\n",
+        ] {
+            assert!(table_from_csv(bad, "b.csv").is_err(), "{bad}");
+        }
+        // A name that cannot be a header: indices instead.
+        let t = t.with_names(vec!["a,b".into(), "c".into()]).unwrap();
+        assert!(table_to_csv(&t).starts_with("t,q1,q2,"));
+    }
+
+    #[test]
     fn dedup_removes_consecutive_repeats() {
         let mut w = Waypoints::new(
             vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0, 0.0, 0.0],
@@ -635,17 +913,7 @@ mod tests {
 
     #[test]
     fn table_round_trips() {
-        let t = SampleTable::new(
-            2,
-            vec![0.0, 0.5],
-            [
-                Some(vec![1.0, 2.0, 3.0, 4.0]),
-                Some(vec![0.1, 0.2, 0.3, 0.4]),
-                None,
-                None,
-            ],
-        )
-        .unwrap();
+        let t = small_table();
         let csv = table_to_csv(&t);
         assert!(csv.starts_with("t,q1,q2,qd1,qd2\n"));
         assert_eq!(table_from_csv(&csv, "x.csv").unwrap(), t);

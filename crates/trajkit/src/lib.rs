@@ -21,6 +21,8 @@
 //! ```
 //!
 //! ## Map
+//! - [`plan()`]: the main job in one call: waypoints and limits in, a trajectory that keeps
+//!   every limit (position range included) out, checked ([`mod@plan`] module).
 //! - [`traj`]: the trajectory model ([`Trajectory`], [`Order`]), shared by every family.
 //! - [`path`]: geometric paths σ(s), the input of time parameterization.
 //! - [`limits`]: per-joint limits, robot presets, limits files and URDF.
@@ -55,11 +57,13 @@ pub mod limits;
 pub mod linalg;
 pub mod otg;
 pub mod path;
+pub mod plan;
 pub mod plot;
 pub mod poly;
 pub mod primitives;
 pub mod rng;
 pub mod sample;
+pub mod size;
 pub mod spline;
 pub mod topp;
 pub mod traj;
@@ -67,6 +71,7 @@ pub mod traj;
 pub use error::{Error, Result};
 pub use limits::{JointLimits, Limits};
 pub use path::{Path, PathAsTrajectory};
+pub use plan::{plan, Plan, PlanOptions};
 pub use sample::SampleTable;
 pub use traj::{Order, State, Trajectory};
 

@@ -172,14 +172,12 @@ pub fn sample_times(duration: f64, rate_hz: f64) -> Result<Vec<f64>> {
         });
     }
     let n = (duration * rate_hz).floor();
-    if n > 1e9 {
-        return Err(Error::InvalidValue {
-            field: "sample count (duration × rate)".into(),
-            value: n,
-            reason: "is above the limit of 1e9 samples",
-        });
-    }
-    let n = n as usize;
+    let n = crate::size::check_memory(
+        "sample count (duration × rate)",
+        n + 1.0,
+        8.0,
+        "a sample time",
+    )? - 1;
     let mut t: Vec<f64> = (0..=n).map(|k| k as f64 / rate_hz).collect();
     // Drop a grid time that rounding put (almost) on the end; then add the end itself.
     while t.len() > 1 && *t.last().unwrap() >= duration - 1e-9 / rate_hz {
@@ -201,15 +199,49 @@ pub fn sample_times(duration: f64, rate_hz: f64) -> Result<Vec<f64>> {
 /// assert_eq!(table.len(), 101);
 /// # Ok::<(), trajkit::Error>(())
 /// ```
+///
+/// The sample count is checked against [`crate::size::MEMORY_BUDGET`] before anything is
+/// allocated ([`Error::TooLarge`]).
 pub fn sample<T: Trajectory + ?Sized>(traj: &T, rate_hz: f64) -> Result<SampleTable> {
+    check_sample_count(traj.duration(), rate_hz, traj.dof())?;
     let times = sample_times(traj.duration(), rate_hz)?;
     sample_at(traj, times)
+}
+
+/// Refuses a sampling of `duration` seconds at `rate_hz` for `dof` joints whose table (time,
+/// position, velocity, acceleration, jerk) would exceed [`crate::size::MEMORY_BUDGET`].
+pub fn check_sample_count(duration: f64, rate_hz: f64, dof: usize) -> Result<usize> {
+    check_sample_memory(duration, rate_hz, dof, 8.0, "")
+}
+
+/// [`check_sample_count`] for `bytes_per_value` bytes per number (8 for the table, more when
+/// its text is kept too, which `what` then says, e.g. `" with its text"`).
+pub fn check_sample_memory(
+    duration: f64,
+    rate_hz: f64,
+    dof: usize,
+    bytes_per_value: f64,
+    what: &str,
+) -> Result<usize> {
+    crate::error::positive(|| "sample rate (Hz)".into(), rate_hz)?;
+    crate::size::check_memory(
+        "sample count (duration × rate)",
+        (duration * rate_hz).floor() + 2.0,
+        bytes_per_value * (1.0 + 4.0 * dof as f64),
+        &format!("a sample of {dof} joint(s){what}"),
+    )
 }
 
 /// Samples `traj` at the given increasing times.
 pub fn sample_at<T: Trajectory + ?Sized>(traj: &T, times: Vec<f64>) -> Result<SampleTable> {
     let dof = traj.dof();
     let rows = times.len();
+    crate::size::check_memory(
+        "sample count",
+        rows as f64,
+        8.0 * (1.0 + 4.0 * dof as f64),
+        &format!("a sample of {dof} joint(s)"),
+    )?;
     let mut data: [Option<Vec<f64>>; 4] = [
         Some(vec![0.0; rows * dof]),
         Some(vec![0.0; rows * dof]),
@@ -245,6 +277,13 @@ mod tests {
         assert!(t.windows(2).all(|w| w[1] - w[0] > 0.5e-3));
         assert!(sample_times(1.0, 0.0).is_err());
         assert!(sample_times(f64::INFINITY, 1.0).is_err());
+        // Far too many samples: refused with the limit before anything is allocated.
+        let e = check_sample_count(3600.0 * 24.0 * 365.0, 1e6, 7).unwrap_err();
+        assert!(matches!(e, Error::TooLarge { .. }), "{e}");
+        assert!(
+            e.to_string().contains("sample count (duration × rate)"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -14,7 +14,11 @@ fn topp_outputs_evaluate_without_allocating() {
     let lim = Limits::preset("panda").unwrap();
     let wp: Vec<f64> = (0..5)
         .flat_map(|i| {
-            (0..7).map(move |j| 0.3 * ((i * 7 + j) as f64).sin() - if j == 3 { 1.5 } else { 0.0 })
+            (0..7).map(move |j| {
+                // Inside the Panda's ranges (joint 4 negative, joint 6 positive).
+                let offset = [0.0, 0.0, 0.0, -1.5, 0.0, 1.0, 0.0][j];
+                0.3 * ((i * 7 + j) as f64).sin() + offset
+            })
         })
         .collect();
     let ss: Vec<f64> = (0..5).map(|i| i as f64 / 4.0).collect();

@@ -3,7 +3,7 @@
 use clap::{Args, ValueEnum};
 use std::fmt;
 use std::path::{Path, PathBuf};
-use trajkit::limits::load;
+use trajkit::limits::{load, FillBy, Needs, PartialLimits};
 use trajkit::{Limits, Order, SampleTable};
 
 /// A command-line error: one line, exit status 2.
@@ -25,20 +25,36 @@ impl From<trajkit::Error> for CliError {
 /// Shorthand.
 pub type CliResult<T> = Result<T, CliError>;
 
+/// How `--fill-from` pairs joints.
+#[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FillByArg {
+    /// By joint name (the default).
+    Name,
+    /// By position: joint j takes the source's joint j.
+    Index,
+}
+
 /// Where joint limits come from.
 #[derive(Args, Debug, Clone)]
 pub struct LimitsArgs {
     /// Robot preset (panda, ur5e, iiwa14) or a limits file (.json/.yaml trajkit format, MoveIt
-    /// joint_limits.yaml, or .urdf).
-    #[arg(long, value_name = "PRESET|FILE", default_value = "panda")]
-    pub limits: String,
+    /// joint_limits.yaml, or .urdf). No default: give it, or the limits themselves with
+    /// --max-velocity/--max-acceleration/--max-jerk/--position-range.
+    #[arg(long, value_name = "PRESET|FILE")]
+    pub limits: Option<String>,
     /// A MoveIt joint_limits.yaml whose entries override the limits, matched by joint name.
     #[arg(long, value_name = "FILE")]
     pub joint_limits: Option<PathBuf>,
-    /// Fill absent acceleration and jerk limits (e.g. from a URDF) from this preset.
-    #[arg(long, value_name = "PRESET")]
+    /// Fill absent acceleration and jerk limits (e.g. of a URDF) from this preset or limits
+    /// file, matched by joint name (see --fill-by).
+    #[arg(long, value_name = "PRESET|FILE")]
     pub fill_from: Option<String>,
-    /// Override maximum velocities: one value for all joints or one per joint, comma-separated.
+    /// How --fill-from pairs joints: by name, or by index when the joints correspond but
+    /// their names differ.
+    #[arg(long, value_enum, default_value = "name")]
+    pub fill_by: FillByArg,
+    /// Maximum velocities: one value for all joints or one per joint, comma-separated ('inf'
+    /// states "unlimited").
     #[arg(
         long,
         value_name = "V[,V..]",
@@ -46,7 +62,7 @@ pub struct LimitsArgs {
         allow_hyphen_values = true
     )]
     pub max_velocity: Option<Vec<f64>>,
-    /// Override maximum accelerations (one, or one per joint).
+    /// Maximum accelerations (one, or one per joint).
     #[arg(
         long,
         value_name = "A[,A..]",
@@ -54,7 +70,7 @@ pub struct LimitsArgs {
         allow_hyphen_values = true
     )]
     pub max_acceleration: Option<Vec<f64>>,
-    /// Override maximum jerks (one, or one per joint).
+    /// Maximum jerks (one, or one per joint).
     #[arg(
         long,
         value_name = "J[,J..]",
@@ -62,6 +78,16 @@ pub struct LimitsArgs {
         allow_hyphen_values = true
     )]
     pub max_jerk: Option<Vec<f64>>,
+    /// Position ranges: one LO:HI for all joints or one per joint, comma-separated
+    /// ('-inf:inf' states "unbounded").
+    #[arg(
+        long,
+        value_name = "LO:HI[,LO:HI..]",
+        value_delimiter = ',',
+        allow_hyphen_values = true,
+        value_parser = parse_range
+    )]
+    pub position_range: Option<Vec<(f64, f64)>>,
     /// Scale every velocity limit (0 < s; 0.5 = half speed).
     #[arg(
         long,
@@ -88,17 +114,89 @@ pub struct LimitsArgs {
     pub jerk_scale: f64,
 }
 
+/// Parses one `LO:HI` of `--position-range`.
+fn parse_range(s: &str) -> Result<(f64, f64), String> {
+    let bad = || format!("'{s}' is not a range LO:HI (e.g. -2.9:2.9, or -inf:inf)");
+    let (lo, hi) = s.split_once(':').ok_or_else(bad)?;
+    let lo: f64 = lo.trim().parse().map_err(|_| bad())?;
+    let hi: f64 = hi.trim().parse().map_err(|_| bad())?;
+    if lo.is_nan() || hi.is_nan() {
+        return Err(bad());
+    }
+    Ok((lo, hi))
+}
+
+/// What the flags of [`LimitsArgs`] resolve to for some data: the limits in the data's joint
+/// order, and the names of the limit joints the data does not use.
+pub struct ResolvedLimits {
+    /// The limits, one per data joint, with what was given.
+    pub limits: PartialLimits,
+    /// Joints of the limits source that no data column names.
+    pub unused: Vec<String>,
+}
+
 impl LimitsArgs {
-    /// Loads and combines the limits as the flags say.
-    pub fn load(&self) -> CliResult<Limits> {
-        let mut l = load::from_spec(&self.limits)?;
+    /// True when some override flag gives limits.
+    fn has_overrides(&self) -> bool {
+        self.max_velocity.is_some()
+            || self.max_acceleration.is_some()
+            || self.max_jerk.is_some()
+            || self.position_range.is_some()
+    }
+
+    /// Resolves the flags for data of `dof` joints named `names` (`what`: "waypoint",
+    /// "table"): the source (`--limits`, else the overrides alone, else `default` when given,
+    /// else an error asking for limits), `--joint-limits`, `--fill-from`, pairing with the data
+    /// by name or position, then the overrides (one value, or one per data column) and the
+    /// scales.
+    pub fn resolve(
+        &self,
+        what: &'static str,
+        names: Option<&[String]>,
+        dof: usize,
+        default: Option<&str>,
+    ) -> CliResult<ResolvedLimits> {
+        let mut l =
+            match (&self.limits, default) {
+                (Some(spec), _) => load::from_spec(spec)?,
+                (None, _) if self.has_overrides() => PartialLimits::unnamed(dof)?,
+                (None, Some(preset)) => Limits::preset(preset)?.into(),
+                (None, None) => return Err(CliError(
+                    "no limits given: name them with --limits PRESET|FILE (panda, ur5e, iiwa14, \
+                     a .json/.yaml limits file, a MoveIt joint_limits.yaml or a .urdf) or give \
+                     them with --max-velocity, --max-acceleration, --max-jerk and \
+                     --position-range"
+                        .to_string(),
+                )),
+            };
         if let Some(p) = &self.joint_limits {
             let text = trajkit::io::read_text(p)?;
             l = load::apply_moveit_joint_limits(&l, &text, &p.display().to_string())?;
         }
-        if let Some(p) = &self.fill_from {
-            let from = Limits::preset(p)?;
-            l = load::fill_missing(&l, &from)?;
+        if let Some(spec) = &self.fill_from {
+            let from = load::from_spec(spec)?;
+            let by = match self.fill_by {
+                FillByArg::Name => FillBy::Name,
+                FillByArg::Index => FillBy::Index,
+            };
+            l = l.fill_from(&from, by).map_err(|e| match e {
+                trajkit::Error::JointNames { .. } => CliError(format!(
+                    "--fill-from {spec}: {e} (--fill-by index pairs them by position)"
+                )),
+                e => CliError(format!("--fill-from {spec}: {e}")),
+            })?;
+        }
+        let (mut l, unused) = l.for_joints(what, names)?;
+        if l.dof() != dof {
+            return Err(CliError(format!(
+                "the limits have {} joints, the {what}s {dof}{}",
+                l.dof(),
+                if names.is_some() {
+                    ""
+                } else {
+                    " (unnamed columns pair with the limits by position)"
+                }
+            )));
         }
         for (order, v) in [
             (Order::Velocity, &self.max_velocity),
@@ -111,6 +209,11 @@ impl LimitsArgs {
                     .map_err(|e| CliError(format!("--max-{}: {e}", order.name())))?;
             }
         }
+        if let Some(r) = &self.position_range {
+            l = l
+                .with_position_range(r)
+                .map_err(|e| CliError(format!("--position-range: {e}")))?;
+        }
         if self.velocity_scale != 1.0 || self.acceleration_scale != 1.0 || self.jerk_scale != 1.0 {
             l = l.scaled(
                 self.velocity_scale,
@@ -118,8 +221,29 @@ impl LimitsArgs {
                 self.jerk_scale,
             )?;
         }
-        Ok(l)
+        Ok(ResolvedLimits { limits: l, unused })
     }
+}
+
+/// Completes resolved limits with what an operation needs; a missing one is one line naming
+/// the joint, the field and the flags that supply it.
+pub fn complete(l: &PartialLimits, needs: Needs) -> CliResult<Limits> {
+    l.complete(needs).map_err(|e| match &e {
+        trajkit::Error::MissingLimit { field, .. } => {
+            let how = match *field {
+                "velocity" => "--max-velocity V or a limits file with it",
+                "acceleration" => {
+                    "--max-acceleration A, a limits file with it, or --fill-from PRESET|FILE"
+                }
+                "jerk" => {
+                    "--max-jerk J ('inf': unlimited), a limits file, or --fill-from PRESET|FILE"
+                }
+                _ => "--position-range LO:HI ('-inf:inf': unbounded) or a limits file with it",
+            };
+            CliError(format!("{e}: give {how}"))
+        }
+        _ => CliError(e.to_string()),
+    })
 }
 
 /// Table format.
@@ -165,13 +289,34 @@ impl OutputArgs {
     }
 }
 
-/// Files to write at the very end, all or nothing as far as the filesystem allows: each file
-/// goes to a temporary sibling and is renamed into place; if any write fails, the temporaries
-/// and the files already renamed by this run are removed.
+/// Files to write at the very end, all or nothing. Every file is first written to a temporary
+/// sibling; only when all of them are written are they renamed into place, each existing
+/// target first kept aside under a hard link (a copy where links are not possible). If any
+/// step fails, every target is put back as it was (byte-identical; files this run would have
+/// created are removed) and the temporaries are deleted. Targets that exist and are not
+/// regular files (`/dev/null`, a FIFO, a terminal) are written in place, after the renames.
 #[derive(Default)]
 pub struct Outputs {
     files: Vec<(PathBuf, String)>,
     stdout: Option<String>,
+}
+
+/// One target during [`Outputs::commit`].
+struct Staged {
+    target: PathBuf,
+    tmp: PathBuf,
+    /// The target's previous content, kept aside while the run commits.
+    backup: Option<PathBuf>,
+    renamed: bool,
+}
+
+/// A sibling of `path` named `.name.trajkit-<what>-<pid>-<k>`.
+fn sibling(path: &Path, what: &str, k: usize) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().to_string())
+        .unwrap_or_default();
+    path.with_file_name(format!(".{name}.trajkit-{what}-{}-{k}", std::process::id()))
 }
 
 impl Outputs {
@@ -184,33 +329,73 @@ impl Outputs {
         }
     }
 
-    /// Writes everything queued.
+    /// Writes everything queued (see the type documentation).
     pub fn commit(self) -> CliResult<()> {
-        let mut done: Vec<PathBuf> = Vec::new();
-        for (path, content) in &self.files {
-            // A target that exists and is not a regular file (/dev/null, a FIFO, a terminal)
-            // is written in place: renaming over it would replace the device with a file.
-            if let Ok(meta) = std::fs::metadata(path) {
-                if !meta.is_file() {
-                    std::fs::write(path, content)
-                        .map_err(|e| CliError(format!("{}: {e}", path.display())))?;
-                    continue;
-                }
+        let err = |p: &Path, e: std::io::Error| CliError(format!("{}: {e}", p.display()));
+        let is_special = |p: &Path| std::fs::metadata(p).is_ok_and(|m| !m.is_file());
+        for (k, (path, _)) in self.files.iter().enumerate() {
+            if self.files[..k].iter().any(|(p, _)| p == path) {
+                return Err(CliError(format!(
+                    "{}: given for two outputs of one run",
+                    path.display()
+                )));
             }
-            let name = path
-                .file_name()
-                .map(|n| n.to_string_lossy().to_string())
-                .unwrap_or_default();
-            let tmp = path.with_file_name(format!(".{name}.trajkit-tmp-{}", std::process::id()));
-            let res = std::fs::write(&tmp, content).and_then(|_| std::fs::rename(&tmp, path));
-            if let Err(e) = res {
+        }
+        // 1. Every regular target's content to a temporary; nothing else is touched yet.
+        let mut staged: Vec<Staged> = Vec::new();
+        let mut special: Vec<(&Path, &str)> = Vec::new();
+        for (k, (path, content)) in self.files.iter().enumerate() {
+            if is_special(path) {
+                special.push((path, content));
+                continue;
+            }
+            let tmp = sibling(path, "tmp", k);
+            if let Err(e) = std::fs::write(&tmp, content) {
                 let _ = std::fs::remove_file(&tmp);
-                for d in &done {
-                    let _ = std::fs::remove_file(d);
-                }
-                return Err(CliError(format!("{}: {e}", path.display())));
+                rollback(&staged);
+                return Err(err(path, e));
             }
-            done.push(path.clone());
+            staged.push(Staged {
+                target: path.clone(),
+                tmp,
+                backup: None,
+                renamed: false,
+            });
+        }
+        // 2. Keep every existing target aside, then rename the temporaries into place.
+        for k in 0..staged.len() {
+            if staged[k].target.exists() {
+                let b = sibling(&staged[k].target, "bak", k);
+                let kept = std::fs::hard_link(&staged[k].target, &b)
+                    .or_else(|_| std::fs::copy(&staged[k].target, &b).map(|_| ()));
+                if let Err(e) = kept {
+                    let _ = std::fs::remove_file(&b);
+                    let target = staged[k].target.clone();
+                    rollback(&staged);
+                    return Err(err(&target, e));
+                }
+                staged[k].backup = Some(b);
+            }
+        }
+        for k in 0..staged.len() {
+            if let Err(e) = std::fs::rename(&staged[k].tmp, &staged[k].target) {
+                let target = staged[k].target.clone();
+                rollback(&staged);
+                return Err(err(&target, e));
+            }
+            staged[k].renamed = true;
+        }
+        // 3. Devices, in place.
+        for (path, content) in special {
+            if let Err(e) = std::fs::write(path, content) {
+                rollback(&staged);
+                return Err(err(path, e));
+            }
+        }
+        for s in &staged {
+            if let Some(b) = &s.backup {
+                let _ = std::fs::remove_file(b);
+            }
         }
         if let Some(s) = self.stdout {
             use std::io::Write;
@@ -220,6 +405,42 @@ impl Outputs {
         }
         Ok(())
     }
+}
+
+/// Puts every target of a failed commit back as it was and removes the temporaries.
+fn rollback(staged: &[Staged]) {
+    for s in staged {
+        if s.renamed {
+            match &s.backup {
+                Some(b) => {
+                    let _ = std::fs::rename(b, &s.target);
+                }
+                None => {
+                    let _ = std::fs::remove_file(&s.target);
+                }
+            }
+        } else {
+            let _ = std::fs::remove_file(&s.tmp);
+            if let Some(b) = &s.backup {
+                let _ = std::fs::remove_file(b);
+            }
+        }
+    }
+}
+
+/// Joint names for people: the given ones, `qJ` (1-based) where a name is empty.
+pub fn display_names(names: &[String]) -> Vec<String> {
+    names
+        .iter()
+        .enumerate()
+        .map(|(j, n)| {
+            if n.is_empty() {
+                format!("q{}", j + 1)
+            } else {
+                n.clone()
+            }
+        })
+        .collect()
 }
 
 /// Parses a comma-separated list of numbers given to `flag`.

@@ -17,8 +17,10 @@ pub struct DemoFile {
     pub q: Vec<f64>,
     /// Joint count.
     pub dof: usize,
-    /// Joint names.
+    /// Joint names (`q1..qn` when the table has none).
     pub names: Vec<String>,
+    /// True when the table named its joints.
+    pub named: bool,
 }
 
 /// Reads a demonstration table.
@@ -34,18 +36,8 @@ pub fn read_demo(path: &Path) -> CliResult<DemoFile> {
         t: table.times().to_vec(),
         q,
         dof: table.dof(),
-        names: table
-            .names()
-            .iter()
-            .enumerate()
-            .map(|(j, n)| {
-                if n.is_empty() {
-                    format!("q{}", j + 1)
-                } else {
-                    n.clone()
-                }
-            })
-            .collect(),
+        named: table.names().iter().all(|n| !n.is_empty()),
+        names: super::common::display_names(table.names()),
     })
 }
 
@@ -276,10 +268,24 @@ pub fn run(a: &DmpArgs) -> CliResult<u8> {
             (Box::new(dmp.rollout(&opts)?), dmp.tau())
         }
         Some(spec) => {
-            let limits = trajkit::limits::load::from_spec(spec)?;
-            limits
-                .expect_dof(demo.dof, "the demonstration")
-                .map_err(|e| CliError(format!("{}: {e}", demo.src)))?;
+            let named = demo.named.then_some(&demo.names[..]);
+            let (limits, _) = trajkit::limits::load::from_spec(spec)?
+                .for_joints("table", named)
+                .map_err(|e| CliError(format!("{}: --within {spec}: {e}", demo.src)))?;
+            if limits.dof() != demo.dof {
+                return Err(CliError(format!(
+                    "{}: --within {spec} has {} joints, the demonstration {}",
+                    demo.src,
+                    limits.dof(),
+                    demo.dof
+                )));
+            }
+            let position = trajkit::limits::Needs {
+                position: true,
+                ..trajkit::limits::Needs::NONE
+            };
+            let limits = super::common::complete(&limits, position)
+                .map_err(|e| CliError(format!("--within {spec}: {e}")))?;
             let dmp = BoundedDmp::fit(&demo.t, &demo.q, demo.dof, &cfg, &limits)
                 .map_err(|e| CliError(format!("{}: {e}", demo.src)))?;
             (Box::new(dmp.rollout(&opts)?), dmp.inner().tau())

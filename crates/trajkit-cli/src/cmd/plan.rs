@@ -1,12 +1,16 @@
 //! `trajkit plan`: waypoints + limits → sampled trajectory, summary, optional plot.
+//!
+//! Argument parsing and I/O only: the planning is [`trajkit::plan::plan_with_progress`].
 
-use super::common::{CliError, CliResult, LimitsArgs, OutputArgs, Outputs};
+use super::common::{complete, CliError, CliResult, LimitsArgs, OutputArgs, Outputs};
 use clap::{Args, ValueEnum};
 use std::path::PathBuf;
-use trajkit::check::{check_samples, Tolerance};
 use trajkit::io::Waypoints;
-use trajkit::poly::{Degree, ViaTiming, ViaTrajectory, ViaVelocities};
-use trajkit::{Limits, Trajectory};
+use trajkit::plan::{
+    JerkStage, Method as PlanMethod, Plan, PlanOptions, Progress, Stage, ViaVelocity,
+};
+use trajkit::poly::Degree;
+use trajkit::{Limits, Order};
 
 /// The embedded default path (7-joint Panda, 8 waypoints).
 pub const DEFAULT_WAYPOINTS: &str = include_str!("../default_waypoints.csv");
@@ -14,19 +18,31 @@ pub const DEFAULT_WAYPOINTS: &str = include_str!("../default_waypoints.csv");
 /// Time-parameterization method.
 #[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {
-    /// Time-optimal parameterization (TOPP-RA) of a C² spline through the waypoints, within the
-    /// velocity and acceleration limits; then jerk bounded by filtering the timing law and
-    /// rescaling time (unless --no-jerk-limit or no joint has a jerk limit).
+    /// Time-optimal parameterization (TOPP-RA) of a C² spline through the waypoints, kept
+    /// inside the position ranges, within the velocity and acceleration limits; then jerk
+    /// bounded by filtering the timing law and rescaling time (unless --no-jerk-limit).
     Toppra,
     /// Synchronized polynomial segments between waypoints, each as short as the limits allow.
     Poly,
     /// Time-optimal trajectory generation (Kunz & Stilman): straight segments joined by circular
     /// blends within --max-deviation, timed in the phase plane with exact velocity and
-    /// acceleration limits. The blended path is only C¹, so jerk is not bounded.
+    /// acceleration limits. The blended path is only C¹, so jerk is not bounded: needs
+    /// --no-jerk-limit (or infinite jerk limits).
     Totg,
     /// Numerical integration in the phase plane (Bobrow / TOPP-NI) on the same spline path and
     /// constraints as toppra (--path, --gridpoints as initial knots, --torque-limits).
     Ni,
+}
+
+impl From<Method> for PlanMethod {
+    fn from(m: Method) -> Self {
+        match m {
+            Method::Toppra => PlanMethod::Toppra,
+            Method::Poly => PlanMethod::Poly,
+            Method::Totg => PlanMethod::Totg,
+            Method::Ni => PlanMethod::Ni,
+        }
+    }
 }
 
 /// Geometric path through the waypoints for `--method toppra`.
@@ -99,11 +115,12 @@ pub enum ViaArg {
 /// Arguments of `trajkit plan`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "Examples:\n  trajkit plan                                  # embedded Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits robot.urdf --fill-from panda --out traj.json\n  trajkit plan --method poly --degree septic --via-velocity zero --rate 500 --plot traj.svg\n  trajkit plan --path linear --gridpoints auto\n  trajkit plan --method totg --max-deviation 0.1 --out - | trajkit check --max-jerk inf\n  trajkit plan --waypoints path.csv --limits robot.urdf --torque-limits"
+    after_help = "Examples:\n  trajkit plan                                  # embedded Panda path -> trajectory.csv\n  trajkit plan --waypoints path.csv --limits ur5e.urdf --fill-from ur5e --out traj.json\n  trajkit plan --waypoints path.csv --limits robot.urdf --joint-limits joint_limits.yaml\n  trajkit plan --waypoints path.csv --max-velocity 1 --max-acceleration 2 --max-jerk 50 --position-range -3:3\n  trajkit plan --method poly --degree septic --via-velocity zero --rate 500 --plot traj.svg\n  trajkit plan --path linear --gridpoints auto\n  trajkit plan --method totg --no-jerk-limit --max-deviation 0.1 --out - | trajkit check --limits panda --max-jerk inf\n  trajkit plan --waypoints path.csv --limits robot.urdf --fill-from panda --fill-by index --torque-limits"
 )]
 pub struct PlanArgs {
-    /// Waypoints: CSV (a row per waypoint, a column per joint, optional header) or JSON.
-    /// Without it, an embedded 7-joint Panda path is used.
+    /// Waypoints: CSV (a row per waypoint, a column per joint, optional header of joint names)
+    /// or JSON. Named columns take the limits of their name. Without it, an embedded 7-joint
+    /// Panda path is used (with --limits panda unless given).
     #[arg(long, value_name = "FILE")]
     pub waypoints: Option<PathBuf>,
     #[command(flatten)]
@@ -113,7 +130,7 @@ pub struct PlanArgs {
     pub method: Method,
     /// Path through the waypoints (--method toppra, ni; totg blends straight segments instead,
     /// see --max-deviation). The robot stops where the path reverses exactly (and at every
-    /// corner of a linear path).
+    /// corner of a linear path). Splines are kept inside the position ranges.
     #[arg(long, value_enum, default_value = "natural")]
     pub path: PathArg,
     /// TOPP-RA gridpoints (NI: initial knots) per rest-to-rest piece: an interval count, or
@@ -121,9 +138,10 @@ pub struct PlanArgs {
     /// grid refined there.
     #[arg(long, value_name = "N|auto", default_value = "1000", value_parser = parse_gridpoints)]
     pub gridpoints: trajkit::topp::Gridpoints,
-    /// With --method toppra or ni: keep the raw phase-plane result (piecewise-constant path
-    /// acceleration, unbounded jerk) instead of bounding its jerk.
-    #[arg(long)]
+    /// Plan without jerk limits: every joint's jerk limit becomes unlimited, and toppra and ni
+    /// keep their raw result (piecewise-constant path acceleration). `trajkit check` agrees
+    /// with --max-jerk inf.
+    #[arg(long, conflicts_with = "max_jerk")]
     pub no_jerk_limit: bool,
     /// With --method toppra or ni: also hold each joint's torque within its `effort` limit, using the
     /// rigid-body dynamics of a URDF (see --dynamics). The torque is checked again after jerk
@@ -151,77 +169,44 @@ pub struct PlanArgs {
     pub output: OutputArgs,
 }
 
-/// Loads waypoints (file or embedded default) and removes consecutive duplicates.
-pub fn load_waypoints(path: &Option<PathBuf>) -> CliResult<(Waypoints, String, usize)> {
-    let (mut w, src) = match path {
+/// Loads waypoints (file or embedded default).
+pub fn load_waypoints(path: &Option<PathBuf>) -> CliResult<(Waypoints, String)> {
+    Ok(match path {
         Some(p) => (Waypoints::from_file(p)?, p.display().to_string()),
         None => (
             Waypoints::from_csv(DEFAULT_WAYPOINTS, "<embedded default>")?,
             "<embedded default: 7-joint Panda, 8 waypoints>".to_string(),
         ),
-    };
-    let removed = w.dedup(0.0);
-    if w.len() < 2 {
-        return Err(CliError(format!(
-            "{src}: {}",
-            trajkit::Error::TooFewWaypoints {
-                needed: 2,
-                found: w.len()
-            }
-        )));
-    }
-    Ok((w, src, removed))
+    })
 }
 
-/// Refuses waypoints outside the joints' position ranges.
-pub fn check_waypoints_in_range(w: &Waypoints, limits: &Limits, src: &str) -> CliResult<()> {
-    for i in 0..w.len() {
-        for (j, &q) in w.point(i).iter().enumerate() {
-            let jl = limits.joint(j);
-            if q < jl.position_min || q > jl.position_max {
-                return Err(CliError(format!(
-                    "{src}: waypoint {i} joint {} ({}) = {q} is outside the position range [{}, {}]",
-                    j + 1,
-                    w.names()[j],
-                    jl.position_min,
-                    jl.position_max
-                )));
-            }
+/// The inverse-dynamics model for `--torque-limits`: the URDF of --dynamics or of a .urdf
+/// --limits, whose joints must be the waypoint columns in order.
+fn torque_model(
+    a: &PlanArgs,
+    limits: &Limits,
+) -> CliResult<Option<(trajkit::topp::messy::TorqueModel, String)>> {
+    if !a.torque_limits {
+        if a.dynamics.is_some() {
+            return Err(CliError(
+                "--dynamics is used only with --torque-limits".to_string(),
+            ));
         }
+        return Ok(None);
     }
-    Ok(())
-}
-
-/// Largest uniform time-scale factor tried to bring jerk-bounded output back within torque
-/// limits.
-const MAX_TORQUE_SCALE: f64 = 4.0;
-
-/// Relative torque excess accepted on samples (TOPP-RA's own tolerance between gridpoints).
-const TORQUE_TOLERANCE: f64 = 1e-6;
-
-/// The dynamics model and effort limits for `--torque-limits`.
-struct TorqueSetup {
-    chain: trajkit::dynamics::SerialChain,
-    effort: Vec<f64>,
-    source: String,
-}
-
-/// Resolves `--torque-limits`: the URDF model (from --dynamics or a .urdf --limits) and every
-/// joint's effort limit.
-fn torque_setup(a: &PlanArgs, limits: &Limits) -> CliResult<TorqueSetup> {
     if !matches!(a.method, Method::Toppra | Method::Ni) {
         return Err(CliError(
             "--torque-limits needs --method toppra or ni".to_string(),
         ));
     }
-    let spec = &a.limits.limits;
-    let is_urdf = std::path::Path::new(spec)
+    let spec = a.limits.limits.clone().unwrap_or_default();
+    let is_urdf = std::path::Path::new(&spec)
         .extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| e.eq_ignore_ascii_case("urdf"));
     let path = match (&a.dynamics, is_urdf) {
         (Some(p), _) => p.clone(),
-        (None, true) => PathBuf::from(spec),
+        (None, true) => PathBuf::from(&spec),
         (None, false) => {
             return Err(CliError(format!(
                 "--torque-limits needs a dynamics model: --limits '{spec}' is not a .urdf file, give --dynamics FILE.urdf"
@@ -230,288 +215,268 @@ fn torque_setup(a: &PlanArgs, limits: &Limits) -> CliResult<TorqueSetup> {
     };
     let chain = trajkit::dynamics::SerialChain::from_urdf_file(&path)?;
     let source = path.display().to_string();
-    use trajkit::topp::constraint::InverseDynamics;
-    if chain.dof() != limits.dof() {
+    let model: Vec<String> = chain.joint_names().iter().map(|s| s.to_string()).collect();
+    let cols: Vec<String> = limits.joints().iter().map(|j| j.name.clone()).collect();
+    let unnamed = cols.iter().all(String::is_empty);
+    if model.len() != cols.len() || (!unnamed && model != cols) {
         return Err(CliError(format!(
-            "{source}: the dynamics model has {} joints, the limits have {}",
-            chain.dof(),
-            limits.dof()
+            "{source}: the dynamics model's joints [{}] must be the waypoint columns [{}], in order",
+            model.join(", "),
+            cols.join(", ")
         )));
     }
-    let mut effort = Vec::with_capacity(limits.dof());
     for (j, jl) in limits.joints().iter().enumerate() {
-        match jl.effort {
-            Some(e) => effort.push(e),
-            None => {
-                return Err(CliError(format!(
-                    "--torque-limits: joint {} ({}) has no effort limit in --limits '{spec}'",
-                    j + 1,
-                    jl.name
-                )))
-            }
+        if jl.effort.is_none() {
+            return Err(CliError(format!(
+                "--torque-limits: {} has no effort limit in the limits given",
+                trajkit::error::joint_label(j, &jl.name)
+            )));
         }
     }
-    Ok(TorqueSetup {
-        chain,
-        effort,
+    Ok(Some((
+        trajkit::topp::messy::TorqueModel::new(chain),
         source,
+    )))
+}
+
+/// Runs `f` with a progress callback; when standard error is a terminal, a line there shows
+/// the stage and the elapsed time from the first second on (refreshed four times a second by
+/// a helper thread, so a long single solve shows it is alive), and is cleared at the end.
+fn with_progress<T>(f: impl FnOnce(&mut dyn FnMut(Progress)) -> T) -> T {
+    use std::io::IsTerminal;
+    use std::sync::atomic::{AtomicBool, Ordering};
+    use std::sync::Mutex;
+    if !std::io::stderr().is_terminal() {
+        return f(&mut |_| {});
+    }
+    let state = Mutex::new(Progress {
+        stage: Stage::Path,
+        done: 0,
+        total: 1,
+    });
+    let finished = AtomicBool::new(false);
+    let start = std::time::Instant::now();
+    std::thread::scope(|scope| {
+        let ticker = scope.spawn(|| {
+            let mut shown = false;
+            while !finished.load(Ordering::Relaxed) {
+                std::thread::sleep(std::time::Duration::from_millis(250));
+                let secs = start.elapsed().as_secs_f64();
+                if secs < 1.0 || finished.load(Ordering::Relaxed) {
+                    continue;
+                }
+                let p = *state.lock().unwrap_or_else(|e| e.into_inner());
+                let stage = match p.stage {
+                    Stage::Path => "building the path".to_string(),
+                    Stage::Timing => format!("timing piece {} of {}", p.done + 1, p.total),
+                    Stage::Jerk => "bounding jerk".to_string(),
+                    Stage::Torque => "holding torques".to_string(),
+                    Stage::Verifying => "sampling and checking".to_string(),
+                };
+                eprint!("\r\x1b[Kplanning: {stage} ({secs:.0} s)");
+                shown = true;
+            }
+            if shown {
+                eprint!("\r\x1b[K");
+            }
+        });
+        let out = f(&mut |p| *state.lock().unwrap_or_else(|e| e.into_inner()) = p);
+        finished.store(true, Ordering::Relaxed);
+        let _ = ticker.join();
+        out
     })
 }
 
-/// Worst |τ_j| / effort_j over samples at 1 kHz and at `rate` Hz, and the joint where it
-/// occurs.
-fn worst_torque_ratio(traj: &dyn Trajectory, t: &TorqueSetup, rate: f64) -> (f64, usize) {
-    use trajkit::topp::constraint::InverseDynamics;
-    use trajkit::Order;
-    let n = traj.dof();
-    let (mut q, mut qd, mut qdd, mut tau) =
-        (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let (mut worst, mut joint) = (0.0_f64, 0);
-    let duration = traj.duration();
-    for step in [1e-3, 1.0 / rate] {
-        if !(step.is_finite() && step > 0.0) {
-            continue;
+/// Adds the way out to errors whose fix is a flag.
+fn with_hint(e: trajkit::Error) -> CliError {
+    match &e {
+        trajkit::Error::CannotHold { field: "jerk", .. } => {
+            CliError(format!("{e} (--no-jerk-limit, or --max-jerk inf)"))
         }
-        let count = (duration / step).ceil() as usize;
-        for k in 0..=count {
-            let time = (k as f64 * step).min(duration);
-            traj.eval(time, Order::Position, &mut q);
-            traj.eval(time, Order::Velocity, &mut qd);
-            traj.eval(time, Order::Acceleration, &mut qdd);
-            t.chain.torque(&q, &qd, &qdd, &mut tau);
-            for j in 0..n {
-                let r = tau[j].abs() / t.effort[j];
-                if r > worst || r.is_nan() {
-                    worst = if r.is_nan() { f64::INFINITY } else { r };
-                    joint = j;
-                }
-            }
-        }
-    }
-    (worst, joint)
-}
-
-/// The smallest uniform time-scale factor k ∈ [1, MAX_TORQUE_SCALE] keeping the sampled torque
-/// within the efforts, by bisection. Slowing down by k leaves τ = g(q) + (M q̈ + C q̇)/k²: for
-/// each path point the torque moves along a segment towards the static torque, so once within
-/// the limits it stays within them for every larger k, which makes bisection valid.
-fn torque_time_scale(
-    traj: Box<dyn Trajectory>,
-    t: &TorqueSetup,
-    rate: f64,
-) -> CliResult<(Box<dyn Trajectory>, f64, f64, usize)> {
-    use trajkit::topp::Scaled;
-    let ok = |r: f64| r <= 1.0 + TORQUE_TOLERANCE;
-    let (r1, j1) = worst_torque_ratio(&*traj, t, rate);
-    if ok(r1) {
-        return Ok((traj, 1.0, r1, j1));
-    }
-    let at = |k: f64| -> CliResult<(f64, usize)> {
-        let s = Scaled::new(&*traj, k)?;
-        Ok(worst_torque_ratio(&s, t, rate))
-    };
-    let (rmax, jmax) = at(MAX_TORQUE_SCALE)?;
-    if !ok(rmax) {
-        return Err(CliError(format!(
-            "--torque-limits: after jerk bounding the torque exceeds the effort limits (worst ratio {r1:.4}) and slowing down {MAX_TORQUE_SCALE}x still leaves ratio {rmax:.4} at joint {}; use --no-jerk-limit or check the efforts in {}",
-            jmax + 1,
-            t.source
-        )));
-    }
-    let (mut lo, mut hi, mut best) = (1.0, MAX_TORQUE_SCALE, (rmax, jmax));
-    while hi - lo > 1e-4 {
-        let mid = 0.5 * (lo + hi);
-        let r = at(mid)?;
-        if ok(r.0) {
-            hi = mid;
-            best = r;
-        } else {
-            lo = mid;
-        }
-    }
-    Ok((Box::new(Scaled::new(traj, hi)?), hi, best.0, best.1))
-}
-
-/// The jerk stage shared by the phase-plane methods: filter the timing law and rescale time
-/// when `limited`, otherwise keep the raw result and say so in `note`.
-fn jerk_stage<P: trajkit::Path + Clone + 'static>(
-    raw: trajkit::topp::messy::Sequence<trajkit::topp::Parametrized<P>>,
-    limits: &Limits,
-    limited: bool,
-    name: &str,
-    note: &mut String,
-) -> CliResult<Box<dyn Trajectory>> {
-    if limited {
-        let jl = trajkit::topp::jerk::limit_jerk_sequence(
-            &raw,
-            limits,
-            &trajkit::topp::jerk::JerkOptions::default(),
-        )?;
-        *note = format!(
-            "jerk: bounded ({name} {:.6} s, filtered and rescaled +{:.2}%)",
-            raw.duration(),
-            100.0 * (jl.duration() / raw.duration() - 1.0)
-        );
-        Ok(Box::new(jl))
-    } else {
-        *note = format!("jerk: not limited (--no-jerk-limit or no jerk limits): {name}'s path acceleration is piecewise constant");
-        Ok(Box::new(raw))
+        _ => CliError(e.to_string()),
     }
 }
 
 /// Runs `trajkit plan`.
 pub fn run(a: &PlanArgs) -> CliResult<u8> {
-    let (w, src, removed) = load_waypoints(&a.waypoints)?;
-    let limits = a.limits.load()?;
-    limits
-        .expect_dof(w.dof(), "the waypoints")
-        .map_err(|e| CliError(format!("{src}: {e}")))?;
-    check_waypoints_in_range(&w, &limits, &src)?;
-    let torque = if a.torque_limits {
-        Some(torque_setup(a, &limits)?)
-    } else if a.dynamics.is_some() {
-        return Err(CliError(
-            "--dynamics is used only with --torque-limits".to_string(),
-        ));
-    } else {
-        None
-    };
+    let (w, src) = load_waypoints(&a.waypoints)?;
+    let mut distinct = w.clone();
+    distinct.dedup(0.0);
+    if distinct.len() < 2 {
+        let e = trajkit::Error::TooFewWaypoints {
+            needed: 2,
+            found: distinct.len(),
+        };
+        return Err(CliError(format!("{src}: {e}")));
+    }
     if a.max_deviation.is_some() && a.method != Method::Totg {
         return Err(CliError(
             "--max-deviation is used only with --method totg".to_string(),
         ));
     }
-    let has_jerk = limits.joints().iter().any(|j| j.jerk.is_finite());
-    let phase_plane = matches!(a.method, Method::Toppra | Method::Ni | Method::Totg);
-    // TOTG's blended path is only C¹: its curvature jumps where arcs meet segments, so joint
-    // acceleration jumps there at any timing and no retiming bounds jerk.
-    let jerk_limited =
-        matches!(a.method, Method::Toppra | Method::Ni) && has_jerk && !a.no_jerk_limit;
-    let mut note = String::new();
-    let traj: Box<dyn Trajectory> = match a.method {
-        Method::Totg => {
-            let opts = trajkit::topp::TotgOptions {
-                max_deviation: a.max_deviation.unwrap_or(0.1),
-                ..Default::default()
-            };
-            let raw = trajkit::topp::plan_totg(w.points(), w.dof(), &limits, &opts)?;
-            note = format!(
-                "jerk: not bounded: the blended path (max deviation {}) is only C¹, joint acceleration jumps where arcs meet segments; checked for velocity and acceleration",
-                opts.max_deviation
-            );
-            Box::new(raw)
-        }
-        Method::Toppra | Method::Ni => {
-            use trajkit::topp::messy::{plan_waypoints, PieceSolver, PlanOptions};
-            let opts = PlanOptions {
-                solver: if a.method == Method::Ni {
-                    PieceSolver::Ni
-                } else {
-                    PieceSolver::Toppra
-                },
-                kind: a.path.into(),
-                toppra: trajkit::topp::Options {
-                    gridpoints: a.gridpoints.clone(),
-                    ..Default::default()
-                },
-                torque: torque
-                    .as_ref()
-                    .map(|t| trajkit::topp::messy::TorqueModel::new(t.chain.clone())),
-                ..Default::default()
-            };
-            let raw = plan_waypoints(w.points(), w.dof(), &limits, &opts)?;
-            let name = if a.method == Method::Ni {
-                "NI"
-            } else {
-                "TOPP-RA"
-            };
-            jerk_stage(raw, &limits, jerk_limited, name, &mut note)?
-        }
-        Method::Poly => {
-            let vel = match a.via_velocity {
-                ViaArg::Heuristic => ViaVelocities::Heuristic,
-                ViaArg::Zero => ViaVelocities::Zero,
-            };
-            Box::new(ViaTrajectory::new(
-                w.points(),
-                w.dof(),
-                a.degree.into(),
-                vel,
-                ViaTiming::Limits(&limits),
-            )?)
-        }
+    let default = a.waypoints.is_none().then_some("panda");
+    let resolved = a
+        .limits
+        .resolve("waypoint", w.given_names(), w.dof(), default)
+        .map_err(|e| CliError(format!("{src}: {e}")))?;
+    let mut partial = resolved.limits;
+    if a.no_jerk_limit {
+        partial = partial.with_override(Order::Jerk, &[f64::INFINITY])?;
+    }
+    let mut options = PlanOptions {
+        method: a.method.into(),
+        path: a.path.into(),
+        gridpoints: a.gridpoints.clone(),
+        jerk: if a.no_jerk_limit {
+            JerkStage::Off
+        } else {
+            JerkStage::Filter
+        },
+        max_deviation: a.max_deviation.unwrap_or(0.1),
+        degree: a.degree.into(),
+        via_velocity: match a.via_velocity {
+            ViaArg::Heuristic => ViaVelocity::Heuristic,
+            ViaArg::Zero => ViaVelocity::Zero,
+        },
+        torque: None,
+        sample_rate: a.output.rate,
+        phase_plane: false,
     };
-    let mut torque_note = String::new();
-    let traj = match &torque {
-        None => traj,
-        Some(t) => {
-            let (traj, k, ratio, joint) = torque_time_scale(traj, t, a.output.rate)?;
-            let verdict = if ratio <= 1.0 + TORQUE_TOLERANCE {
-                "within effort limits"
-            } else {
-                "EFFORT EXCEEDED"
-            };
-            torque_note = format!(
-                "torque: worst ratio {ratio:.6} (joint {}) — {verdict}; dynamics from {}",
-                joint + 1,
-                t.source
-            );
-            if k > 1.0 {
-                torque_note +=
-                    &format!("; time slowed down x{k:.4} after jerk bounding to hold the torque");
+    let limits = complete(&partial, options.needs())?;
+    let torque = torque_model(a, &limits)?;
+    options.torque = torque.as_ref().map(|(m, _)| m.clone());
+    let plan = with_progress(|p| trajkit::plan::plan_with_progress(&w, &limits, &options, p))
+        .map_err(|e| match e {
+            trajkit::Error::WaypointOutOfRange { .. } | trajkit::Error::JointNames { .. } => {
+                CliError(format!("{src}: {e}"))
             }
-            traj
-        }
-    };
-    let names: Vec<String> = w.names().to_vec();
-    let table = trajkit::sample::sample(&*traj, a.output.rate)?.with_names(names.clone())?;
-    // Raw phase-plane output (TOPP-RA, NI, TOTG) is second order (piecewise-constant path
-    // acceleration): its verdict leaves jerk out and says so. Every other result is checked against every limit.
-    let checked_limits = if phase_plane && !jerk_limited {
-        limits
-            .clone()
-            .with_override(trajkit::Order::Jerk, &[f64::INFINITY])?
-    } else {
-        limits.clone()
-    };
-    let report = check_samples(&table, &checked_limits)?;
+            e => with_hint(e),
+        })?;
     let mut outputs = Outputs::default();
-    outputs.add(&a.out, a.output.render(&table, &a.out));
+    outputs.add(&a.out, a.output.render(&plan.samples, &a.out));
     if let Some(p) = &a.output.plot {
         let opts = trajkit::plot::PlotOptions {
-            title: format!("trajkit plan ({:?}) — {src}", a.method).to_lowercase(),
+            title: format!(
+                "trajkit plan ({}) — {src}",
+                a.method.to_possible_value_name()
+            ),
             ..Default::default()
         };
-        outputs.add(p, trajkit::plot::svg(&table, Some(&limits), &opts)?);
+        outputs.add(
+            p,
+            trajkit::plot::svg(&plan.samples, Some(&plan.limits), &opts)?,
+        );
     }
     outputs.commit()?;
-    // Summary (to stderr when the table went to stdout).
-    let mut s = String::new();
+    let summary = summary(
+        a,
+        &plan,
+        &src,
+        &resolved.unused,
+        torque.as_ref().map(|t| &t.1),
+    );
+    super::common::print_summary(&a.out, &summary);
+    Ok(0)
+}
+
+/// The summary printed after a successful run.
+fn summary(
+    a: &PlanArgs,
+    plan: &Plan,
+    src: &str,
+    unused: &[String],
+    torque_source: Option<&String>,
+) -> String {
     use std::fmt::Write;
-    let _ = writeln!(s, "waypoints: {} ({} joints) from {src}", w.len(), w.dof());
-    if removed > 0 {
-        let _ = writeln!(s, "removed {removed} duplicate waypoint(s)");
+    let mut s = String::new();
+    let dof = plan.limits.dof();
+    let _ = writeln!(s, "waypoints: {} ({dof} joints) from {src}", plan.waypoints);
+    if plan.repeats_removed > 0 {
+        let _ = writeln!(s, "removed {} duplicate waypoint(s)", plan.repeats_removed);
+    }
+    if !unused.is_empty() {
+        let _ = writeln!(
+            s,
+            "limits of {} not used (no waypoint column of that name)",
+            unused.join(", ")
+        );
     }
     let _ = writeln!(
         s,
-        "method: {:?}, duration: {:.6} s, {} samples at {} Hz",
-        a.method,
-        traj.duration(),
-        table.len(),
+        "method: {}, duration: {:.6} s, {} samples at {} Hz",
+        a.method.to_possible_value_name(),
+        plan.duration(),
+        plan.samples.len(),
         a.output.rate
     );
-    if !note.is_empty() {
-        let _ = writeln!(s, "{note}");
+    for n in &plan.notes {
+        let _ = writeln!(s, "{n}");
     }
-    if !torque_note.is_empty() {
-        let _ = writeln!(s, "{torque_note}");
+    if let (Some(t), Some(source)) = (&plan.torque, torque_source) {
+        let _ = write!(
+            s,
+            "torque: worst ratio {:.6} (joint {}) — within effort limits; dynamics from {source}",
+            t.worst,
+            t.joint + 1
+        );
+        if t.scale > 1.0 {
+            let _ = write!(
+                s,
+                "; time slowed down x{:.4} after jerk bounding to hold the torque",
+                t.scale
+            );
+        }
+        s.push('\n');
     }
+    s.push_str(&joint_lines(plan));
+    let unlimited: Vec<&str> = [
+        (Order::Velocity, "velocity"),
+        (Order::Acceleration, "acceleration"),
+        (Order::Jerk, "jerk"),
+    ]
+    .into_iter()
+    .filter(|(o, _)| {
+        plan.limits
+            .joints()
+            .iter()
+            .any(|jl| jl.range(*o).1.is_infinite())
+    })
+    .map(|(_, n)| n)
+    .collect();
+    let _ = write!(
+        s,
+        "worst: {:.6} — within limits (checked as `trajkit check` does",
+        plan.report.worst()
+    );
+    if !unlimited.is_empty() {
+        let _ = write!(s, "; unlimited: {}", unlimited.join(", "));
+    }
+    let _ = writeln!(s, ")");
+    let _ = write!(s, "wrote {}", a.out.display());
+    if let Some(p) = &a.output.plot {
+        let _ = write!(s, " and {}", p.display());
+    }
+    s
+}
+
+/// The per-joint lines of the summary: worst ratios and the position range used.
+fn joint_lines(plan: &Plan) -> String {
+    use std::fmt::Write;
+    let mut s = String::new();
     let _ = writeln!(s, "worst limit ratio per joint (velocity / acceleration / jerk, pointwise and finite-difference):");
-    for (j, jr) in report.joints.iter().enumerate() {
+    let names = super::common::display_names(plan.samples.names());
+    let width = names
+        .iter()
+        .map(|n| n.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(14);
+    for (j, jr) in plan.report.joints.iter().enumerate() {
         let r = |k: usize| jr.derivatives[k].worst();
+        let jl = plan.limits.joint(j);
         let _ = writeln!(
             s,
-            "  {:>2} {:<14} {:.4} / {:.4} / {:.4}   position {:+.4} .. {:+.4} (range {:+.4} .. {:+.4})",
+            "  {:>2} {:<width$} {:.4} / {:.4} / {:.4}   position {:+.4} .. {:+.4} (range {:+.4} .. {:+.4})",
             j + 1,
             names[j],
             r(0),
@@ -519,21 +484,16 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
             r(2),
             jr.position.min,
             jr.position.max,
-            limits.joint(j).position_min,
-            limits.joint(j).position_max
+            jl.position_min,
+            jl.position_max
         );
     }
-    let tol = Tolerance::default();
-    let verdict = if report.passes(&tol) {
-        "within limits".to_string()
-    } else {
-        format!("LIMITS EXCEEDED: {}", report.violations(&tol).join("; "))
-    };
-    let _ = writeln!(s, "worst: {:.6} — {verdict}", report.worst());
-    let _ = write!(s, "wrote {}", a.out.display());
-    if let Some(p) = &a.output.plot {
-        let _ = write!(s, " and {}", p.display());
+    s
+}
+
+impl Method {
+    /// The command-line name.
+    fn to_possible_value_name(self) -> &'static str {
+        PlanMethod::from(self).name()
     }
-    super::common::print_summary(&a.out, &s);
-    Ok(0)
 }

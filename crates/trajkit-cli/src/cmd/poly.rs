@@ -1,17 +1,19 @@
 //! `trajkit poly`: one point-to-point polynomial move, or the peak-coefficient table.
 
-use super::common::{finite_list, CliError, CliResult, LimitsArgs, OutputArgs, Outputs};
+use super::common::{complete, finite_list, CliError, CliResult, LimitsArgs, OutputArgs, Outputs};
 use super::plan::DegreeArg;
 use clap::Args;
 use std::path::PathBuf;
+use trajkit::limits::Needs;
 use trajkit::poly::{
     min_duration, min_duration_rest_to_rest, peak_coefficients, Degree, EndState, PolyMove,
 };
+use trajkit::Limits;
 
 /// Arguments of `trajkit poly`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "Examples:\n  trajkit poly --table\n  trajkit poly --from 0,0 --to 1,-0.5 --duration 2 --degree septic --out move.csv\n  trajkit poly --from 0 --to 1 --limits panda --max-velocity 1 --degree quintic   # shortest T within limits (1 joint: override needed)\n  trajkit poly --from 0,0,0,-1.5,0,1.5,0 --to 1,0.5,0,-1,0,2,0.5 --limits panda --plot move.svg"
+    after_help = "Examples:\n  trajkit poly --table\n  trajkit poly --from 0,0 --to 1,-0.5 --duration 2 --degree septic --out move.csv\n  trajkit poly --from 0 --to 1 --max-velocity 1 --max-acceleration 2 --max-jerk 20   # shortest T within these limits\n  trajkit poly --from 0,0,0,-1.5,0,1.5,0 --to 1,0.5,0,-1,0,2,0.5 --limits panda --plot move.svg"
 )]
 pub struct PolyArgs {
     /// Print the peak coefficients of the unit rest-to-rest profiles and exit.
@@ -116,8 +118,27 @@ pub fn run(a: &PolyArgs) -> CliResult<u8> {
     let (duration, limits) = match a.duration {
         Some(t) => (t, None),
         None => {
-            let l = a.limits.load()?;
-            l.expect_dof(a.from.len(), "--from")?;
+            let resolved = a.limits.resolve("waypoint", None, a.from.len(), None)?;
+            let needs = Needs {
+                position: false,
+                jerk: degree != Degree::Cubic,
+                ..Needs::ALL
+            };
+            let l = complete(&resolved.limits, needs)?;
+            if degree == Degree::Cubic {
+                if let Some((j, jl)) = l
+                    .joints()
+                    .iter()
+                    .enumerate()
+                    .find(|(_, jl)| jl.jerk.is_finite())
+                {
+                    return Err(CliError(format!(
+                        "{}: a cubic move jumps in acceleration at both ends (unbounded jerk) and cannot hold the jerk limit {}; use --degree quintic or septic, or --max-jerk inf",
+                        trajkit::error::joint_label(j, &jl.name),
+                        jl.jerk
+                    )));
+                }
+            }
             let rest = start
                 .qd
                 .iter()
@@ -148,6 +169,9 @@ pub fn run(a: &PolyArgs) -> CliResult<u8> {
         }
     };
     let mv = PolyMove::between(degree, &start, &end, duration)?;
+    if let Some(l) = &limits {
+        in_range(&mv, l)?;
+    }
     let table = trajkit::sample::sample(&mv, a.output.rate)?;
     let mut outputs = Outputs::default();
     outputs.add(&a.out, a.output.render(&table, &a.out));
@@ -159,10 +183,37 @@ pub fn run(a: &PolyArgs) -> CliResult<u8> {
         outputs.add(p, trajkit::plot::svg(&table, limits.as_ref(), &opts)?);
     }
     outputs.commit()?;
+    let range_note = match &limits {
+        Some(l)
+            if l.joints()
+                .iter()
+                .any(|j| j.position_min.is_infinite() || j.position_max.is_infinite()) =>
+        {
+            "; position range: not given for every joint (checked where given)"
+        }
+        _ => "",
+    };
     eprintln!(
-        "{} move, duration {duration:.6} s, {} samples",
+        "{} move, duration {duration:.6} s, {} samples{range_note}",
         degree.name(),
         table.len()
     );
     Ok(0)
+}
+
+/// The move's exact position extrema must lie inside every given position range.
+fn in_range(mv: &PolyMove, limits: &Limits) -> CliResult<()> {
+    for (j, jl) in limits.joints().iter().enumerate() {
+        let (lo, hi) = mv.joint(j).position_range();
+        if lo < jl.position_min || hi > jl.position_max {
+            let value = if hi > jl.position_max { hi } else { lo };
+            return Err(CliError(format!(
+                "the move takes {} to {value}, outside its position range [{}, {}] (exact extremum); give other end velocities or a longer --duration",
+                trajkit::error::joint_label(j, &jl.name),
+                jl.position_min,
+                jl.position_max
+            )));
+        }
+    }
+    Ok(())
 }

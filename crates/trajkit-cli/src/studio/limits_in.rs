@@ -7,6 +7,7 @@ use super::error::{ApiError, ApiResult};
 use serde::Deserialize;
 use serde_json::json;
 use trajkit::limits::load;
+use trajkit::limits::{FillBy, Needs, PartialLimits};
 use trajkit::{Limits, Order};
 
 /// An uploaded text file: its name (the extension tells the format) and its content.
@@ -60,6 +61,10 @@ pub struct LimitsIn {
     pub acceleration_scale: Option<f64>,
     /// Scale every jerk limit (default 1).
     pub jerk_scale: Option<f64>,
+    /// Position ranges `[lo, hi]` (one for every joint, or one per joint; `null` for an
+    /// unbounded end), for sources without them (a MoveIt file alone, a trajkit file without
+    /// `position`).
+    pub position_range: Option<Vec<[Option<f64>; 2]>>,
 }
 
 /// The format of `file`, from `format` or the file name.
@@ -92,11 +97,14 @@ fn format_of(file: &FileIn, format: Option<LimitsFormat>) -> ApiResult<LimitsFor
 }
 
 impl LimitsIn {
-    /// Loads and adjusts the limits.
-    pub fn load(&self) -> ApiResult<Limits> {
+    /// Loads and adjusts the limits for data whose joints are `names` (matched by name when
+    /// both sides name their joints, as `trajkit plan` does; overrides then apply per data
+    /// column), keeping track of what was given ([`PartialLimits::complete`] refuses what a
+    /// method needs and no source gave). Returns the limits and the limit joints left out.
+    pub fn load(&self, names: Option<&[String]>) -> ApiResult<(PartialLimits, Vec<String>)> {
         let lib = |field: &'static str| move |e| ApiError::from_lib(field, e);
-        let mut l = match (&self.preset, &self.file) {
-            (Some(p), None) => Limits::preset(p).map_err(lib("limits.preset"))?,
+        let mut l: PartialLimits = match (&self.preset, &self.file) {
+            (Some(p), None) => Limits::preset(p).map_err(lib("limits.preset"))?.into(),
             (None, Some(f)) => {
                 caps::count(
                     "limits.file.text (bytes)",
@@ -132,9 +140,12 @@ impl LimitsIn {
                 .map_err(lib("limits.joint_limits"))?;
         }
         if let Some(p) = &self.fill_from {
-            let from = Limits::preset(p).map_err(lib("limits.fill_from"))?;
-            l = load::fill_missing(&l, &from).map_err(lib("limits.fill_from"))?;
+            let from: PartialLimits = Limits::preset(p).map_err(lib("limits.fill_from"))?.into();
+            l = l
+                .fill_from(&from, FillBy::Name)
+                .map_err(lib("limits.fill_from"))?;
         }
+        let (mut l, unused) = l.for_joints("waypoint", names).map_err(lib("limits"))?;
         for (order, values, field) in [
             (Order::Velocity, &self.max_velocity, "limits.max_velocity"),
             (
@@ -151,6 +162,15 @@ impl LimitsIn {
                 l = l.with_override(order, v).map_err(lib(field))?;
             }
         }
+        if let Some(r) = &self.position_range {
+            let ranges: Vec<(f64, f64)> = r
+                .iter()
+                .map(|[lo, hi]| (lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY)))
+                .collect();
+            l = l
+                .with_position_range(&ranges)
+                .map_err(lib("limits.position_range"))?;
+        }
         let scale = |v: Option<f64>, field: &str| -> ApiResult<f64> {
             v.map_or(Ok(1.0), |x| caps::positive(field, x))
         };
@@ -162,25 +182,29 @@ impl LimitsIn {
         if (sv, sa, sj) != (1.0, 1.0, 1.0) {
             l = l.scaled(sv, sa, sj).map_err(lib("limits"))?;
         }
-        Ok(l)
+        Ok((l, unused))
     }
 }
 
-/// Refuses limits that do not bound `order` for some joint: a missing limit is an error, not
-/// "unlimited". The message says how to supply it.
-pub fn require(limits: &Limits, order: Order, why: &str) -> ApiResult<()> {
-    for (j, jl) in limits.joints().iter().enumerate() {
-        let (lo, hi) = jl.range(order);
-        if !(lo.is_finite() && hi.is_finite()) {
-            return Err(ApiError::bad(
-                &format!("limits (joint {} {} {})", j + 1, jl.name, order.name()),
-                json!("inf"),
-                format!(
-                    "is missing: {why} needs every joint's {0} limit; give limits.fill_from, limits.max_{0} or a file that has it",
-                    order.name()
-                ),
-            ));
+/// Completes `limits` with what `needs` asks for; a missing limit is a 400 naming the joint
+/// and the field, and saying how a request supplies it.
+pub fn complete(limits: &PartialLimits, needs: Needs) -> ApiResult<Limits> {
+    limits.complete(needs).map_err(|e| match &e {
+        trajkit::Error::MissingLimit { joint, name, field } => {
+            let how = match *field {
+                "velocity" => "limits.max_velocity or a file that has it",
+                "acceleration" => "limits.max_acceleration, limits.fill_from or a file that has it",
+                "jerk" => {
+                    "limits.max_jerk, limits.fill_from, a file that has it, or jerk_limit false"
+                }
+                _ => "a limits file or preset with position ranges",
+            };
+            ApiError::bad(
+                &format!("limits (joint {} {name} {field})", joint + 1),
+                json!(null),
+                format!("is missing: {e}; give {how}"),
+            )
         }
-    }
-    Ok(())
+        _ => ApiError::from_lib("limits", e),
+    })
 }

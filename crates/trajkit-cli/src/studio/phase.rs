@@ -1,17 +1,9 @@
-//! The phase plane (s, ṡ) of a path-parameterized plan: per rest-to-rest piece, the maximum
-//! velocity curve (`trajkit::topp::mvc`), the phase-plane solver's profile, and the profile
-//! actually played after the jerk stage.
+//! The phase plane (s, ṡ) of a path-parameterized plan as JSON: `trajkit::plan` computes it
+//! ([`trajkit::plan::PhasePlane`]: per rest-to-rest piece the maximum velocity curve, the
+//! phase-plane solver's profile and the profile played after the jerk stage); this only
+//! translates it (`null` where the maximum velocity curve is unbounded).
 
-use super::error::{ApiError, ApiResult};
 use serde::Serialize;
-use trajkit::topp::jerk::JerkLimited;
-use trajkit::topp::messy::Sequence;
-use trajkit::topp::mvc::max_velocity_curve;
-use trajkit::topp::{Parametrized, TimeLaw, Toppra};
-use trajkit::{Limits, Path};
-
-/// Largest number of points per curve and piece sent to the page.
-const POINTS: usize = 400;
 
 /// The phase plane of every piece.
 #[derive(Debug, Serialize)]
@@ -29,7 +21,7 @@ pub struct PhasePiece {
     /// Path parameters of `mvc` and `solver` (a subset of the solver's gridpoints).
     pub s: Vec<f64>,
     /// The maximum velocity curve ṡ_max(s) (`null` where unbounded).
-    pub mvc: Vec<f64>,
+    pub mvc: Vec<Option<f64>>,
     /// The solver's ṡ at `s` (TOPP-RA, NI or TOTG).
     pub solver: Vec<f64>,
     /// The played profile after the jerk stage, when there is one: (s, ṡ) pairs.
@@ -45,49 +37,23 @@ pub struct Played {
     pub sd: Vec<f64>,
 }
 
-/// The phase plane of `raw` (and of its jerk-bounded version `played`).
-pub fn phase_plane<P: Path + Clone>(
-    raw: &Sequence<Parametrized<P>>,
-    played: Option<&Sequence<JerkLimited<P>>>,
-    limits: &Limits,
-) -> ApiResult<PhasePlane> {
-    let lib = |e| ApiError::from_lib("phase_plane", e);
-    let mut pieces = Vec::with_capacity(raw.pieces().len());
-    let starts = match played {
-        Some(p) => p.boundaries(),
-        None => raw.boundaries(),
-    };
-    for (k, piece) in raw.pieces().iter().enumerate() {
-        let law = piece.law();
-        let grid = law.gridpoints();
-        let step = grid.len().div_ceil(POINTS).max(1);
-        let mut idx: Vec<usize> = (0..grid.len()).step_by(step).collect();
-        if idx.last() != Some(&(grid.len() - 1)) {
-            idx.push(grid.len() - 1);
+impl From<&trajkit::plan::PhasePlane> for PhasePlane {
+    fn from(p: &trajkit::plan::PhasePlane) -> Self {
+        PhasePlane {
+            pieces: p
+                .pieces
+                .iter()
+                .map(|q| PhasePiece {
+                    start_time: q.start_time,
+                    s: q.s.clone(),
+                    mvc: q.mvc.iter().map(|&v| v.is_finite().then_some(v)).collect(),
+                    solver: q.solver.clone(),
+                    played: q.played.as_ref().map(|(s, sd)| Played {
+                        s: s.clone(),
+                        sd: sd.clone(),
+                    }),
+                })
+                .collect(),
         }
-        let s: Vec<f64> = idx.iter().map(|&i| grid[i]).collect();
-        let solver = idx.iter().map(|&i| law.velocities()[i]).collect();
-        let problem = Toppra::with_limits(piece.path().clone(), limits).map_err(lib)?;
-        let mvc = max_velocity_curve(&problem, &s).map_err(lib)?;
-        let played = played.map(|seq| {
-            let p = &seq.pieces()[k];
-            let (inner, factor) = (p.inner().law(), p.factor());
-            let d = inner.duration();
-            let (mut ss, mut sd) = (Vec::with_capacity(POINTS), Vec::with_capacity(POINTS));
-            for m in 0..POINTS {
-                let v = inner.eval(d * m as f64 / (POINTS - 1) as f64);
-                ss.push(v[0]);
-                sd.push(v[1] / factor);
-            }
-            Played { s: ss, sd }
-        });
-        pieces.push(PhasePiece {
-            start_time: starts[k],
-            s,
-            mvc,
-            solver,
-            played,
-        });
     }
-    Ok(PhasePlane { pieces })
 }

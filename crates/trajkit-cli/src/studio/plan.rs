@@ -1,26 +1,24 @@
 //! `POST /api/plan`: waypoints + limits + method → the sampled trajectory, its limit check, and
 //! the phase plane. The lesson "plan" of the page is a client of this endpoint.
 //!
-//! [`plan`] is the one place that calls the planners (the same library entry points as
-//! `trajkit plan`: `topp::messy::plan_waypoints` + `topp::jerk::limit_jerk_sequence`,
-//! `topp::plan_totg`, `poly::ViaTrajectory`); everything around it only translates JSON. When a
-//! single library entry point for the main job exists, [`plan`]'s body becomes that call.
+//! [`plan`] is the one place that calls the planner: `trajkit::plan`, the library call that
+//! `trajkit plan` makes too; everything around it only translates JSON.
 //!
-//! Safety: the result is sampled at 1 kHz and checked with `trajkit::check` against every limit
-//! it was planned for (jerk left out only for second-order methods without a jerk stage, and
-//! the answer says so). A trajectory that fails the check is refused (422), never returned.
+//! Safety: `trajkit::plan` returns only trajectories whose 1 kHz samples pass `trajkit::check`
+//! against every limit they were planned for; with `jerk_limit: false` (and for `totg`, whose
+//! path is only C¹) the jerk limits are stated unlimited first, and the answer says so.
 
 use super::caps;
 use super::error::{ApiError, ApiResult};
 use super::lessons::{series, Series};
-use super::limits_in::{require, FileIn, LimitsIn};
-use super::phase::{phase_plane, PhasePlane};
+use super::limits_in::{complete, FileIn, LimitsIn};
+use super::phase::PhasePlane;
 use serde::{Deserialize, Serialize};
 use serde_json::{json, Value};
-use trajkit::check::{check_samples, Tolerance};
 use trajkit::io::Waypoints;
-use trajkit::poly::{Degree, ViaTiming, ViaTrajectory, ViaVelocities};
-use trajkit::topp::messy::{plan_waypoints, PathKind, PieceSolver, PlanOptions};
+use trajkit::plan::{JerkStage, PlanOptions, ViaVelocity};
+use trajkit::poly::Degree;
+use trajkit::topp::messy::PathKind;
 use trajkit::{Limits, Order, Trajectory};
 
 /// Time-parameterization method (as `trajkit plan --method`).
@@ -203,26 +201,14 @@ pub enum Output {
 
 /// A planned trajectory and what the page shows about it.
 pub struct Planned {
-    /// The trajectory.
-    pub traj: Box<dyn Trajectory>,
-    /// Whether jerk is bounded (and so checked).
-    pub jerk_checked: bool,
-    /// Notes for the summary.
-    pub notes: Vec<String>,
-    /// The phase plane, when asked and the method has one.
-    pub phase: Option<PhasePlane>,
+    /// The library's plan (trajectory, checked samples, report, notes).
+    pub plan: trajkit::plan::Plan,
 }
 
 /// The planner options of a request, checked.
 pub struct Options {
     method: Method,
-    path: PathKind,
-    gridpoints: usize,
-    jerk_limit: bool,
-    max_deviation: f64,
-    degree: Degree,
-    via: ViaVelocities,
-    phase_plane: bool,
+    options: PlanOptions,
 }
 
 impl Options {
@@ -234,16 +220,33 @@ impl Options {
                 "is used only with method totg",
             ));
         }
-        Ok(Options {
-            method: r.method,
+        // TOTG's path is only C¹: it plans with the jerk limits stated unlimited, as
+        // `trajkit plan --method totg --no-jerk-limit` does.
+        let jerk_limit = r.jerk_limit && r.method != Method::Totg;
+        let options = PlanOptions {
+            method: match r.method {
+                Method::Toppra => trajkit::plan::Method::Toppra,
+                Method::Ni => trajkit::plan::Method::Ni,
+                Method::Totg => trajkit::plan::Method::Totg,
+                Method::Poly => trajkit::plan::Method::Poly,
+            },
             path: match r.path {
                 PathIn::Natural => PathKind::NaturalCubic,
                 PathIn::NotAKnot => PathKind::NotAKnotCubic,
                 PathIn::Clamped => PathKind::ClampedCubic,
                 PathIn::Linear => PathKind::Linear,
             },
-            gridpoints: caps::count("gridpoints", r.gridpoints, 1, caps::MAX_GRIDPOINTS)?,
-            jerk_limit: r.jerk_limit,
+            gridpoints: trajkit::topp::Gridpoints::Uniform(caps::count(
+                "gridpoints",
+                r.gridpoints,
+                1,
+                caps::MAX_GRIDPOINTS,
+            )?),
+            jerk: if jerk_limit {
+                JerkStage::Filter
+            } else {
+                JerkStage::Off
+            },
             max_deviation: r
                 .max_deviation
                 .map_or(Ok(0.1), |d| caps::positive("max_deviation", d))?,
@@ -252,120 +255,46 @@ impl Options {
                 DegreeIn::Quintic => Degree::Quintic,
                 DegreeIn::Septic => Degree::Septic,
             },
-            via: match r.via_velocity {
-                ViaIn::Heuristic => ViaVelocities::Heuristic,
-                ViaIn::Zero => ViaVelocities::Zero,
+            via_velocity: match r.via_velocity {
+                ViaIn::Heuristic => ViaVelocity::Heuristic,
+                ViaIn::Zero => ViaVelocity::Zero,
             },
+            torque: None,
+            sample_rate: 1000.0,
             phase_plane: r.phase_plane,
+        };
+        Ok(Options {
+            method: r.method,
+            options,
         })
     }
-}
 
-/// The phase plane when the request asks for it.
-fn maybe_phase<P: trajkit::Path + Clone>(
-    o: &Options,
-    raw: &trajkit::topp::messy::Sequence<trajkit::topp::Parametrized<P>>,
-    played: Option<&trajkit::topp::messy::Sequence<trajkit::topp::jerk::JerkLimited<P>>>,
-    limits: &Limits,
-) -> ApiResult<Option<PhasePlane>> {
-    o.phase_plane
-        .then(|| phase_plane(raw, played, limits))
-        .transpose()
-}
-
-/// Plans `w` under `limits` with `o`: the library calls of `trajkit plan`.
-pub fn plan(w: &Waypoints, limits: &Limits, o: &Options) -> ApiResult<Planned> {
-    let lib = |e| ApiError::from_lib("", e);
-    let jerked = matches!(o.method, Method::Toppra | Method::Ni) && o.jerk_limit;
-    if jerked || o.method == Method::Poly {
-        let why = if jerked {
-            "the jerk stage (set jerk_limit false to skip it)"
-        } else {
-            "method poly"
-        };
-        require(limits, Order::Jerk, why)?;
+    /// Whether the jerk limits are stated unlimited before planning (no jerk stage, or a
+    /// method that cannot bound jerk).
+    fn jerk_unlimited(&self) -> bool {
+        !self.options.needs().jerk
     }
-    let mut notes = Vec::new();
-    let (traj, phase): (Box<dyn Trajectory>, _) = match o.method {
-        Method::Toppra | Method::Ni => {
-            let opts = PlanOptions {
-                kind: o.path,
-                solver: if o.method == Method::Ni {
-                    PieceSolver::Ni
-                } else {
-                    PieceSolver::Toppra
-                },
-                toppra: trajkit::topp::Options {
-                    gridpoints: trajkit::topp::Gridpoints::Uniform(o.gridpoints),
-                    ..Default::default()
-                },
-                ..Default::default()
-            };
-            let raw = plan_waypoints(w.points(), w.dof(), limits, &opts).map_err(lib)?;
-            let name = if o.method == Method::Ni {
-                "NI"
-            } else {
-                "TOPP-RA"
-            };
-            if jerked {
-                let jl = trajkit::topp::jerk::limit_jerk_sequence(
-                    &raw,
-                    limits,
-                    &trajkit::topp::jerk::JerkOptions::default(),
-                )
-                .map_err(lib)?;
-                notes.push(format!(
-                    "jerk: bounded ({name} {:.6} s, timing law filtered and time rescaled by +{:.2} %)",
-                    raw.duration(),
-                    100.0 * (jl.duration() / raw.duration() - 1.0)
-                ));
-                let phase = maybe_phase(o, &raw, Some(&jl), limits)?;
-                (Box::new(jl), phase)
-            } else {
-                notes.push(format!("jerk: not bounded (jerk_limit false): {name}'s path acceleration is piecewise constant; jerk is not checked"));
-                let phase = maybe_phase(o, &raw, None, limits)?;
-                (Box::new(raw), phase)
-            }
-        }
-        Method::Totg => {
-            let opts = trajkit::topp::TotgOptions {
-                max_deviation: o.max_deviation,
-                ..Default::default()
-            };
-            let raw = trajkit::topp::plan_totg(w.points(), w.dof(), limits, &opts).map_err(lib)?;
-            notes.push(format!("jerk: not bounded: the blended path (max deviation {}) is only C¹, so joint acceleration jumps where arcs meet segments; jerk is not checked", o.max_deviation));
-            let phase = maybe_phase(o, &raw, None, limits)?;
-            (Box::new(raw), phase)
-        }
-        Method::Poly => {
-            let v = ViaTrajectory::new(
-                w.points(),
-                w.dof(),
-                o.degree,
-                o.via.clone(),
-                ViaTiming::Limits(limits),
-            )
-            .map_err(lib)?;
-            notes.push(format!(
-                "{} segments between waypoints, each as short as the limits allow; no phase plane (not a path parameterization)",
-                o.degree.name()
-            ));
-            (Box::new(v), None)
-        }
-    };
-    Ok(Planned {
-        traj,
-        jerk_checked: jerked || o.method == Method::Poly,
-        notes,
-        phase,
-    })
 }
 
-/// The request's waypoints: rows or a file; consecutive duplicates removed (their count
-/// returned), at least 2 left, every one within the position range.
-fn waypoints(r: &Request, limits: &Limits) -> ApiResult<(Waypoints, usize)> {
+/// Plans `w` under `limits` with `o`: the library call of `trajkit plan`.
+pub fn plan(w: &Waypoints, limits: &Limits, o: &Options) -> ApiResult<Planned> {
+    let plan = trajkit::plan::plan(w, limits, &o.options).map_err(|e| {
+        let status = match e {
+            trajkit::Error::Infeasible(_)
+            | trajkit::Error::CannotHold { .. }
+            | trajkit::Error::OutOfRange { .. }
+            | trajkit::Error::LimitExceeded { .. } => axum::http::StatusCode::UNPROCESSABLE_ENTITY,
+            _ => axum::http::StatusCode::BAD_REQUEST,
+        };
+        ApiError::plain(status, e.to_string())
+    })?;
+    Ok(Planned { plan })
+}
+
+/// The request's waypoints: rows or a file, within the caps.
+fn waypoints(r: &Request) -> ApiResult<Waypoints> {
     let lib = |field: &'static str| move |e| ApiError::from_lib(field, e);
-    let mut w = match (&r.waypoints, &r.waypoints_file) {
+    let w = match (&r.waypoints, &r.waypoints_file) {
         (Some(rows), None) => {
             let (flat, dof) =
                 caps::rows("waypoints", rows, 1, caps::MAX_WAYPOINTS, caps::MAX_JOINTS)?;
@@ -407,23 +336,7 @@ fn waypoints(r: &Request, limits: &Limits) -> ApiResult<(Waypoints, usize)> {
             ))
         }
     };
-    let removed = w.dedup(0.0);
-    if w.len() < 2 {
-        return Err(ApiError::from_lib(
-            "waypoints",
-            trajkit::Error::TooFewWaypoints {
-                needed: 2,
-                found: w.len(),
-            },
-        ));
-    }
-    limits
-        .expect_dof(w.dof(), "the waypoints")
-        .map_err(lib("limits"))?;
-    crate::cmd::plan::check_waypoints_in_range(&w, limits, "waypoints").map_err(|e| {
-        ApiError::plain(axum::http::StatusCode::BAD_REQUEST, e.0).field("waypoints")
-    })?;
-    Ok((w, removed))
+    Ok(w)
 }
 
 /// The sample times at `rate`, within the caps on rows and values.
@@ -467,9 +380,7 @@ pub struct Prepared {
 /// Reads and checks a plan request (limits, waypoints, options, caps): cheap, so that bad
 /// requests are refused without waiting for a planning worker.
 pub fn prepare(req: Request) -> ApiResult<Prepared> {
-    let limits = req.limits.load()?;
-    require(&limits, Order::Velocity, "planning")?;
-    require(&limits, Order::Acceleration, "planning")?;
+    let lib = |field: &'static str| move |e| ApiError::from_lib(field, e);
     let rate = caps::positive("rate", req.rate)?;
     if rate > 10_000.0 {
         return Err(ApiError::bad(
@@ -479,10 +390,36 @@ pub fn prepare(req: Request) -> ApiResult<Prepared> {
         ));
     }
     let options = Options::from_request(&req)?;
-    let (waypoints, removed) = waypoints(&req, &limits)?;
+    let w = waypoints(&req)?;
+    let (mut partial, _unused) = req.limits.load(w.given_names())?;
+    if options.jerk_unlimited() {
+        partial = partial
+            .with_override(Order::Jerk, &[f64::INFINITY])
+            .map_err(lib("limits"))?;
+    }
+    let limits = complete(&partial, options.options.needs())?;
+    limits
+        .expect_dof(w.dof(), "the waypoints")
+        .map_err(lib("limits"))?;
+    // Refused here, before waiting for a planning worker: fewer than two distinct waypoints,
+    // waypoints outside the position ranges.
+    let mut distinct = w.clone();
+    let removed = distinct.dedup(0.0);
+    if distinct.len() < 2 {
+        return Err(ApiError::from_lib(
+            "waypoints",
+            trajkit::Error::TooFewWaypoints {
+                needed: 2,
+                found: distinct.len(),
+            },
+        ));
+    }
+    limits
+        .check_waypoints(w.points(), None)
+        .map_err(lib("waypoints"))?;
     Ok(Prepared {
         limits,
-        waypoints,
+        waypoints: w,
         removed,
         options,
         rate,
@@ -499,31 +436,17 @@ pub fn run(p: Prepared, format: Format) -> ApiResult<Output> {
         rate,
     } = p;
     let planned = plan(&w, &limits, &options)?;
-    let traj = &*planned.traj;
-    // The check: every limit the trajectory was planned for, at 1 kHz (fewer samples for very
-    // long motions, so that the check stays within the sample cap; the rate is reported).
-    let check_rate = 1000.0_f64.min(caps::MAX_SAMPLE_ROWS as f64 / traj.duration().max(1e-9));
-    let checked = if planned.jerk_checked {
-        limits.clone()
-    } else {
-        limits
-            .clone()
-            .with_override(Order::Jerk, &[f64::INFINITY])
-            .map_err(|e| ApiError::from_lib("limits", e))?
-    };
-    let fine = trajkit::sample::sample(traj, check_rate).map_err(|e| ApiError::from_lib("", e))?;
-    let report = check_samples(&fine, &checked).map_err(|e| ApiError::from_lib("", e))?;
-    let tol = Tolerance::default();
-    if !report.passes(&tol) {
-        return Err(ApiError::plain(
-            axum::http::StatusCode::UNPROCESSABLE_ENTITY,
-            format!(
-                "the planned trajectory exceeds its limits ({}); nothing is returned: try another method or path",
-                report.violations(&tol).join("; ")
-            ),
-        ));
+    let plan = &planned.plan;
+    let traj = &*plan.trajectory;
+    let mut notes = plan.notes.clone();
+    if options.jerk_unlimited() && options.method != Method::Poly {
+        notes.push(
+            "jerk limits stated unlimited for this method (jerk_limit false, or totg's C¹ path): jerk is not checked"
+                .to_string(),
+        );
     }
-    let names = w.names().to_vec();
+    let names = plan.names.clone();
+    let limits = &plan.limits;
     match format {
         Format::Csv => {
             let t = sample_table(traj, rate, &names)?;
@@ -560,11 +483,11 @@ pub fn run(p: Prepared, format: Format) -> ApiResult<Output> {
         waypoints: super::lessons::to_rows(w.points(), w.dof()),
         removed_duplicates: removed,
         limits: limits_out,
-        notes: planned.notes,
-        check: report.to_json(),
-        check_rate,
+        notes,
+        check: plan.report.to_json(),
+        check_rate: options.options.sample_rate,
         samples: series(traj, times)?,
-        phase_plane: planned.phase,
+        phase_plane: plan.phase_plane.as_ref().map(PhasePlane::from),
     })))
 }
 

@@ -98,7 +98,7 @@ export async function mount(root) {
           sourceSel,
           select({ id: 'preset', label: 'preset', value: s.preset, options: defaults.presets.map((p) => [p, p]), onChange: (v) => { s.preset = v; s.source = 'preset'; sourceSel.querySelector('select').value = 'preset'; } })),
         h('div', { class: 'controls' },
-          h('span', { class: 'name' }, 'limits file (URDF, MoveIt joint_limits.yaml, trajkit JSON/YAML):'), limitsFileInput, limitsFileName),
+          h('span', { class: 'name' }, 'limits file (URDF, trajkit JSON/YAML, or a MoveIt joint_limits.yaml that overrides the preset by joint name):'), limitsFileInput, limitsFileName),
         h('div', { class: 'controls' },
           select({ id: 'format', label: 'format', value: 'auto', options: [['auto', 'by extension'], ['urdf', 'URDF'], ['moveit', 'MoveIt YAML'], ['json', 'trajkit JSON'], ['yaml', 'trajkit YAML']], onChange: set('format') }),
           select({ id: 'fill', label: 'complete missing limits from', value: '', options: [['', '(nothing)'], ...defaults.presets.map((p) => [p, p])], onChange: set('fillFrom') })),
@@ -122,9 +122,15 @@ export async function mount(root) {
   drawMethodOptions();
 
   function request(rate) {
-    const limits = s.source === 'file'
-      ? { file: s.limitsFile, format: s.format === 'auto' ? null : s.format }
-      : { preset: s.preset };
+    // A MoveIt joint_limits.yaml carries velocities, accelerations and jerks, not the robot's
+    // position ranges: as in MoveIt, it overrides the robot's (the preset's) limits by joint name.
+    const moveit = s.source === 'file' && (s.format === 'moveit'
+      || (s.format === 'auto' && /^joint_limits:/m.test(s.limitsFile.text)));
+    const limits = s.source !== 'file'
+      ? { preset: s.preset }
+      : moveit
+        ? { preset: s.preset, joint_limits: s.limitsFile }
+        : { file: s.limitsFile, format: s.format === 'auto' ? null : s.format };
     if (s.fillFrom) limits.fill_from = s.fillFrom;
     if (s.vScale !== 1) limits.velocity_scale = s.vScale;
     if (s.aScale !== 1) limits.acceleration_scale = s.aScale;

@@ -2,16 +2,24 @@
 //!
 //! [`Limits`] holds one [`JointLimits`] per joint: a position range, maximum velocity,
 //! acceleration and jerk, and optional direction-dependent minima (the most negative velocity
-//! or acceleration allowed; by default the negated maximum). An absent limit is
-//! `f64::INFINITY`. Construction through [`Limits::new`] validates every number: NaN, zero or
-//! negative maxima, positive minima and empty or inverted position ranges are refused with an
-//! error that names the joint, the field and the value.
+//! or acceleration allowed; by default the negated maximum). In `Limits` every field is
+//! meant: `f64::INFINITY` is "unlimited", stated on purpose. Construction through
+//! [`Limits::new`] validates every number: NaN, zero or negative maxima, positive minima and
+//! empty or inverted position ranges are refused with an error that names the joint, the
+//! field and the value.
 //!
-//! Sources of limits: [`presets`] (manufacturer data), [`load`] (trajkit JSON/YAML limits
-//! files, MoveIt `joint_limits.yaml`, URDF `<limit>` tags).
+//! Sources of limits: [`presets`] (manufacturer data, complete), [`load`] (trajkit JSON/YAML
+//! limits files, MoveIt `joint_limits.yaml`, URDF `<limit>` tags). A file may leave limits
+//! out, so the loaders return [`PartialLimits`], which records what was given; an absent
+//! limit is never read as "unlimited": [`PartialLimits::complete`] refuses it where it is
+//! needed ([`crate::Error::MissingLimit`]). Data and limits are paired by joint name where
+//! both name their joints ([`match_names`], [`Limits::for_joints`]).
 
 pub mod load;
+mod partial;
 pub mod presets;
+
+pub use partial::{match_names, FillBy, Given, Needs, PartialLimits};
 
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
@@ -193,6 +201,20 @@ impl JointLimits {
     }
 }
 
+/// One value for every joint (`values` of length 1) or one per joint, as a vector of `dof`
+/// values; `what` names them in the error.
+pub(crate) fn per_joint<T: Copy>(values: &[T], dof: usize, what: &str) -> Result<Vec<T>> {
+    match values.len() {
+        1 => Ok(vec![values[0]; dof]),
+        n if n == dof => Ok(values.to_vec()),
+        n => Err(Error::DimensionMismatch {
+            what: what.to_string(),
+            expected: dof,
+            found: n,
+        }),
+    }
+}
+
 /// Validated limits for every joint of a robot.
 ///
 /// ```
@@ -264,22 +286,37 @@ impl Limits {
         }
     }
 
+    /// Refuses a waypoint (rows of row-major `points`, one value per joint) outside its joint's
+    /// position range: [`Error::WaypointOutOfRange`] naming the waypoint (`index[i]` when given,
+    /// the row otherwise), the joint, the value and the range.
+    pub fn check_waypoints(&self, points: &[f64], index: Option<&[usize]>) -> Result<()> {
+        for (i, row) in points.chunks(self.dof()).enumerate() {
+            for (j, &q) in row.iter().enumerate() {
+                let jl = &self.joints[j];
+                if q < jl.position_min || q > jl.position_max {
+                    return Err(Error::WaypointOutOfRange {
+                        waypoint: index.map_or(i, |k| k[i]),
+                        joint: j,
+                        name: jl.name.clone(),
+                        value: q,
+                        lo: jl.position_min,
+                        hi: jl.position_max,
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Replaces the limits of derivative `order` (1..=3) on every joint with the given values
     /// (one per joint, or one for all), then re-validates.
     pub fn with_override(mut self, order: crate::Order, values: &[f64]) -> Result<Self> {
-        if values.len() != 1 && values.len() != self.dof() {
-            return Err(Error::DimensionMismatch {
-                what: format!("{} limit values", order.name()),
-                expected: self.dof(),
-                found: values.len(),
-            });
-        }
-        for (j, jl) in self.joints.iter_mut().enumerate() {
-            let v = if values.len() == 1 {
-                values[0]
-            } else {
-                values[j]
-            };
+        let values = per_joint(
+            values,
+            self.dof(),
+            &format!("{} limit values", order.name()),
+        )?;
+        for (jl, &v) in self.joints.iter_mut().zip(&values) {
             match order {
                 crate::Order::Velocity => {
                     jl.velocity = v;

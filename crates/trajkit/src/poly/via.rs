@@ -57,6 +57,8 @@ pub struct ViaTrajectory {
     polys: Vec<Polynomial>,
     /// One evaluation table per segment.
     tables: Vec<JointTable>,
+    /// Velocities at the interior waypoints, row-major `(waypoints − 2) × dof`.
+    vias: Vec<f64>,
 }
 
 impl ViaTrajectory {
@@ -233,7 +235,112 @@ impl ViaTrajectory {
             breaks,
             polys,
             tables,
+            vias: vel,
         })
+    }
+
+    /// Like [`ViaTrajectory::new`] timed by `limits` ([`ViaTiming::Limits`]), and kept inside
+    /// every joint's position range: where a segment of a joint leaves its range (exact
+    /// extrema of the segment's polynomial), that joint's velocity at the segment's interior
+    /// waypoints becomes 0 and the trajectory is built again, until no segment leaves. A
+    /// segment at rest at both ends moves monotonically between its two waypoints, so this
+    /// ends with every segment inside (at worst every via velocity of that joint zero).
+    /// Returns the trajectory and how many via velocities were set to 0.
+    ///
+    /// Errors: [`Error::WaypointOutOfRange`] for a waypoint outside its joint's range, and
+    /// those of [`ViaTrajectory::new`].
+    ///
+    /// ```
+    /// use trajkit::poly::{Degree, ViaTrajectory, ViaVelocities};
+    /// use trajkit::{JointLimits, Limits};
+    /// let mut j = JointLimits::symmetric(1.0, 5.0, 50.0);
+    /// (j.position_min, j.position_max) = (-1.0, 1.0);
+    /// let limits = Limits::new(vec![j])?;
+    /// // Rises to 0.99, then on to 1.0: the heuristic velocity at 0.99 overshoots 1.0.
+    /// let w = [0.0, 0.99, 1.0];
+    /// let (tr, zeroed) =
+    ///     ViaTrajectory::within_limits(&w, 1, Degree::Quintic, ViaVelocities::Heuristic, &limits)?;
+    /// assert_eq!(zeroed, 1);
+    /// assert!(tr.position_ranges()[0].1 <= 1.0);
+    /// # Ok::<(), trajkit::Error>(())
+    /// ```
+    pub fn within_limits(
+        waypoints: &[f64],
+        dof: usize,
+        degree: Degree,
+        velocities: ViaVelocities,
+        limits: &Limits,
+    ) -> Result<(Self, usize)> {
+        limits.expect_dof(dof, "waypoints")?;
+        limits.check_waypoints(waypoints, None)?;
+        let mut tr = ViaTrajectory::new(
+            waypoints,
+            dof,
+            degree,
+            velocities,
+            ViaTiming::Limits(limits),
+        )?;
+        let mut zeroed = 0;
+        loop {
+            let mut vel = tr.vias.clone();
+            let mut changed = false;
+            for (i, seg) in tr.polys.chunks(dof).enumerate() {
+                for (j, p) in seg.iter().enumerate() {
+                    let jl = limits.joint(j);
+                    let tol = 1e-12
+                        * [1.0, jl.position_min.abs(), jl.position_max.abs()]
+                            .into_iter()
+                            .filter(|x| x.is_finite())
+                            .fold(0.0, f64::max);
+                    let (lo, hi) = p.position_range();
+                    if lo >= jl.position_min - tol && hi <= jl.position_max + tol {
+                        continue;
+                    }
+                    // Interior waypoints i and i + 1 hold vias[(i - 1)..] and vias[i..].
+                    let mut here = false;
+                    for k in [i, i + 1] {
+                        if k >= 1 && k + 1 < tr.breaks.len() && vel[(k - 1) * dof + j] != 0.0 {
+                            vel[(k - 1) * dof + j] = 0.0;
+                            zeroed += 1;
+                            here = true;
+                        }
+                    }
+                    if !here {
+                        // At rest at both ends: monotone, so only rounding could get here.
+                        let (value, tau) = if hi > jl.position_max + tol {
+                            (hi, p.duration())
+                        } else {
+                            (lo, 0.0)
+                        };
+                        return Err(Error::OutOfRange {
+                            joint: j,
+                            name: jl.name.clone(),
+                            time: tr.breaks[i] + tau,
+                            value,
+                            lo: jl.position_min,
+                            hi: jl.position_max,
+                        });
+                    }
+                    changed = true;
+                }
+            }
+            if !changed {
+                break;
+            }
+            tr = ViaTrajectory::new(
+                waypoints,
+                dof,
+                degree,
+                ViaVelocities::Given(vel),
+                ViaTiming::Limits(limits),
+            )?;
+        }
+        Ok((tr, zeroed))
+    }
+
+    /// Velocities at the interior waypoints, row-major `(waypoints − 2) × dof`.
+    pub fn via_velocities(&self) -> &[f64] {
+        &self.vias
     }
 
     /// Number of segments.
@@ -358,6 +465,67 @@ mod tests {
         )
         .unwrap();
         assert!(tr.duration() < stop.duration());
+    }
+
+    #[test]
+    fn within_limits_keeps_every_joint_in_range() {
+        use crate::rng::SplitMix64;
+        let panda = Limits::preset("panda").unwrap();
+        let mut rng = SplitMix64::new(7);
+        let mut zeroed_total = 0;
+        for case in 0..4 {
+            let n = 3 + case % 4;
+            let w: Vec<f64> = (0..n * 7)
+                .map(|i| {
+                    let jl = panda.joint(i % 7);
+                    // Near the ends of the range, where overshoot matters.
+                    let u = if rng.next_f64() < 0.5 {
+                        0.97 + 0.03 * rng.next_f64()
+                    } else {
+                        rng.next_f64()
+                    };
+                    jl.position_min + (jl.position_max - jl.position_min) * u
+                })
+                .collect();
+            for deg in Degree::ALL {
+                let (tr, zeroed) =
+                    ViaTrajectory::within_limits(&w, 7, deg, ViaVelocities::Heuristic, &panda)
+                        .unwrap();
+                zeroed_total += zeroed;
+                for (j, (lo, hi)) in tr.position_ranges().into_iter().enumerate() {
+                    let jl = panda.joint(j);
+                    assert!(
+                        lo >= jl.position_min - 1e-12 && hi <= jl.position_max + 1e-12,
+                        "case {case} {deg:?} joint {j}: [{lo}, {hi}]"
+                    );
+                }
+                // Still through every waypoint.
+                let mut q = [0.0; 7];
+                for (k, &b) in tr.breaks().iter().enumerate() {
+                    tr.eval(b, Order::Position, &mut q);
+                    for j in 0..7 {
+                        assert!((q[j] - w[k * 7 + j]).abs() < 1e-9);
+                    }
+                }
+            }
+        }
+        assert!(zeroed_total > 0, "the suite never needed a repair");
+        let out = [0.0; 7];
+        let mut w = out.to_vec();
+        w.extend([0.0, 0.0, 0.0, 0.5, 0.0, 0.0, 0.0]);
+        let e = ViaTrajectory::within_limits(&w, 7, Degree::Quintic, ViaVelocities::Zero, &panda)
+            .unwrap_err();
+        assert!(
+            matches!(
+                e,
+                Error::WaypointOutOfRange {
+                    waypoint: 0,
+                    joint: 3,
+                    ..
+                }
+            ),
+            "{e}"
+        );
     }
 
     #[test]

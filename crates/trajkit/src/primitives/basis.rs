@@ -66,6 +66,22 @@ pub(crate) fn exp_neg(e: f64) -> f64 {
     p * f64::from_bits(k.wrapping_add(1023) << 52)
 }
 
+/// Most basis functions per joint: every fit solves a dense system of this size (its
+/// factorization takes n³/3 operations; 2000 functions: about 2.7e9, a few seconds), and 50 to
+/// 100 already reproduce a demonstration to 1e-4.
+pub const MAX_BASIS: usize = 2000;
+
+/// Refuses more than [`MAX_BASIS`] basis functions before anything is allocated.
+pub(crate) fn check_basis_count(n: usize) -> Result<()> {
+    crate::size::check(
+        "basis function count",
+        n as f64,
+        MAX_BASIS as f64,
+        "each fit factorizes a dense n × n system (n³/3 operations)",
+    )?;
+    Ok(())
+}
+
 /// A set of Gaussian basis functions, normalized to sum to one.
 ///
 /// ```
@@ -84,7 +100,9 @@ pub struct GaussianBasis {
 
 impl GaussianBasis {
     /// A basis from explicit centers `c_i` and widths `h_i` (`ψ_i = exp(−h_i (z − c_i)²)`).
+    /// At most [`MAX_BASIS`] functions.
     pub fn new(centers: Vec<f64>, widths: Vec<f64>) -> Result<Self> {
+        check_basis_count(centers.len())?;
         if centers.is_empty() {
             return Err(Error::DimensionMismatch {
                 what: "basis function count".into(),
@@ -112,6 +130,7 @@ impl GaussianBasis {
     /// spaced times in `[0, τ]`, each width chosen so that a function has value `overlap` at the
     /// next center (the last width repeats the previous one).
     pub fn dmp(n: usize, alpha_x: f64, overlap: f64) -> Result<Self> {
+        check_basis_count(n)?;
         if n < 2 {
             return Err(Error::DimensionMismatch {
                 what: "DMP basis function count (at least 2)".into(),
@@ -136,6 +155,7 @@ impl GaussianBasis {
     /// The ProMP basis over `z ∈ [0, 1]`: `n` centers equally spaced in `[0, 1]`, one common
     /// width `h = −4 n² ln(overlap)`.
     pub fn promp(n: usize, overlap: f64) -> Result<Self> {
+        check_basis_count(n)?;
         if n < 1 {
             return Err(Error::DimensionMismatch {
                 what: "ProMP basis function count".into(),

@@ -355,6 +355,31 @@ pub struct Dmp {
     amplitude: Vec<f64>,
     /// Row-major dof × n_basis.
     weights: Vec<f64>,
+    /// The demonstration's extent: the largest range of any joint (at least 1e-9 · (1 +
+    /// largest |position|)); new starts and goals farther than [`MAX_REACH`] times this from
+    /// the demonstrated ones are refused.
+    extent: f64,
+}
+
+/// How far (in units of the demonstration's extent, see [`Dmp::extent`]) a rollout's start or
+/// goal may lie from the demonstrated one: beyond it the forcing term is scaled into values no
+/// robot moves through (a goal of 1e300 would write 1e307).
+pub const MAX_REACH: f64 = 1e6;
+
+/// The largest joint range of row-major positions, floored at 1e-9 · (1 + largest |value|).
+fn extent_of(q: &[f64], dof: usize) -> f64 {
+    let mut range: f64 = 0.0;
+    let mut mag: f64 = 0.0;
+    for j in 0..dof {
+        let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for v in q.iter().skip(j).step_by(dof) {
+            lo = lo.min(*v);
+            hi = hi.max(*v);
+            mag = mag.max(v.abs());
+        }
+        range = range.max(hi - lo);
+    }
+    range.max(1e-9 * (1.0 + mag))
 }
 
 /// Velocities and accelerations (row-major, like `q`) of a demonstration sampled at times
@@ -543,6 +568,7 @@ impl Dmp {
             goal,
             amplitude,
             weights,
+            extent: extent_of(q, dof),
         })
     }
 
@@ -571,6 +597,7 @@ impl Dmp {
         let basis = GaussianBasis::dmp(cfg.n_basis, cfg.alpha_x, cfg.overlap)?;
         check_vec("weights", weights, dof * basis.len())?;
         let amplitude = (0..dof).map(|j| goal[j] - start[j]).collect();
+        let ends: Vec<f64> = start.iter().chain(goal).copied().collect();
         Ok(Dmp {
             cfg: cfg.clone(),
             basis,
@@ -581,7 +608,29 @@ impl Dmp {
             goal: goal.to_vec(),
             amplitude,
             weights: weights.to_vec(),
+            extent: extent_of(&ends, dof),
         })
+    }
+
+    /// The demonstration's extent (its largest joint range; for [`Dmp::from_weights`], the
+    /// largest |goal − start|), floored at 1e-9 · (1 + largest |position|). Rollouts refuse a
+    /// start or goal farther than [`MAX_REACH`] × this from the demonstrated one.
+    pub fn extent(&self) -> f64 {
+        self.extent
+    }
+
+    /// Refuses a start or goal (`what`) beyond [`MAX_REACH`] × the extent from `demo`.
+    fn check_reach(&self, what: &str, v: &[f64], demo: &[f64]) -> Result<()> {
+        for j in 0..self.dof {
+            if (v[j] - demo[j]).abs() > MAX_REACH * self.extent {
+                return Err(Error::InvalidValue {
+                    field: format!("{what} of joint {}", j + 1),
+                    value: v[j],
+                    reason: "is more than 1e6 × the demonstration's extent away from the demonstrated one",
+                });
+            }
+        }
+        Ok(())
     }
 
     /// Number of joints.
@@ -630,6 +679,8 @@ impl Dmp {
         check_vec("start velocity", &v0, dof)?;
         let g0 = opts.goal.clone().unwrap_or_else(|| self.goal.clone());
         check_vec("goal", &g0, dof)?;
+        self.check_reach("start", &y0, &self.start)?;
+        self.check_reach("goal", &g0, &self.goal)?;
         let tau = match opts.tau {
             Some(v) => crate::error::positive(|| "tau".into(), v)?,
             None => self.tau,
@@ -650,6 +701,7 @@ impl Dmp {
         for (i, c) in changes.iter().enumerate() {
             crate::error::finite(|| format!("goal change {i} time"), c.t)?;
             check_vec(&format!("goal change {i} goal"), &c.goal, dof)?;
+            self.check_reach(&format!("goal change {i} goal"), &c.goal, &self.goal)?;
         }
         changes.sort_by(|a, b| a.t.total_cmp(&b.t));
         if let Some(a) = opts.goal_filter {
@@ -660,14 +712,15 @@ impl Dmp {
         }
         let h = tau / spt as f64;
         // Round near-integers down so the last step is never a sliver of roundoff size.
-        let nsteps = ((duration / h - 1e-9).ceil() as usize).max(1);
-        if nsteps > 100_000_000 {
-            return Err(Error::InvalidValue {
-                field: "duration".into(),
-                value: duration,
-                reason: "needs more than 1e8 integration steps",
-            });
-        }
+        let steps = (duration / h - 1e-9).ceil().max(1.0);
+        // Per step: time, position, velocity, acceleration of every joint (and the exact
+        // integrator's forcing values).
+        let nsteps = crate::size::check_memory(
+            "rollout integration steps (duration × steps per τ / τ)",
+            steps,
+            8.0 * (1.0 + 4.0 * dof as f64),
+            &format!("a step of {dof} joint(s)"),
+        )?;
 
         // Per-joint forcing scale (Ijspeert) and the start used by the Hoffmann term.
         let scale: Vec<f64> = (0..dof)

@@ -78,6 +78,13 @@ impl Gmm {
                 found: rows,
             });
         }
+        // Responsibilities: one per sample and component.
+        crate::size::check_memory(
+            "samples × GMM components",
+            rows as f64 * k as f64,
+            8.0,
+            "a responsibility",
+        )?;
         if let Some(i) = data.iter().position(|v| !v.is_finite()) {
             return Err(Error::InvalidValue {
                 field: format!("GMM data point {} entry {}", i / dim, i % dim),

@@ -134,6 +134,7 @@ impl KmpReference {
             });
         }
         let d = gmm.dim() - 1;
+        check_unknowns(n, d)?;
         let mut r = KmpReference {
             dof: d,
             t: (0..n)
@@ -339,6 +340,7 @@ impl Kmp {
             crate::error::positive(|| "via_tolerance".into(), v)?;
         }
         let (n, d) = (reference.t.len(), reference.dof);
+        check_unknowns(n, d)?;
         let nd = n * d;
         // Unknown (point m, joint a) sits at m·d + a (point-major) or a·N + m (joint-major).
         // Joint-major for the covariance system: the kernel row of joint a is zero before a·N,
@@ -585,6 +587,14 @@ impl Kmp {
             for (i, &x) in v.mean.iter().chain(&v.cov).enumerate() {
                 crate::error::finite(|| format!("via point {} entry {}", k + 1, i + 1), x)?;
             }
+            let span = self.reference.t[self.reference.t.len() - 1] - self.reference.t[0];
+            if v.t < 0.0 || v.t > span * (1.0 + 1e-12) {
+                return Err(Error::InvalidValue {
+                    field: format!("via point {} time (the movement lasts {span} s)", k + 1),
+                    value: v.t,
+                    reason: "is outside the movement (0 to its duration)",
+                });
+            }
             let vt = self.reference.t[0] + v.t;
             let pos = r.t.partition_point(|&x| x < vt);
             let near = [pos.wrapping_sub(1), pos]
@@ -760,6 +770,21 @@ impl Trajectory for Kmp {
             crate::linalg::axpy(kv, &self.alpha[m * d..(m + 1) * d], out);
         }
     }
+}
+
+/// Most unknowns (reference points × joints) of a KMP: its kernel system is a dense square of
+/// this size (512 MiB at the limit), factorized where the low-rank path does not apply.
+pub const MAX_UNKNOWNS: usize = 8192;
+
+/// Refuses more than [`MAX_UNKNOWNS`] unknowns before anything is allocated.
+fn check_unknowns(points: usize, dof: usize) -> Result<()> {
+    crate::size::check(
+        "KMP unknowns (reference points × joints)",
+        points as f64 * dof as f64,
+        MAX_UNKNOWNS as f64,
+        "the kernel system is a dense square of this size",
+    )?;
+    Ok(())
 }
 
 #[cfg(test)]

@@ -24,7 +24,7 @@ mod kmp_lowrank;
 pub mod promp;
 pub mod rhythmic;
 
-pub use basis::GaussianBasis;
+pub use basis::{GaussianBasis, MAX_BASIS};
 pub use bounded_dmp::{BoundedDmp, BoundedRollout};
 pub use cartesian_dmp::{quat_exp, quat_log, quat_mul, QuaternionDmp, QuaternionRollout};
 pub use dmp::{

@@ -181,6 +181,15 @@ impl ProMp {
         }
         let basis = GaussianBasis::promp(cfg.n_basis, cfg.overlap)?;
         let nw = dof * basis.len();
+        check_weight_count(nw)?;
+        for d in demos {
+            crate::size::check_memory(
+                "demonstration samples × basis functions",
+                d.t.len() as f64 * basis.len() as f64,
+                8.0,
+                "a design-matrix entry",
+            )?;
+        }
         let mut ws = Vec::with_capacity(demos.len() * nw);
         let mut duration = 0.0;
         for (i, d) in demos.iter().enumerate() {
@@ -363,6 +372,10 @@ impl ProMp {
     }
 
     /// Conditions on via points (all at once). Returns the posterior ProMP; `self` is unchanged.
+    ///
+    /// Errors: a via point time outside `[0, duration]` (the movement has no value there to
+    /// condition) or non-finite values ([`Error::InvalidValue`]); wrong sizes; more via values
+    /// than the memory budget allows ([`Error::TooLarge`]).
     pub fn condition(&self, via: &[ViaPoint]) -> Result<ProMp> {
         let dof = self.dof;
         let n = self.basis.len();
@@ -370,8 +383,25 @@ impl ProMp {
         if via.is_empty() {
             return Ok(self.clone());
         }
+        crate::size::check_memory(
+            "via values (via points × joints)",
+            (via.len() * dof) as f64,
+            8.0 * (nw + via.len() * dof) as f64,
+            "a via value's rows of the gain and innovation matrices",
+        )?;
         for (k, v) in via.iter().enumerate() {
             crate::error::finite(|| format!("via point {} time", k + 1), v.t)?;
+            if v.t < 0.0 || v.t > self.duration * (1.0 + 1e-12) {
+                return Err(Error::InvalidValue {
+                    field: format!(
+                        "via point {} time (the movement lasts {} s)",
+                        k + 1,
+                        self.duration
+                    ),
+                    value: v.t,
+                    reason: "is outside the movement (0 to its duration)",
+                });
+            }
             if !matches!(v.order, Order::Position | Order::Velocity) {
                 return Err(Error::InvalidValue {
                     field: format!("via point {} derivative order", k + 1),
@@ -626,4 +656,19 @@ impl Trajectory for WeightTrajectory {
             out,
         )
     }
+}
+
+/// Most weights (joints × basis functions) of a ProMP: the weight covariance is a dense
+/// square of this size (128 MiB at the limit) that conditioning multiplies and factorizes.
+pub const MAX_WEIGHTS: usize = 4096;
+
+/// Refuses more than [`MAX_WEIGHTS`] weights before anything is allocated.
+fn check_weight_count(nw: usize) -> Result<()> {
+    crate::size::check(
+        "ProMP weights (joints × basis functions)",
+        nw as f64,
+        MAX_WEIGHTS as f64,
+        "the weight covariance is a dense square of this size",
+    )?;
+    Ok(())
 }

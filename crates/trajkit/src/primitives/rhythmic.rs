@@ -55,6 +55,13 @@ impl RhythmicDmp {
     /// and the defaults `α_z = 25`, `β_z = 6.25`.
     pub fn fit(t: &[f64], q: &[f64], dof: usize, n_basis: usize) -> Result<RhythmicDmp> {
         check_demo(t, q, dof, 3)?;
+        crate::primitives::basis::check_basis_count(n_basis)?;
+        crate::size::check_memory(
+            "demonstration samples × basis functions",
+            t.len() as f64 * n_basis as f64,
+            8.0,
+            "a design-matrix entry",
+        )?;
         if n_basis < 2 {
             return Err(Error::DimensionMismatch {
                 what: "rhythmic DMP basis function count (at least 2)".into(),

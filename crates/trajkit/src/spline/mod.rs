@@ -52,6 +52,8 @@
 //!   with angular velocity and acceleration.
 //! - [`PchipSpline`] (pchip.rs) and [`AkimaSpline`] (akima.rs): shape-preserving C¹ cubics, no
 //!   overshoot between waypoints.
+//! - [`BoundedSpline`] (bounded.rs): a C² spline repaired to stay inside per-component bounds
+//!   (joint position ranges), verified exactly; the planner's path.
 
 /// Accessors and the [`crate::Path`] implementation of a curve that is a
 /// [`PiecewisePolynomial`] in a field `pp`.
@@ -101,6 +103,7 @@ mod arclen;
 mod banded;
 mod basis;
 mod bezier;
+mod bounded;
 mod bspline;
 mod catmull_rom;
 mod cubic;
@@ -114,6 +117,7 @@ mod validate;
 pub use akima::AkimaSpline;
 pub use arclen::ArcLength;
 pub use bezier::Bezier;
+pub use bounded::{BoundRepair, BoundedSpline, MAX_HALVINGS};
 pub use bspline::{BSpline, DesignMatrix, EndDerivative, MAX_DEGREE};
 pub use catmull_rom::{CatmullRom, CatmullRomKind};
 pub use cubic::CubicSpline;

@@ -7,9 +7,23 @@
 //!    path turns back on itself, a cusp where the robot must stop) for splines, and every
 //!    corner for piecewise-linear paths (a polyline's velocity jumps at a corner);
 //! 3. each piece becomes a path ([`PathKind`]: a C² cubic spline parameterized by chord length,
-//!    or a polyline) and is timed from rest to rest by TOPP-RA or, with
-//!    [`PlanOptions::solver`], by numerical integration ([`crate::topp::ni`]);
+//!    or a polyline) that stays inside the joints' position ranges (see below) and is timed
+//!    from rest to rest by TOPP-RA or, with [`PlanOptions::solver`], by numerical integration
+//!    ([`crate::topp::ni`]);
 //! 4. the pieces are played one after the other ([`Sequence`]).
+//!
+//! # Position ranges
+//! Waypoints outside a joint's range are refused ([`Error::WaypointOutOfRange`]). Between
+//! waypoints inside it, a polyline stays inside (a box is convex), but a cubic spline can
+//! swing out: a joint that turns around near its limit overshoots the waypoint. Every spline
+//! piece therefore goes through [`BoundedSpline`]: its exact per-joint extrema are computed
+//! (roots of the derivative) and, where a joint leaves its range, that joint's slope and
+//! curvature at the neighbouring waypoints are reduced (quintic Hermite pieces, still C²,
+//! still through every waypoint) until it provably stays inside; the other joints keep the
+//! spline as it was ([`PiecePath::Bounded`]; [`PiecePath::Cubic`] when nothing had to change).
+//! If the reduction leaves the path with (almost) no speed at a waypoint — every joint
+//! brought to rest there — the robot stops at that waypoint instead: the piece is split there
+//! like at a reversal, and each part is built again.
 //!
 //! With [`PlanOptions::torque`] set, every piece is also limited in joint torque
 //! ([`JointTorque::from_limits`]: `±effort` of `limits`) through the given inverse-dynamics
@@ -27,7 +41,7 @@ use super::constraint::{InverseDynamics, JointTorque};
 use super::paths::{check_waypoints, seg_len, LinearPath};
 use super::{Options, Parametrized, Toppra};
 use crate::error::{Error, Result};
-use crate::spline::CubicSpline;
+use crate::spline::{BoundedSpline, CubicSpline};
 use crate::traj::{clamp_time, find_piece};
 use crate::{Limits, Order, Path, Trajectory};
 use std::sync::Arc;
@@ -129,8 +143,12 @@ impl PathKind {
 /// One piece's path: a spline or a polyline.
 #[derive(Debug, Clone)]
 pub enum PiecePath {
-    /// A cubic spline through the piece's waypoints.
+    /// A cubic spline through the piece's waypoints (it stays inside the position ranges as
+    /// it is).
     Cubic(CubicSpline),
+    /// The cubic spline repaired to stay inside the position ranges (see the module
+    /// documentation); [`BoundedSpline::repairs`] says which joints changed.
+    Bounded(BoundedSpline),
     /// A polyline.
     Linear(LinearPath),
 }
@@ -139,24 +157,35 @@ impl Path for PiecePath {
     fn dim(&self) -> usize {
         match self {
             PiecePath::Cubic(p) => p.dim(),
+            PiecePath::Bounded(p) => p.dim(),
             PiecePath::Linear(p) => p.dim(),
         }
     }
     fn interval(&self) -> (f64, f64) {
         match self {
             PiecePath::Cubic(p) => p.interval(),
+            PiecePath::Bounded(p) => p.interval(),
             PiecePath::Linear(p) => p.interval(),
         }
     }
     fn eval(&self, s: f64, order: usize, out: &mut [f64]) {
         match self {
             PiecePath::Cubic(p) => p.eval(s, order, out),
+            PiecePath::Bounded(p) => p.eval(s, order, out),
             PiecePath::Linear(p) => p.eval(s, order, out),
+        }
+    }
+    fn eval_derivatives(&self, s: f64, first: &mut [f64], second: &mut [f64]) {
+        match self {
+            PiecePath::Cubic(p) => p.eval_derivatives(s, first, second),
+            PiecePath::Bounded(p) => p.eval_derivatives(s, first, second),
+            PiecePath::Linear(p) => p.eval_derivatives(s, first, second),
         }
     }
     fn breakpoints(&self) -> Vec<f64> {
         match self {
             PiecePath::Cubic(p) => p.breakpoints(),
+            PiecePath::Bounded(p) => p.breakpoints(),
             PiecePath::Linear(p) => p.breakpoints(),
         }
     }
@@ -318,30 +347,22 @@ pub fn plan_waypoints(
     limits: &Limits,
     options: &PlanOptions,
 ) -> Result<Sequence<Parametrized<PiecePath>>> {
-    limits.expect_dof(dim, "the waypoints")?;
-    if let Some(model) = &options.torque {
-        JointTorque::from_limits(model.clone(), limits)?;
-    }
-    let (w, kept) = dedup_waypoints(waypoints, dim, options.duplicate_tolerance)?;
-    let count = w.len() / dim;
-    if count < 2 {
-        return Err(Error::TooFewWaypoints {
-            needed: 2,
-            found: count,
-        });
-    }
-    let max_turn = if options.kind == PathKind::Linear {
-        1e-9
-    } else {
-        options.reversal_angle
-    };
-    let mut cuts = vec![0];
-    cuts.extend(stop_indices(&w, dim, max_turn));
-    cuts.push(count - 1);
-    let mut pieces = Vec::with_capacity(cuts.len() - 1);
-    for (p, c) in cuts.windows(2).enumerate() {
-        let piece_w = &w[c[0] * dim..(c[1] + 1) * dim];
-        let path = piece_path(piece_w, dim, options.kind)?;
+    let paths = piece_paths(waypoints, dim, limits, options)?;
+    time_pieces(paths, limits, options, &mut |_, _| {})
+}
+
+/// Times the pieces of [`piece_paths`] as [`plan_waypoints`] does, calling `progress(done,
+/// total)` after each piece.
+pub fn time_pieces(
+    paths: PiecePaths,
+    limits: &Limits,
+    options: &PlanOptions,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Sequence<Parametrized<PiecePath>>> {
+    let kept = paths.kept;
+    let total = paths.pieces.len();
+    let mut pieces = Vec::with_capacity(total);
+    for (p, PiecePlan { from, to, path }) in paths.pieces.into_iter().enumerate() {
         let opts = Options {
             start_velocity: 0.0,
             end_velocity: 0.0,
@@ -356,10 +377,112 @@ pub fn plan_waypoints(
             PieceSolver::Toppra => problem.solve(),
             PieceSolver::Ni => super::ni::solve(problem),
         }
-        .map_err(|e| in_piece(e, p, kept[c[0]], kept[c[1]]))?;
+        .map_err(|e| in_piece(e, p, kept[from], kept[to]))?;
         pieces.push(traj);
+        progress(p + 1, total);
     }
     Sequence::new(pieces)
+}
+
+/// Path speed ‖σ′‖ (chord-length units, nominally about 1) below which a waypoint where the
+/// range repair slowed every joint becomes a stop.
+const MIN_REPAIRED_SPEED: f64 = 1e-3;
+
+/// One rest-to-rest piece of [`piece_paths`].
+#[derive(Debug, Clone)]
+pub struct PiecePlan {
+    /// Its first waypoint (index into [`PiecePaths::waypoints`]).
+    pub from: usize,
+    /// Its last waypoint.
+    pub to: usize,
+    /// Its path.
+    pub path: PiecePath,
+}
+
+/// The waypoints and paths of [`plan_waypoints`] before timing.
+#[derive(Debug, Clone)]
+pub struct PiecePaths {
+    /// The waypoints without consecutive duplicates, row-major.
+    pub waypoints: Vec<f64>,
+    /// Index in the input of each kept waypoint.
+    pub kept: Vec<usize>,
+    /// The rest-to-rest pieces, in order.
+    pub pieces: Vec<PiecePlan>,
+}
+
+/// The rest-to-rest pieces of [`plan_waypoints`] as paths, before timing. Every spline path
+/// stays inside the position ranges of `limits` (see the module documentation).
+///
+/// Errors: [`Error::WaypointOutOfRange`] for a waypoint outside its joint's range (indices of
+/// the input); the constructors' errors otherwise.
+pub fn piece_paths(
+    waypoints: &[f64],
+    dim: usize,
+    limits: &Limits,
+    options: &PlanOptions,
+) -> Result<PiecePaths> {
+    limits.expect_dof(dim, "the waypoints")?;
+    if let Some(model) = &options.torque {
+        JointTorque::from_limits(model.clone(), limits)?;
+    }
+    let (w, kept) = dedup_waypoints(waypoints, dim, options.duplicate_tolerance)?;
+    let count = w.len() / dim;
+    if count < 2 {
+        return Err(Error::TooFewWaypoints {
+            needed: 2,
+            found: count,
+        });
+    }
+    limits.check_waypoints(&w, Some(&kept))?;
+    let max_turn = if options.kind == PathKind::Linear {
+        1e-9
+    } else {
+        options.reversal_angle
+    };
+    let mut cuts = vec![0];
+    cuts.extend(stop_indices(&w, dim, max_turn));
+    cuts.push(count - 1);
+    let mut paths = Vec::with_capacity(cuts.len() - 1);
+    for c in cuts.windows(2) {
+        push_piece(&w, dim, c[0], c[1], options.kind, limits, &mut paths)?;
+    }
+    Ok(PiecePaths {
+        waypoints: w,
+        kept,
+        pieces: paths,
+    })
+}
+
+/// Builds the path from waypoint `a` to `b` (inclusive) and appends it, split into several
+/// pieces where the range repair left the path without speed (see the module documentation).
+fn push_piece(
+    w: &[f64],
+    dim: usize,
+    a: usize,
+    b: usize,
+    kind: PathKind,
+    limits: &Limits,
+    out: &mut Vec<PiecePlan>,
+) -> Result<()> {
+    let path = piece_path(&w[a * dim..(b + 1) * dim], dim, kind, limits)?;
+    let slow = match &path {
+        PiecePath::Bounded(sp) => sp.slow_breaks(MIN_REPAIRED_SPEED),
+        _ => Vec::new(),
+    };
+    if slow.is_empty() {
+        out.push(PiecePlan {
+            from: a,
+            to: b,
+            path,
+        });
+        return Ok(());
+    }
+    let mut start = a;
+    for k in slow.into_iter().map(|k| a + k).chain([b]) {
+        push_piece(w, dim, start, k, kind, limits, out)?;
+        start = k;
+    }
+    Ok(())
 }
 
 /// Says which piece (0-based `p`, between input waypoints `from` and `to`) an infeasibility
@@ -374,7 +497,7 @@ pub(crate) fn in_piece(e: Error, p: usize, from: usize, to: usize) -> Error {
     }
 }
 
-fn piece_path(w: &[f64], dim: usize, kind: PathKind) -> Result<PiecePath> {
+fn piece_path(w: &[f64], dim: usize, kind: PathKind, limits: &Limits) -> Result<PiecePath> {
     let count = w.len() / dim;
     if kind == PathKind::Linear {
         return Ok(PiecePath::Linear(LinearPath::new(w, dim)?));
@@ -392,7 +515,31 @@ fn piece_path(w: &[f64], dim: usize, kind: PathKind) -> Result<PiecePath> {
         }
         PathKind::Linear => unreachable!("handled above"),
     };
-    Ok(PiecePath::Cubic(sp))
+    let lo: Vec<f64> = limits.joints().iter().map(|j| j.position_min).collect();
+    let hi: Vec<f64> = limits.joints().iter().map(|j| j.position_max).collect();
+    let bounded = BoundedSpline::new(sp.as_ppoly(), &lo, &hi).map_err(|e| match e {
+        Error::OutOfRange {
+            joint,
+            time,
+            value,
+            lo,
+            hi,
+            ..
+        } => Error::OutOfRange {
+            joint,
+            name: limits.joint(joint).name.clone(),
+            time,
+            value,
+            lo,
+            hi,
+        },
+        e => e,
+    })?;
+    if bounded.repairs().is_empty() {
+        Ok(PiecePath::Cubic(sp))
+    } else {
+        Ok(PiecePath::Bounded(bounded))
+    }
 }
 
 #[cfg(test)]
