@@ -39,6 +39,7 @@
 //! ```
 
 pub mod blend;
+mod between;
 pub mod constraint;
 pub mod grid;
 pub mod jerk;
@@ -53,8 +54,8 @@ pub mod totg;
 
 pub use blend::BlendedPath;
 pub use constraint::{
-    Constraint, ConstraintRows, EndEffectorSpeed, InverseDynamics, Jacobian, JointAcceleration,
-    JointTorque, JointVelocity, PathPoint,
+    Constraint, ConstraintRows, CubicPiece, EndEffectorSpeed, InverseDynamics, Jacobian,
+    JointAcceleration, JointTorque, JointVelocity, PathPoint,
 };
 pub use grid::Gridpoints;
 pub use parametrized::{Parametrized, Profile};
