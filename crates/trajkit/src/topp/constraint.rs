@@ -355,9 +355,7 @@ pub trait Constraint {
     /// The worst value of the constraint over a whole interval on which the path is a
     /// polynomial of degree ≤ 3, timed with constant path acceleration `u` and
     /// x = ṡ² = `x0` + 2u(s − s0): `Some((e, s))` with the largest relative excess e (as the
-    /// solver measures it at a point: √(x/x_max) − 1 for a velocity bound, (α·u + β·x − γ)
-    /// divided by the largest of |γ|, |α·u|, |β·x| for a half-plane) and a point s where it
-    /// occurs. When the constraint holds everywhere the value may instead be any upper bound
+    /// value relative to the limit, e.g. |q̇|/v_max − 1) and a point s where it occurs. When the constraint holds everywhere the value may instead be any upper bound
     /// ≤ 0 of the worst excess (a cheap enclosure suffices). It must be rigorous (not sampled):
     /// the solver relies on it to guarantee the constraint between gridpoints. `None` (the
     /// default) when the constraint cannot say; the solver then checks it at sample points.
@@ -730,7 +728,9 @@ impl Constraint for JointAcceleration {
                     if limit.is_infinite() {
                         continue;
                     }
-                    let scale = limit.abs().max(terms);
+                    // Relative to the limit (its extreme is the acceleration's); a zero
+                    // limit is measured against the terms.
+                    let scale = if limit != 0.0 { limit.abs() } else { terms };
                     let e = if scale > 0.0 {
                         sign * (a - limit) / scale
                     } else {
