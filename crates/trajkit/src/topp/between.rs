@@ -47,9 +47,11 @@ pub(super) enum Check {
 }
 
 /// The path's Taylor data on every interval of the grid: σ, σ′, σ″, σ‴ at the interval's
-/// start, from inside (`4·dim` numbers per interval; evaluated at the midpoint, so that no
-/// convention about which piece a breakpoint belongs to matters, and moved to the start), for
-/// intervals where the exact check applies.
+/// start, from inside (`4·dim` numbers per interval), for intervals where the exact check
+/// applies. Between ordinary gridpoints one cubic covers both ends: the gridpoint values give
+/// σ, σ′, σ″ and (σ″(s_{i+1}) − σ″(s_i))/Δ gives σ‴. At a breakpoint the path is evaluated at
+/// the interval's midpoint (so that no convention about which piece a breakpoint belongs to
+/// matters) and the expansion moved to the start.
 #[derive(Default)]
 pub(super) struct Pieces {
     /// Per interval: whether the path is a polynomial of degree ≤ 3 on it.
@@ -63,7 +65,7 @@ pub(super) struct Pieces {
 }
 
 impl Pieces {
-    fn build<P: Path>(&mut self, path: &P, grid: &[f64], need_q: bool) {
+    fn build<P: Path>(&mut self, path: &P, grid: &[f64], need_q: bool, at_points: &[f64]) {
         let n = grid.len() - 1;
         let dim = path.dim();
         self.dim = dim;
@@ -95,11 +97,23 @@ impl Pieces {
             if inside {
                 continue;
             }
-            let sm = 0.5 * (s0 + s1);
             let d = &mut self.data[i * 4 * dim..(i + 1) * 4 * dim];
             let (d0, rest) = d.split_at_mut(dim);
             let (d1, rest) = rest.split_at_mut(dim);
             let (d2, d3) = rest.split_at_mut(dim);
+            if !(starts_at_break || ends_at_break) {
+                let here = &at_points[3 * dim * i..3 * dim * (i + 1)];
+                let next_ddq = &at_points[3 * dim * (i + 1) + 2 * dim..3 * dim * (i + 2)];
+                d0.copy_from_slice(&here[..dim]);
+                d1.copy_from_slice(&here[dim..2 * dim]);
+                d2.copy_from_slice(&here[2 * dim..]);
+                let h = s1 - s0;
+                for j in 0..dim {
+                    d3[j] = (next_ddq[j] - d2[j]) / h;
+                }
+                continue;
+            }
+            let sm = 0.5 * (s0 + s1);
             if need_q {
                 path.eval(sm, 0, d0);
             } else {
@@ -153,19 +167,20 @@ impl Workspace {
 
     /// Builds the Taylor data of the intervals and, where the path is a polynomial of degree
     /// ≤ 3 on an interval, writes every constraint's sufficient rows
-    /// ([`Constraint::hold_on_cubic`]) into the interval's stage, leaving out rows that cannot
-    /// bind within the velocity bounds at both ends.
+    /// ([`Constraint::hold_on_cubic`], which leaves out rows that cannot bind within the
+    /// velocity bounds `xhi` at both ends) into the interval's stage.
     pub(super) fn prepare_between<P: Path>(
         &mut self,
         path: &P,
         cons: &[Box<dyn Constraint + '_>],
         grid: &[f64],
         xhi: &[f64],
+        at_points: &[f64],
     ) {
         let n = grid.len() - 1;
         let need_q = cons.iter().any(|c| c.uses_position());
         let mut pieces = std::mem::take(&mut self.pieces);
-        pieces.build(path, grid, need_q);
+        pieces.build(path, grid, need_q, at_points);
         self.mid.clear();
         self.mid_off.clear();
         self.mid_add.clear();
@@ -177,29 +192,14 @@ impl Workspace {
                 self.mid_off.push(self.mid.len());
                 continue;
             };
-            let two_delta = 2.0 * (grid[i + 1] - grid[i]);
-            let (x0, x1) = (xhi[i], xhi[i + 1]);
-            // Corners of {0 ≤ x0 ≤ X0, 0 ≤ x0 + 2Δu ≤ X1} in (u, x0).
-            let corners = [
-                [x1 / two_delta, 0.0],
-                [-x0 / two_delta, x0],
-                [(x1 - x0) / two_delta, x0],
-            ];
-            let bounded = x0 < 1e29 && x1 < 1e29;
+            let x_max = [xhi[i], xhi[i + 1]];
             for (k, c) in cons.iter().enumerate() {
                 self.cr.clear();
-                if !c.hold_on_cubic(&piece, [x0, x1], &mut self.cr) {
+                if !c.hold_on_cubic(&piece, x_max, &mut self.cr) {
                     continue;
                 }
                 self.proved[k] = true;
-                for &[a, b, g] in self.cr.half_planes() {
-                    let can_bind = !bounded
-                        || g < 0.0
-                        || corners.iter().any(|v| a * v[0] + b * v[1] > g);
-                    if can_bind {
-                        self.mid.push([a, b, g]);
-                    }
-                }
+                self.mid.extend_from_slice(self.cr.half_planes());
             }
             self.mid_off.push(self.mid.len());
         }
@@ -222,7 +222,9 @@ impl Workspace {
         let need_q = cons.iter().any(|c| c.uses_position());
         if !self.pieces.built {
             let mut pieces = std::mem::take(&mut self.pieces);
-            pieces.build(path, grid, need_q);
+            let at_points = std::mem::take(&mut self.at_points);
+            pieces.build(path, grid, need_q, &at_points);
+            self.at_points = at_points;
             self.pieces = pieces;
         }
         let mut split: Vec<usize> = Vec::new();

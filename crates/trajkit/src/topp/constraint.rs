@@ -124,7 +124,10 @@ fn quadratic_roots_in(c: [f64; 3], lo: f64, hi: f64) -> ([f64; 2], usize) {
             n += 1;
         }
     };
-    let scale = c0.abs().max(c1.abs() * (hi - lo)).max(c2.abs() * (hi - lo) * (hi - lo));
+    let scale = c0
+        .abs()
+        .max(c1.abs() * (hi - lo))
+        .max(c2.abs() * (hi - lo) * (hi - lo));
     if c2.abs() * (hi - lo) * (hi - lo) <= 1e-14 * scale {
         if c1 != 0.0 {
             push(-c0 / c1);
@@ -623,6 +626,11 @@ impl Constraint for JointVelocity {
             if limit.is_infinite() {
                 continue;
             }
+            // Quick: |σ′| ≤ max |c_k| and x ≤ the larger bound.
+            let m = c[0].abs().max(c[1].abs()).max(c[2].abs());
+            if m * m * x_max[0].max(x_max[1]) <= limit * limit {
+                continue;
+            }
             // b_k is linear in (x0, x1) ∈ [0, x_max[0]] × [0, x_max[1]]: its largest value
             // takes each term at the end of its range where it is largest.
             let w = square_bernstein(c);
@@ -716,7 +724,11 @@ impl Constraint for JointAcceleration {
                 worst.0 = worst.0.max(e);
                 continue;
             }
-            let vertex = if c[2] != 0.0 { -c[1] / (2.0 * c[2]) } else { 0.0 };
+            let vertex = if c[2] != 0.0 {
+                -c[1] / (2.0 * c[2])
+            } else {
+                0.0
+            };
             let candidates = [0.0, h, vertex];
             let n = if vertex > 0.0 && vertex < h { 3 } else { 2 };
             for &t in &candidates[..n] {

@@ -13,9 +13,12 @@
 //! the acceleration-limited stretches lose O(h) of ṡ². So T(h) − T(h/2) ≈ T(h/2) − T* and,
 //! wherever the error falls at least that fast, |T(h) − T(h/2)| bounds the finer grid's error.
 //! The solver starts with [`AUTO_START`] equal intervals on every piece between breakpoints
-//! (so the grid, and the cost, grow linearly with the number of waypoints), solves, doubles
-//! every piece's count and solves again, until two successive durations differ by at most
-//! `tolerance` (relative), and returns the finer solution.
+//! (so the grid, and the cost, grow linearly with the number of waypoints), solves, then
+//! solves with four times as many, then doubles, until a grid r times finer than the previous
+//! one changes the duration by at most (r − 1)·`tolerance` (relative): under the model, that
+//! bounds its own error by `tolerance`. It returns the finer solution. On the Panda suites
+//! the first check (128 → 512 intervals per piece) settles and the result is 2–5e-5 above
+//! the optimum.
 //!
 //! # Precision contract
 //! The returned gridpoints increase strictly, start at `s_start` and end at `s_end` exactly,
@@ -30,20 +33,21 @@
 use crate::error::{Error, Result};
 use crate::Path;
 
-/// Upper bound on the number of intervals [`Gridpoints::Auto`] and [`Gridpoints::Chord`]
-/// create.
-pub const MAX_AUTO_INTERVALS: usize = 1 << 20;
+/// Upper bound on the number of intervals [`Gridpoints::Chord`] creates, and on the grids
+/// [`Gridpoints::Auto`] tries (it returns the finest grid below the bound when the duration
+/// has not settled by then: beyond about 8000 waypoints at the default tolerance).
+pub const MAX_AUTO_INTERVALS: usize = 1 << 22;
 
 /// Equal intervals per piece between breakpoints on [`Gridpoints::Auto`]'s first grid.
-pub const AUTO_START: usize = 64;
+pub const AUTO_START: usize = 128;
 
 /// How to choose gridpoints.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Gridpoints {
     /// From a tolerance on the duration (the default, `tolerance: 1e-4`): equal intervals on
-    /// every piece between breakpoints, [`AUTO_START`] per piece first, doubled until two
-    /// successive grids' durations differ by at most `tolerance` relative (see the module
-    /// documentation). [`Gridpoints::points`] returns the first grid.
+    /// every piece between breakpoints, [`AUTO_START`] per piece first, refined until the
+    /// duration settles within `tolerance` relative (see the module documentation).
+    /// [`Gridpoints::points`] returns the first grid.
     Auto {
         /// Relative duration tolerance, > 0.
         tolerance: f64,
@@ -73,7 +77,7 @@ impl Gridpoints {
                         reason: "is not at least 1",
                     });
                 }
-                if *n > MAX_AUTO_INTERVALS * 64 {
+                if *n > 1 << 26 {
                     return Err(Error::InvalidValue {
                         field: "gridpoint interval count".into(),
                         value: *n as f64,
@@ -266,7 +270,9 @@ mod tests {
         assert!(g.windows(2).all(|w| w[1] > w[0]));
         let h0 = g[1] - g[0];
         assert!((h0 - 0.3 / AUTO_START as f64).abs() < 1e-15);
-        assert!(Gridpoints::Auto { tolerance: 0.0 }.points(&Parabola).is_err());
+        assert!(Gridpoints::Auto { tolerance: 0.0 }
+            .points(&Parabola)
+            .is_err());
     }
 
     #[test]
