@@ -78,8 +78,14 @@ fn exact_extrema_match_dense_sampling() {
         let (ev, at_v) = vel.excess_on_cubic(&piece, u, x0).unwrap();
         let (ea, at_a) = acc.excess_on_cubic(&piece, u, x0).unwrap();
         // Rigorous: never below what any sample shows.
-        assert!(ev >= sv - 1e-12, "case {case}: velocity {ev} < sampled {sv}");
-        assert!(ea >= sa - 1e-12, "case {case}: acceleration {ea} < sampled {sa}");
+        assert!(
+            ev >= sv - 1e-12,
+            "case {case}: velocity {ev} < sampled {sv}"
+        );
+        assert!(
+            ea >= sa - 1e-12,
+            "case {case}: acceleration {ea} < sampled {sa}"
+        );
         // Exact where the limit is exceeded: dense sampling comes within its resolution.
         if ev > 0.0 {
             found[0] += 1;
@@ -193,7 +199,12 @@ fn assert_within<T: Trajectory>(traj: &T, lim: &Limits, dt: f64, tol: f64, what:
         w.fd_velocity,
         w.fd_acceleration
     );
-    assert!(worst <= 1.0 + tol, "{what}: {} {}", w.velocity, w.acceleration);
+    assert!(
+        worst <= 1.0 + tol,
+        "{what}: {} {}",
+        w.velocity,
+        w.acceleration
+    );
     assert!(
         w.fd_velocity.max(w.fd_acceleration) <= 1.0 + tol,
         "{what}: fd {} {}",
@@ -222,8 +233,17 @@ fn continuous_suite(cases: u64, dt: f64) {
                 .unwrap_or_else(|e| panic!("case {case}: {e}"))
         };
         let natural = CubicSpline::natural(&ss, &wp, 7).unwrap();
-        let traj = Toppra::with_limits(&natural, &lim).unwrap().solve().unwrap();
-        assert_within(&traj, &lim, dt, EXACT, &format!("case {case} natural, default"));
+        let traj = Toppra::with_limits(&natural, &lim)
+            .unwrap()
+            .solve()
+            .unwrap();
+        assert_within(
+            &traj,
+            &lim,
+            dt,
+            EXACT,
+            &format!("case {case} natural, default"),
+        );
         // A C¹ spline: σ″ jumps at the breakpoints (checked exactly there).
         let pchip = PchipSpline::new(&ss, &wp, 7).unwrap();
         let opts = Options {
