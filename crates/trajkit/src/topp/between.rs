@@ -72,7 +72,7 @@ impl Pieces {
         self.exact.clear();
         self.at_break.clear();
         self.built = true;
-        if !path.piecewise_degree().is_some_and(|d| d <= 3) {
+        if path.piecewise_degree().is_none_or(|d| d > 3) {
             self.exact.resize(n, false);
             self.at_break.resize(n, true);
             return;
