@@ -15,14 +15,32 @@ use trajkit::topp::{
 };
 use trajkit::{Limits, Order, Path, Trajectory};
 
-/// A random cubic piece for `dim` joints on [s0, s0 + h].
-fn random_piece(rng: &mut SplitMix64, dim: usize) -> (f64, f64, Vec<f64>, Vec<f64>, Vec<f64>) {
-    let s0 = rng.uniform(-1.0, 1.0);
-    let h = 10f64.powf(rng.uniform(-3.0, 0.0));
-    let d1 = (0..dim).map(|_| rng.uniform(-3.0, 3.0)).collect();
-    let d2 = (0..dim).map(|_| rng.uniform(-30.0, 30.0)).collect();
-    let d3 = (0..dim).map(|_| rng.uniform(-300.0, 300.0)).collect();
-    (s0, h, d1, d2, d3)
+/// A random cubic piece's data for `dim` joints on [s0, s0 + h].
+struct PieceData {
+    s0: f64,
+    h: f64,
+    d: [Vec<f64>; 4],
+}
+
+impl PieceData {
+    fn random(rng: &mut SplitMix64, dim: usize) -> Self {
+        let s0 = rng.uniform(-1.0, 1.0);
+        let h = 10f64.powf(rng.uniform(-3.0, 0.0));
+        let mut v = |r: f64| (0..dim).map(|_| rng.uniform(-r, r)).collect::<Vec<f64>>();
+        let d = [vec![0.0; dim], v(3.0), v(30.0), v(300.0)];
+        PieceData { s0, h, d }
+    }
+
+    fn piece(&self) -> CubicPiece<'_> {
+        CubicPiece {
+            s0: self.s0,
+            s1: self.s0 + self.h,
+            d0: &self.d[0],
+            d1: &self.d[1],
+            d2: &self.d[2],
+            d3: &self.d[3],
+        }
+    }
 }
 
 /// Worst relative excess of velocity (|v|/limit − 1) and acceleration (|a|/limit − 1) over
@@ -49,26 +67,28 @@ fn sampled(
     (ev, ea)
 }
 
+/// Symmetric limits of three joints: velocity, acceleration, and the two constraints.
+const VLIM: [f64; 3] = [1.0, 2.0, 0.5];
+const ALIM: [f64; 3] = [4.0, 1.0, 2.5];
+
+fn three_joint_constraints() -> (JointVelocity, JointAcceleration) {
+    let neg = |l: [f64; 3]| l.map(|v| -v);
+    (
+        JointVelocity::new(&neg(VLIM), &VLIM).unwrap(),
+        JointAcceleration::new(&neg(ALIM), &ALIM).unwrap(),
+    )
+}
+
 #[test]
 fn exact_extrema_match_dense_sampling() {
     let mut rng = SplitMix64::new(21);
     let dim = 3;
-    let vlim = [1.0, 2.0, 0.5];
-    let alim = [4.0, 1.0, 2.5];
-    let vel = JointVelocity::new(&[-1.0, -2.0, -0.5], &vlim).unwrap();
-    let acc = JointAcceleration::new(&[-4.0, -1.0, -2.5], &alim).unwrap();
-    let zero = vec![0.0; dim];
+    let (vlim, alim) = (VLIM, ALIM);
+    let (vel, acc) = three_joint_constraints();
     let mut found = [0usize; 2];
     for case in 0..400 {
-        let (s0, h, d1, d2, d3) = random_piece(&mut rng, dim);
-        let piece = CubicPiece {
-            s0,
-            s1: s0 + h,
-            d0: &zero,
-            d1: &d1,
-            d2: &d2,
-            d3: &d3,
-        };
+        let data = PieceData::random(&mut rng, dim);
+        let (piece, h) = (data.piece(), data.h);
         let x0 = rng.uniform(0.0, 0.5);
         let u = rng.uniform(-0.5, 0.5) * (x0 + 0.1) / h;
         if x0 + 2.0 * u * h < 0.0 {
@@ -131,22 +151,12 @@ fn end_rows(c: &dyn Constraint, piece: &CubicPiece<'_>, out: &mut Vec<[f64; 3]>)
 fn sufficient_rows_imply_the_limits_on_the_whole_piece() {
     let mut rng = SplitMix64::new(22);
     let dim = 3;
-    let vlim = [1.0, 2.0, 0.5];
-    let alim = [4.0, 1.0, 2.5];
-    let vel = JointVelocity::new(&[-1.0, -2.0, -0.5], &vlim).unwrap();
-    let acc = JointAcceleration::new(&[-4.0, -1.0, -2.5], &alim).unwrap();
-    let zero = vec![0.0; dim];
+    let (vlim, alim) = (VLIM, ALIM);
+    let (vel, acc) = three_joint_constraints();
     let mut tested = 0;
     for case in 0..300 {
-        let (s0, h, d1, d2, d3) = random_piece(&mut rng, dim);
-        let piece = CubicPiece {
-            s0,
-            s1: s0 + h,
-            d0: &zero,
-            d1: &d1,
-            d2: &d2,
-            d3: &d3,
-        };
+        let data = PieceData::random(&mut rng, dim);
+        let (piece, h) = (data.piece(), data.h);
         let mut rows = Vec::new();
         for c in [&vel as &dyn Constraint, &acc] {
             end_rows(c, &piece, &mut rows);
