@@ -758,24 +758,33 @@ impl Constraint for JointAcceleration {
     }
     /// The acceleration σ′_j·u + σ″_j·x is a quadratic in θ = (s − s0)/Δ whose Bernstein
     /// coefficients (its values at both ends, and a(0) + a′(0)/2) are linear in (u, x0) and
-    /// bound it; the middle one is written.
+    /// bound it; the middle one is written, unless it cannot reach the limits: the rows at s0
+    /// bound |u| by U = min over joints k of (max(hi_k, −lo_k) + |σ″_k|·X0)/|σ′_k|, with
+    /// x0 ≤ X0 = `x_max[0]`.
     fn hold_on_cubic(
         &self,
         piece: &CubicPiece<'_>,
         x_max: [f64; 2],
         out: &mut ConstraintRows,
     ) -> bool {
-        let _ = x_max;
         let h = piece.s1 - piece.s0;
+        let x0_max = x_max[0];
+        let mut u_max = f64::INFINITY;
+        for k in 0..self.hi.len() {
+            let (d1, d2) = (piece.d1[k].abs(), piece.d2[k].abs());
+            if d1 > 0.0 {
+                u_max = u_max.min((self.hi[k].max(-self.lo[k]) + d2 * x0_max) / d1);
+            }
+        }
         for j in 0..self.hi.len() {
             let (d1, d2, d3) = (piece.d1[j], piece.d2[j], piece.d3[j]);
-            out.interval(
-                d1 + 1.5 * h * d2,
-                d2 + 0.5 * h * d3,
-                0.0,
-                self.lo[j],
-                self.hi[j],
-            );
+            let (a, b) = (d1 + 1.5 * h * d2, d2 + 0.5 * h * d3);
+            let reach_hi = a.abs() * u_max + b.max(0.0) * x0_max;
+            let reach_lo = -(a.abs() * u_max) + b.min(0.0) * x0_max;
+            if reach_hi <= self.hi[j] && reach_lo >= self.lo[j] {
+                continue;
+            }
+            out.interval(a, b, 0.0, self.lo[j], self.hi[j]);
         }
         true
     }
