@@ -155,9 +155,8 @@ impl Pieces {
 }
 
 impl Workspace {
-    /// Forgets the interior rows and Taylor data (a new problem on a grid of `len` points).
-    pub(super) fn reset_between(&mut self, len: usize) {
-        let _ = len;
+    /// Forgets the interior rows and Taylor data (a new grid).
+    pub(super) fn reset_between(&mut self) {
         self.mid.clear();
         self.mid_off.clear();
         self.mid_add.clear();

@@ -267,7 +267,7 @@ impl<'c, P: Path> Toppra<'c, P> {
     /// x_i = ṡ_i² at the final gridpoints.
     fn solve_on(&self, ws: &mut Workspace, grid: &mut Vec<f64>) -> Result<Vec<f64>> {
         let refine = self.options.refine;
-        ws.reset_between(grid.len());
+        ws.reset_between();
         ws.evaluate(&self.path, &self.constraints, grid)?;
         if refine {
             ws.prepare(&self.path, &self.constraints, grid);
