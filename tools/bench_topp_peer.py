@@ -21,7 +21,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 FIX = os.path.join(HERE, "..", "crates", "trajkit", "tests", "fixtures", "topp", "toppra_panda.json")
 
 
-use_venv("topp", ["toppra", "numpy", "scipy"])
+use_venv("topp", ["toppra==0.6.10", "numpy==2.4.6", "scipy==1.17.1"])
 
 import numpy as np  # noqa: E402
 import toppra as ta  # noqa: E402

@@ -38,6 +38,15 @@ pub trait Path {
         let (a, b) = self.interval();
         vec![a, b]
     }
+
+    /// `Some(d)` when σ is a polynomial of degree at most `d` between consecutive
+    /// [`Path::breakpoints`] (splines, polylines), `None` (the default) when it is not or the
+    /// path does not say. For `d ≤ 3` the path's σ′, σ″ and σ‴ at one point of a piece
+    /// determine σ on the whole piece, which lets time parameterization bound its constraints
+    /// between gridpoints exactly instead of probing them.
+    fn piecewise_degree(&self) -> Option<usize> {
+        None
+    }
 }
 
 impl<P: Path + ?Sized> Path for &P {
@@ -56,6 +65,9 @@ impl<P: Path + ?Sized> Path for &P {
     fn breakpoints(&self) -> Vec<f64> {
         (**self).breakpoints()
     }
+    fn piecewise_degree(&self) -> Option<usize> {
+        (**self).piecewise_degree()
+    }
 }
 
 impl<P: Path + ?Sized> Path for Box<P> {
@@ -73,6 +85,9 @@ impl<P: Path + ?Sized> Path for Box<P> {
     }
     fn breakpoints(&self) -> Vec<f64> {
         (**self).breakpoints()
+    }
+    fn piecewise_degree(&self) -> Option<usize> {
+        (**self).piecewise_degree()
     }
 }
 

@@ -93,6 +93,9 @@ macro_rules! ppoly_backed {
             fn breakpoints(&self) -> Vec<f64> {
                 self.pp.breaks().to_vec()
             }
+            fn piecewise_degree(&self) -> Option<usize> {
+                Some(self.pp.degree())
+            }
         }
     };
 }

@@ -412,6 +412,9 @@ impl crate::Path for PiecewisePolynomial {
     fn breakpoints(&self) -> Vec<f64> {
         self.breaks.clone()
     }
+    fn piecewise_degree(&self) -> Option<usize> {
+        Some(self.degree)
+    }
 }
 
 #[cfg(test)]

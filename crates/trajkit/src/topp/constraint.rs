@@ -18,9 +18,17 @@
 //!
 //! User code can implement [`Constraint`] for anything else of this form.
 //!
+//! Between gridpoints TOPP-RA keeps s̈ = u constant, so x = ṡ² is linear in s. Where the path
+//! is a polynomial of degree ≤ 3 ([`CubicPiece`]), the joint acceleration σ′u + σ″x is then a
+//! quadratic in s and the squared joint velocity σ′²x has its extrema where that acceleration
+//! is zero: [`JointVelocity`] and [`JointAcceleration`] find their worst value on a whole
+//! interval in closed form ([`Constraint::excess_on_cubic`]).
+//!
 //! # Precision contract
 //! Rows are written exactly as the formulas above (no linearisation or padding); a limit of
-//! `±∞` writes no row. Zero limits are allowed here (they make the problem infeasible when the
+//! `±∞` writes no row. [`Constraint::excess_on_cubic`] of the built-ins is the exact maximum
+//! over the closed interval up to rounding (the candidates are the two ends and the real roots
+//! of one quadratic per joint, in the stable form). Zero limits are allowed here (they make the problem infeasible when the
 //! joint must move, which the solver reports with the path position and this constraint's
 //! name).
 
@@ -39,6 +47,104 @@ pub struct PathPoint<'a> {
     pub dq: &'a [f64],
     /// σ″(s).
     pub ddq: &'a [f64],
+}
+
+/// One interval `[s0, s1]` between gridpoints on which the path is a polynomial of degree at
+/// most 3, given by its Taylor coefficients at `s0` (the limits from inside the interval): with
+/// t = s − s0, σ(s) = d0 + d1·t + d2·t²/2 + d3·t³/6, so σ′(s) = d1 + d2·t + d3·t²/2 and
+/// σ″(s) = d2 + d3·t. Each slice has one entry per joint; `d0` holds zeros when no constraint
+/// of the problem reads the position.
+#[derive(Debug, Clone, Copy)]
+pub struct CubicPiece<'a> {
+    /// Start of the interval.
+    pub s0: f64,
+    /// End of the interval.
+    pub s1: f64,
+    /// σ(s0).
+    pub d0: &'a [f64],
+    /// σ′(s0).
+    pub d1: &'a [f64],
+    /// σ″(s0).
+    pub d2: &'a [f64],
+    /// σ‴ (constant on the interval).
+    pub d3: &'a [f64],
+}
+
+impl CubicPiece<'_> {
+    /// Joint j's σ′ and σ″ at s.
+    #[inline]
+    pub fn derivatives(&self, j: usize, s: f64) -> (f64, f64) {
+        let t = s - self.s0;
+        let d3 = self.d3[j];
+        (
+            self.d1[j] + t * (self.d2[j] + 0.5 * t * d3),
+            self.d2[j] + t * d3,
+        )
+    }
+
+    /// Joint j's acceleration σ′u + σ″x along the interval, with x = x0 + 2u(s − s0), as the
+    /// quadratic `[c0, c1, c2]` in t = s − s0 (value c0 + c1·t + c2·t²).
+    #[inline]
+    pub fn acceleration_quadratic(&self, j: usize, u: f64, x0: f64) -> [f64; 3] {
+        let (d1, d2, d3) = (self.d1[j], self.d2[j], self.d3[j]);
+        [u * d1 + d2 * x0, 3.0 * u * d2 + d3 * x0, 2.5 * u * d3]
+    }
+
+    /// Joint j's σ′ as a quadratic in θ = (s − s0)/(s1 − s0) ∈ [0, 1], in Bernstein form
+    /// `[b0, b1, b2]` (σ′ = b0(1 − θ)² + 2b1θ(1 − θ) + b2θ²; it lies between the least and the
+    /// largest of them).
+    #[inline]
+    pub fn first_bernstein(&self, j: usize) -> [f64; 3] {
+        let h = self.s1 - self.s0;
+        let (d1, d2, d3) = (self.d1[j], self.d2[j], self.d3[j]);
+        [d1, d1 + 0.5 * h * d2, d1 + h * (d2 + 0.5 * h * d3)]
+    }
+
+    /// Writes σ, σ′, σ″ at s into the three buffers (one entry per joint).
+    pub fn eval_into(&self, s: f64, q: &mut [f64], dq: &mut [f64], ddq: &mut [f64]) {
+        let t = s - self.s0;
+        for j in 0..self.d1.len() {
+            let (d0, d1, d2, d3) = (self.d0[j], self.d1[j], self.d2[j], self.d3[j]);
+            q[j] = d0 + t * (d1 + t * (0.5 * d2 + t * d3 / 6.0));
+            dq[j] = d1 + t * (d2 + 0.5 * t * d3);
+            ddq[j] = d2 + t * d3;
+        }
+    }
+}
+
+/// The real roots of c0 + c1·t + c2·t² inside the open interval (lo, hi), stable form; at most
+/// two (none when the polynomial is identically zero).
+fn quadratic_roots_in(c: [f64; 3], lo: f64, hi: f64) -> ([f64; 2], usize) {
+    let [c0, c1, c2] = c;
+    let mut out = [0.0; 2];
+    let mut n = 0;
+    let mut push = |t: f64| {
+        if t > lo && t < hi {
+            out[n] = t;
+            n += 1;
+        }
+    };
+    let scale = c0
+        .abs()
+        .max(c1.abs() * (hi - lo))
+        .max(c2.abs() * (hi - lo) * (hi - lo));
+    if c2.abs() * (hi - lo) * (hi - lo) <= 1e-14 * scale {
+        if c1 != 0.0 {
+            push(-c0 / c1);
+        }
+    } else {
+        let disc = c1 * c1 - 4.0 * c2 * c0;
+        if disc >= 0.0 {
+            let q = -0.5 * (c1 + c1.signum() * disc.sqrt());
+            if q != 0.0 {
+                push(q / c2);
+                push(c0 / q);
+            } else {
+                push(0.0);
+            }
+        }
+    }
+    (out, n)
 }
 
 /// Collects one constraint's rows at one path point: half-planes `α·u + β·x ≤ γ` and bounds on
@@ -248,6 +354,36 @@ pub trait Constraint {
         let _ = p;
         None
     }
+
+    /// The worst value of the constraint over a whole interval on which the path is a
+    /// polynomial of degree ≤ 3, timed with constant path acceleration `u` and
+    /// x = ṡ² = `x0` + 2u(s − s0): `Some((e, s))` with the largest relative excess e (as the
+    /// value relative to the limit, e.g. |q̇|/v_max − 1) and a point s where it occurs. When the constraint holds everywhere the value may instead be any upper bound
+    /// ≤ 0 of the worst excess (a cheap enclosure suffices). It must be rigorous (not sampled):
+    /// the solver relies on it to guarantee the constraint between gridpoints. `None` (the
+    /// default) when the constraint cannot say; the solver then checks it at sample points.
+    fn excess_on_cubic(&self, piece: &CubicPiece<'_>, u: f64, x0: f64) -> Option<(f64, f64)> {
+        let _ = (piece, u, x0);
+        None
+    }
+
+    /// Half-planes `α·u + β·x0 ≤ γ` in the interval's (u, x0), with x0 = ṡ² at `piece.s0`
+    /// and x = x0 + 2u(s − s0) along the piece, that together with the constraint's own rows
+    /// at both ends of the interval *imply* it on the whole piece: a sufficient condition, such
+    /// as the interior Bernstein coefficients of the polynomial the constraint becomes (the end
+    /// coefficients are the end rows). Rows that cannot bind while ṡ² stays within `x_max` at
+    /// both ends (`[at s0, at s1]`, the velocity bounds there) may be left out. Returns `false`
+    /// (the default) when the constraint cannot; it must then also return `None` from
+    /// [`Constraint::excess_on_cubic`].
+    fn hold_on_cubic(
+        &self,
+        piece: &CubicPiece<'_>,
+        x_max: [f64; 2],
+        out: &mut ConstraintRows,
+    ) -> bool {
+        let _ = (piece, x_max, out);
+        false
+    }
 }
 
 impl<C: Constraint + ?Sized> Constraint for Box<C> {
@@ -265,6 +401,17 @@ impl<C: Constraint + ?Sized> Constraint for Box<C> {
     }
     fn diagnose(&self, p: &PathPoint<'_>) -> Option<String> {
         (**self).diagnose(p)
+    }
+    fn excess_on_cubic(&self, piece: &CubicPiece<'_>, u: f64, x0: f64) -> Option<(f64, f64)> {
+        (**self).excess_on_cubic(piece, u, x0)
+    }
+    fn hold_on_cubic(
+        &self,
+        piece: &CubicPiece<'_>,
+        x_max: [f64; 2],
+        out: &mut ConstraintRows,
+    ) -> bool {
+        (**self).hold_on_cubic(piece, x_max, out)
     }
 }
 
@@ -328,6 +475,45 @@ fn ranges_from(limits: &Limits, order: Order) -> (Vec<f64>, Vec<f64>) {
     limits.joints().iter().map(|j| j.range(order)).unzip()
 }
 
+/// The velocity limit that applies on a piece where σ′_j has Bernstein coefficients `c`: the
+/// upper one when σ′_j ≥ 0 there, the lower one's magnitude when σ′_j ≤ 0, the smaller
+/// magnitude when the sign may change.
+fn velocity_bound(c: [f64; 3], lo: f64, hi: f64) -> f64 {
+    if c.iter().all(|&v| v >= 0.0) {
+        hi
+    } else if c.iter().all(|&v| v <= 0.0) {
+        -lo
+    } else {
+        hi.min(-lo)
+    }
+}
+
+/// The Bernstein coefficients (degree 5 in θ) of σ′_j²·x with x = x0 + (x1 − x0)·θ, from the
+/// Bernstein coefficients `c` of σ′_j: b_k = ((5 − k)·w_k·x0 + k·w_{k−1}·x1)/5 with w those of
+/// σ′_j² (degree 4). Also the (α, β) of each as a row in (u, x0): x1 = x0 + 2uΔ.
+fn velocity_bernstein(c: [f64; 3], x0: f64, x1: f64) -> [f64; 6] {
+    let w = square_bernstein(c);
+    let mut b = [0.0; 6];
+    for (k, bk) in b.iter_mut().enumerate() {
+        let wk = if k < 5 { w[k] } else { 0.0 };
+        let wk1 = if k > 0 { w[k - 1] } else { 0.0 };
+        let kf = k as f64;
+        *bk = ((5.0 - kf) * wk * x0 + kf * wk1 * x1) / 5.0;
+    }
+    b
+}
+
+/// Bernstein coefficients (degree 4) of the square of a quadratic given by its own.
+fn square_bernstein([c0, c1, c2]: [f64; 3]) -> [f64; 5] {
+    [
+        c0 * c0,
+        c0 * c1,
+        (c0 * c2 + 2.0 * c1 * c1) / 3.0,
+        c1 * c2,
+        c2 * c2,
+    ]
+}
+
 /// Joint velocity limits `lo_j ≤ σ′_j(s)·ṡ ≤ hi_j`: an upper bound on x = ṡ² at each point.
 ///
 /// ```
@@ -387,6 +573,84 @@ impl Constraint for JointVelocity {
     fn diagnose(&self, p: &PathPoint<'_>) -> Option<String> {
         zero_limit_joints("velocity", &self.lo, &self.hi, p)
     }
+    /// |σ′_j|·√x is extreme at the ends and where its derivative, the joint acceleration
+    /// σ′_j·u + σ″_j·x (a quadratic in s), is zero. Joints whose Bernstein bound is within
+    /// the limit are not solved for.
+    fn excess_on_cubic(&self, piece: &CubicPiece<'_>, u: f64, x0: f64) -> Option<(f64, f64)> {
+        let h = piece.s1 - piece.s0;
+        let x1 = x0 + 2.0 * u * h;
+        // The worst squared ratio v²/limit² and where.
+        let mut worst = (0.0f64, piece.s0);
+        for j in 0..self.hi.len() {
+            let c = piece.first_bernstein(j);
+            let limit = velocity_bound(c, self.lo[j], self.hi[j]);
+            let l2 = limit * limit;
+            let b = velocity_bernstein(c, x0, x1);
+            let bmax = b.iter().cloned().fold(0.0, f64::max);
+            if bmax <= l2 {
+                worst.0 = worst.0.max(bmax / l2);
+                continue;
+            }
+            let (roots, nr) = quadratic_roots_in(piece.acceleration_quadratic(j, u, x0), 0.0, h);
+            let candidates = [0.0, h, roots[0], roots[1]];
+            for &t in &candidates[..2 + nr] {
+                let x = (x0 + 2.0 * u * t).max(0.0);
+                let (d1, _) = piece.derivatives(j, piece.s0 + t);
+                let limit = if d1 > 0.0 { self.hi[j] } else { self.lo[j] };
+                let r2 = if d1 == 0.0 || x == 0.0 {
+                    0.0
+                } else {
+                    d1 * d1 * x / (limit * limit)
+                };
+                if r2 > worst.0 {
+                    worst = (r2, piece.s0 + t);
+                }
+            }
+        }
+        Some((worst.0.sqrt() - 1.0, worst.1))
+    }
+    /// σ′_j²·x is a polynomial of degree 5 in θ = (s − s0)/Δ, the product of σ′_j² (degree 4)
+    /// and x = x0 + 2uΔθ; its Bernstein coefficients b_0..b_5 are linear in (u, x0) and bound
+    /// it. b_0 and b_5 are the velocity bounds at the ends; b_1..b_4 are written, for the
+    /// joints whose coefficients can reach the limit within `x_max`.
+    fn hold_on_cubic(
+        &self,
+        piece: &CubicPiece<'_>,
+        x_max: [f64; 2],
+        out: &mut ConstraintRows,
+    ) -> bool {
+        let h = piece.s1 - piece.s0;
+        for j in 0..self.hi.len() {
+            let c = piece.first_bernstein(j);
+            let limit = velocity_bound(c, self.lo[j], self.hi[j]);
+            if limit.is_infinite() {
+                continue;
+            }
+            // Quick: |σ′| ≤ max |c_k| and x ≤ the larger bound.
+            let m = c[0].abs().max(c[1].abs()).max(c[2].abs());
+            if m * m * x_max[0].max(x_max[1]) <= limit * limit {
+                continue;
+            }
+            // b_k is linear in (x0, x1) ∈ [0, x_max[0]] × [0, x_max[1]]: its largest value
+            // takes each term at the end of its range where it is largest.
+            let w = square_bernstein(c);
+            let reach = |k: usize| {
+                let kf = k as f64;
+                ((5.0 - kf) * w[k]).max(0.0) * x_max[0] + (kf * w[k - 1]).max(0.0) * x_max[1]
+            };
+            if (1..5).all(|k| reach(k) <= 5.0 * limit * limit) {
+                continue;
+            }
+            // b_k = ((5 − k)·w_k·x0 + k·w_{k−1}·(x0 + 2uh)) / 5.
+            for k in 1..5 {
+                let kf = k as f64;
+                let alpha = kf * w[k - 1] * 2.0 * h / 5.0;
+                let beta = ((5.0 - kf) * w[k] + kf * w[k - 1]) / 5.0;
+                out.half_plane(alpha, beta, limit * limit);
+            }
+        }
+        true
+    }
 }
 
 /// Joint acceleration limits `lo_j ≤ σ′_j·u + σ″_j·x ≤ hi_j` (direction-dependent minima).
@@ -434,6 +698,95 @@ impl Constraint for JointAcceleration {
     }
     fn diagnose(&self, p: &PathPoint<'_>) -> Option<String> {
         zero_limit_joints("acceleration", &self.lo, &self.hi, p)
+    }
+    /// The joint acceleration σ′_j·u + σ″_j·x is a quadratic in s: its extremes are at the
+    /// ends and at its vertex. Joints whose Bernstein bound is within the limits are not solved
+    /// for.
+    fn excess_on_cubic(&self, piece: &CubicPiece<'_>, u: f64, x0: f64) -> Option<(f64, f64)> {
+        let h = piece.s1 - piece.s0;
+        let mut worst = (f64::NEG_INFINITY, piece.s0);
+        let ratio = |v: f64, l: f64| {
+            if l == 0.0 || l.is_infinite() {
+                -1.0
+            } else {
+                v / l - 1.0
+            }
+        };
+        for j in 0..self.hi.len() {
+            let c = piece.acceleration_quadratic(j, u, x0);
+            // Cheap bound first: the Bernstein coefficients (values at both ends and
+            // a(0) + a′(0)/2) enclose the quadratic.
+            let (a0, a2) = (c[0], c[0] + h * (c[1] + h * c[2]));
+            let a1 = a0 + 0.5 * h * c[1];
+            let (amin, amax) = (a0.min(a1).min(a2), a0.max(a1).max(a2));
+            if amax <= self.hi[j] && amin >= self.lo[j] {
+                let e = ratio(amax.max(0.0), self.hi[j]).max(ratio(amin.min(0.0), self.lo[j]));
+                worst.0 = worst.0.max(e);
+                continue;
+            }
+            let vertex = if c[2] != 0.0 {
+                -c[1] / (2.0 * c[2])
+            } else {
+                0.0
+            };
+            let candidates = [0.0, h, vertex];
+            let n = if vertex > 0.0 && vertex < h { 3 } else { 2 };
+            for &t in &candidates[..n] {
+                let x = (x0 + 2.0 * u * t).max(0.0);
+                let (d1, d2) = piece.derivatives(j, piece.s0 + t);
+                let a = d1 * u + d2 * x;
+                let terms = (d1 * u).abs().max((d2 * x).abs());
+                for (limit, sign) in [(self.hi[j], 1.0), (self.lo[j], -1.0)] {
+                    if limit.is_infinite() {
+                        continue;
+                    }
+                    // Relative to the limit (its extreme is the acceleration's); a zero
+                    // limit is measured against the terms.
+                    let scale = if limit != 0.0 { limit.abs() } else { terms };
+                    let e = if scale > 0.0 {
+                        sign * (a - limit) / scale
+                    } else {
+                        -1.0
+                    };
+                    if e > worst.0 {
+                        worst = (e, piece.s0 + t);
+                    }
+                }
+            }
+        }
+        Some(worst)
+    }
+    /// The acceleration σ′_j·u + σ″_j·x is a quadratic in θ = (s − s0)/Δ whose Bernstein
+    /// coefficients (its values at both ends, and a(0) + a′(0)/2) are linear in (u, x0) and
+    /// bound it; the middle one is written, unless it cannot reach the limits: the rows at s0
+    /// bound |u| by U = min over joints k of (max(hi_k, −lo_k) + |σ″_k|·X0)/|σ′_k|, with
+    /// x0 ≤ X0 = `x_max[0]`.
+    fn hold_on_cubic(
+        &self,
+        piece: &CubicPiece<'_>,
+        x_max: [f64; 2],
+        out: &mut ConstraintRows,
+    ) -> bool {
+        let h = piece.s1 - piece.s0;
+        let x0_max = x_max[0];
+        let mut u_max = f64::INFINITY;
+        for k in 0..self.hi.len() {
+            let (d1, d2) = (piece.d1[k].abs(), piece.d2[k].abs());
+            if d1 > 0.0 {
+                u_max = u_max.min((self.hi[k].max(-self.lo[k]) + d2 * x0_max) / d1);
+            }
+        }
+        for j in 0..self.hi.len() {
+            let (d1, d2, d3) = (piece.d1[j], piece.d2[j], piece.d3[j]);
+            let (a, b) = (d1 + 1.5 * h * d2, d2 + 0.5 * h * d3);
+            let reach_hi = a.abs() * u_max + b.max(0.0) * x0_max;
+            let reach_lo = -(a.abs() * u_max) + b.min(0.0) * x0_max;
+            if reach_hi <= self.hi[j] && reach_lo >= self.lo[j] {
+                continue;
+            }
+            out.interval(a, b, 0.0, self.lo[j], self.hi[j]);
+        }
+        true
     }
 }
 

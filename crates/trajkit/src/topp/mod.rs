@@ -6,8 +6,11 @@
 //!   bounds on ṡ² (joint velocity, joint acceleration, torque through user inverse dynamics,
 //!   end-effector speed through a user Jacobian);
 //! - [`lp`]: the exact two-variable linear program solved at every stage;
-//! - [`grid`]: gridpoints (uniform, automatic, given), always including path breakpoints;
-//! - [`toppra`]: the backward (controllable sets) and forward (greedy) passes;
+//! - [`grid`]: gridpoints (automatic from a duration tolerance, uniform, chord tolerance,
+//!   given), always including path breakpoints;
+//! - [`toppra`]: the backward (controllable sets) and forward (greedy) passes; its private
+//!   `between` module holds the limits between gridpoints (Bernstein rows and exact checks on
+//!   piecewise-cubic paths, sampled checks elsewhere);
 //! - [`parametrized`]: the solved [`Profile`] and the exact output trajectory;
 //! - [`rescale`]: any path composed with any timing law, uniform time scaling;
 //! - [`paths`]: piecewise-linear paths;
@@ -39,6 +42,7 @@
 //! # Ok::<(), trajkit::Error>(())
 //! ```
 
+mod between;
 pub mod blend;
 pub mod constraint;
 pub mod grid;
@@ -55,8 +59,8 @@ pub mod totg;
 
 pub use blend::BlendedPath;
 pub use constraint::{
-    Constraint, ConstraintRows, EndEffectorSpeed, InverseDynamics, Jacobian, JointAcceleration,
-    JointTorque, JointVelocity, PathPoint,
+    Constraint, ConstraintRows, CubicPiece, EndEffectorSpeed, InverseDynamics, Jacobian,
+    JointAcceleration, JointTorque, JointVelocity, PathPoint,
 };
 pub use grid::Gridpoints;
 pub use parametrized::{Parametrized, Profile};

@@ -1021,6 +1021,7 @@ fn sweep<P: Path + ?Sized>(
         let stage = Stage {
             here: rows.right(i),
             next: rows.left(i + 1),
+            mid: &[],
             two_delta: 2.0 * delta,
             khi,
             klo,

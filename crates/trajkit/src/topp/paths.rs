@@ -135,6 +135,9 @@ impl Path for LinearPath {
     fn breakpoints(&self) -> Vec<f64> {
         self.s.clone()
     }
+    fn piecewise_degree(&self) -> Option<usize> {
+        Some(1)
+    }
 }
 
 #[cfg(test)]

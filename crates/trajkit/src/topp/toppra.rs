@@ -9,8 +9,17 @@
 //!    two-variable linear programs per stage ([`crate::topp::lp`]);
 //! 3. **forward pass**: from x_0 = ṡ_start², takes the largest admissible u that stays in
 //!    K_{i+1} (a one-variable program: the smallest upper bound);
-//! 4. optionally checks every interval between gridpoints and refines the grid where a
-//!    constraint is violated there, then solves again.
+//! 4. with [`Options::refine`] (the default) the limits hold between gridpoints too
+//!    (module `topp::between`): on paths that are polynomials of degree ≤ 3 between
+//!    breakpoints (trajkit's splines and polylines) each stage also carries the interior
+//!    Bernstein coefficients of the joint velocity and acceleration along the interval (rows
+//!    linear in (u, x_i)), so the one solve holds them everywhere, and an exact check (closed-
+//!    form extrema) covers intervals at breakpoints and collocation; other paths and
+//!    constraints are checked at sample points and the grid cut where they are exceeded.
+//!
+//! Gridpoints ([`Gridpoints`]): by default chosen from a duration tolerance of 1e-4 relative
+//! ([`Gridpoints::Auto`]: equal intervals per path piece, doubled until the duration settles;
+//! see [`crate::topp::grid`]), or a uniform count, a chord tolerance, or a given list.
 //!
 //! Discretization ([`Discretization`]): *interpolation* (default) enforces the constraints of
 //! interval i at both s_i and s_{i+1} with the same u_i (x_{i+1} = x_i + 2Δu_i), so the limits
@@ -25,19 +34,31 @@
 //! - The profile is the exact greedy solution of the discretized problem up to the LP tolerance
 //!   (1e-10 relative): at every gridpoint, every constraint holds for the interval's u on both
 //!   sides within 1e-9 relative.
-//! - Between gridpoints (where the problem is not discretized), with [`Options::refine`] on
-//!   (the default), every interval is checked at its midpoint, its quarters and at points
-//!   approaching both ends geometrically (down to 4⁻⁷ of its length), and cut into equal parts
-//!   (as many as the measured excess calls for, the excess shrinking as Δ²) where a constraint
-//!   is exceeded by more than 3e-7 relative, up to [`MAX_REFINE_ROUNDS`] times (and while the
-//!   grid stays below [`MAX_REFINED_INTERVALS`] intervals); the tests check
-//!   1e-6 relative on 1 ms samples. With `refine` off the excess between gridpoints is O(Δ²)
-//!   (it shrinks fourfold when N doubles), except across a kink of the velocity limit curve
-//!   (where the binding joint changes), where it is O(Δ). An interval found within the limits
-//!   in one round and unchanged in the next (same ends, ṡ² at both ends within 1e-9 relative)
-//!   is not checked again.
-//! - The duration is the sum of 2Δ_i/(ṡ_i + ṡ_{i+1}); it converges to the continuous optimum as
-//!   the grid is refined (see notes/topp.md for measured N = 100, 1000, 10000).
+//! - Between gridpoints, with [`Options::refine`] on (the default):
+//!   - on paths that are polynomials of degree ≤ 3 between breakpoints
+//!     ([`crate::Path::piecewise_degree`]) with gridpoints at the breakpoints (every grid but
+//!     a [`Gridpoints::Given`] one), joint velocity and joint acceleration limits hold on the
+//!     whole continuous trajectory within 1e-8 relative, up to rounding: by construction
+//!     (Bernstein rows) on intervals between ordinary gridpoints, and by the exact check
+//!     ([`crate::topp::Constraint::excess_on_cubic`], tolerance 1e-8, failing intervals get
+//!     the rows at their worst point and are solved again) at breakpoints and with
+//!     collocation. The tests sample seeded random paths at 10 kHz (50 kHz in the long suite)
+//!     with finite differences.
+//!   - any other path or constraint (torque, end-effector speed, user constraints) is checked
+//!     at each interval's midpoint, its quarters and points approaching both ends
+//!     geometrically (down to 4⁻⁷ of its length), and the interval cut into equal parts (as many
+//!     as the measured excess calls for, the excess shrinking as Δ²) where a constraint is
+//!     exceeded by more than 3e-7 relative, up to [`MAX_REFINE_ROUNDS`] times (and while the
+//!     grid stays below [`MAX_REFINED_INTERVALS`] intervals); the tests check 1e-6 relative on
+//!     1 ms samples. An interval found within the limits in one round and unchanged in the next
+//!     (same ends, ṡ² at both ends within 1e-9 relative) is not checked again.
+//! - With `refine` off the excess between gridpoints is O(Δ²) (it shrinks fourfold when N
+//!   doubles), except across a kink of the velocity limit curve (where the binding joint
+//!   changes), where it is O(Δ).
+//! - The duration is the sum of 2Δ_i/(ṡ_i + ṡ_{i+1}). With the limits held everywhere it is never
+//!   below the continuous optimum T*, and it converges to it at about first order in the
+//!   spacing; the default grid ([`Gridpoints::Auto`], 1e-4) stops where successive grids agree
+//!   within 1e-4, tested against 5·10⁴ and 2·10⁵ uniform intervals (measured 2–5e-5 above).
 
 use super::constraint::{Constraint, ConstraintRows, PathPoint};
 use super::grid::Gridpoints;
@@ -88,8 +109,9 @@ pub(crate) const REFINE_POINTS: [f64; 15] = [
     1.0 - 1.0 / 16384.0,
 ];
 
-/// Solver options. `Options::default()`: 1000 uniform intervals, interpolation, rest to rest,
-/// refinement on.
+/// Solver options. `Options::default()`: the grid chosen from a 1e-4 duration tolerance
+/// ([`Gridpoints::Auto`]), interpolation, rest to rest, limits guaranteed between gridpoints
+/// (`refine` on).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Options {
     /// Gridpoints.
@@ -107,7 +129,7 @@ pub struct Options {
 impl Default for Options {
     fn default() -> Self {
         Options {
-            gridpoints: Gridpoints::Uniform(1000),
+            gridpoints: Gridpoints::Auto { tolerance: 1e-4 },
             discretization: Discretization::Interpolation,
             start_velocity: 0.0,
             end_velocity: 0.0,
@@ -232,26 +254,91 @@ impl<'c, P: Path> Toppra<'c, P> {
                 });
             }
         }
+        if let Gridpoints::Auto { tolerance } = o.gridpoints {
+            return self.solve_auto(tolerance);
+        }
         let mut grid = o.gridpoints.points(&self.path)?;
         let mut ws = Workspace::default();
-        let mut round = 0;
-        loop {
-            ws.evaluate(&self.path, &self.constraints, &grid)?;
-            let x = ws.solve(self, &grid)?;
-            if !o.refine || round == MAX_REFINE_ROUNDS {
-                return profile_from(&grid, &x);
-            }
-            let added = ws.refine(
+        let x = self.solve_on(&mut ws, &mut grid)?;
+        profile_from(&grid, &x)
+    }
+
+    /// Solves on `grid` (changed where the check between gridpoints cuts intervals); returns
+    /// x_i = ṡ_i² at the final gridpoints.
+    fn solve_on(&self, ws: &mut Workspace, grid: &mut Vec<f64>) -> Result<Vec<f64>> {
+        let refine = self.options.refine;
+        ws.reset_between();
+        ws.evaluate(&self.path, &self.constraints, grid)?;
+        if refine {
+            ws.prepare(&self.path, &self.constraints, grid);
+        }
+        let mut x = Vec::new();
+        ws.solve(self, grid, &mut x, None)?;
+        if !refine {
+            return Ok(x);
+        }
+        for _ in 0..MAX_REFINE_ROUNDS {
+            let c = ws.check_between(
                 &self.path,
                 &self.constraints,
-                &mut grid,
+                grid,
                 &x,
-                o.discretization,
+                self.options.discretization,
             );
-            if !added {
-                return profile_from(&grid, &x);
+            match c {
+                super::between::Check::Clean => return Ok(x),
+                super::between::Check::Tightened(lo, hi) => {
+                    ws.solve(self, grid, &mut x, Some((lo, hi)))?
+                }
+                super::between::Check::Split(next) => {
+                    *grid = next;
+                    ws.evaluate(&self.path, &self.constraints, grid)?;
+                    ws.prepare(&self.path, &self.constraints, grid);
+                    ws.solve(self, grid, &mut x, None)?;
+                }
             }
-            round += 1;
+        }
+        Ok(x)
+    }
+
+    /// [`Gridpoints::Auto`]: equal intervals per path piece, [`super::grid::AUTO_START`]
+    /// first, then four times as many, then doubled, until the duration T of a grid r times
+    /// finer than the previous one differs from the previous T_prev by at most
+    /// (r − 1)·`tolerance`·T: with an error C·h^p, p ≥ 1, that bounds the finer grid's error by
+    /// `tolerance` (see [`super::grid`]).
+    fn solve_auto(&self, tolerance: f64) -> Result<Profile> {
+        use super::grid::{per_piece, piece_breaks, AUTO_START, MAX_AUTO_INTERVALS};
+        crate::error::positive(|| "gridpoint tolerance".into(), tolerance)?;
+        let breaks = piece_breaks(&self.path);
+        let pieces = breaks.len() - 1;
+        let mut m = AUTO_START;
+        let mut ws = Workspace::default();
+        let mut previous: Option<(usize, f64)> = None;
+        loop {
+            let next = if m == AUTO_START { 4 * m } else { 2 * m };
+            let last = next.saturating_mul(pieces) > MAX_AUTO_INTERVALS;
+            let mut grid = per_piece(&breaks, m);
+            let x = match self.solve_on(&mut ws, &mut grid) {
+                Ok(x) => x,
+                // A coarse grid can miss a narrow feasible passage: try finer ones first.
+                Err(Error::Infeasible(_)) if m < 8 * AUTO_START && !last => {
+                    previous = None;
+                    m = next;
+                    continue;
+                }
+                Err(e) => return Err(e),
+            };
+            let profile = profile_from(&grid, &x)?;
+            let t = profile.duration();
+            let settled = previous.is_some_and(|(mp, tp)| {
+                let r = (m / mp) as f64;
+                (tp - t).abs() <= (r - 1.0) * tolerance * t
+            });
+            if last || settled {
+                return Ok(profile);
+            }
+            previous = Some((m, t));
+            m = next;
         }
     }
 
@@ -269,7 +356,7 @@ fn profile_from(grid: &[f64], x: &[f64]) -> Result<Profile> {
 
 /// Constraint data at every gridpoint and scratch space.
 #[derive(Default)]
-struct Workspace {
+pub(super) struct Workspace {
     /// Raw half-planes of all gridpoints and constraints, concatenated.
     rows: Vec<[f64; 3]>,
     /// `off[i * (nc + 1) + k]`: start of constraint k's rows at gridpoint i.
@@ -284,12 +371,31 @@ struct Workspace {
     /// Controllable sets.
     klo: Vec<f64>,
     khi: Vec<f64>,
-    cr: ConstraintRows,
+    pub(super) cr: ConstraintRows,
     /// Intervals found within the limits by the last refinement check.
-    clean: CleanSteps,
-    q: Vec<f64>,
-    dq: Vec<f64>,
-    ddq: Vec<f64>,
+    pub(super) clean: CleanSteps,
+    /// Rows of interior points of the intervals, in (u, x_i) (see the `between` module):
+    /// interval i's are `mid[mid_off[i]..mid_off[i + 1]]` (`mid_off` empty: none).
+    pub(super) mid: Vec<[f64; 3]>,
+    pub(super) mid_off: Vec<usize>,
+    /// Rows found by a check round, added to `mid` at its end.
+    pub(super) mid_add: Vec<(usize, [f64; 3])>,
+    /// The path's Taylor data per interval, for exact checks (see the `between` module).
+    pub(super) pieces: super::between::Pieces,
+    /// Per constraint, during a check: whether it is checked at sample points.
+    pub(super) sample: Vec<bool>,
+    /// Per constraint: whether its sufficient rows were prepared on the exact pieces.
+    pub(super) proved: Vec<bool>,
+    pub(super) q: Vec<f64>,
+    pub(super) dq: Vec<f64>,
+    pub(super) ddq: Vec<f64>,
+    /// σ, σ′, σ″ at every gridpoint (`3·dim` numbers each; σ zero when no constraint reads it).
+    pub(super) at_points: Vec<f64>,
+}
+
+/// Whether two controllable-set bounds are the same up to rounding.
+fn same(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-13 * a.abs().max(b.abs())
 }
 
 /// Stand-in for "no finite bound": velocities beyond this are reported as unbounded.
@@ -336,12 +442,17 @@ impl Workspace {
         let nc = cons.len();
         let need_q = cons.iter().any(|c| c.uses_position());
         self.q.iter_mut().for_each(|v| *v = 0.0);
+        self.at_points.clear();
+        self.at_points.reserve(3 * path.dim() * grid.len());
         for &s in grid {
             if need_q {
                 path.eval(s, 0, &mut self.q);
             }
             path.eval_derivatives(s, &mut self.dq, &mut self.ddq);
             check_path_values(s, &self.q, &self.dq, &self.ddq)?;
+            self.at_points.extend_from_slice(&self.q);
+            self.at_points.extend_from_slice(&self.dq);
+            self.at_points.extend_from_slice(&self.ddq);
             let p = PathPoint {
                 s,
                 q: &self.q,
@@ -382,6 +493,15 @@ impl Workspace {
         Ok(())
     }
 
+    /// [`Workspace::prepare_between`] with the velocity bounds at the gridpoints.
+    fn prepare<P: Path>(&mut self, path: &P, cons: &[Box<dyn Constraint + '_>], grid: &[f64]) {
+        let xhi = std::mem::take(&mut self.xhi);
+        let at_points = std::mem::take(&mut self.at_points);
+        self.prepare_between(path, cons, grid, &xhi, &at_points);
+        self.xhi = xhi;
+        self.at_points = at_points;
+    }
+
     /// Rows of constraint k at gridpoint i.
     fn rows_of(&self, i: usize, k: usize) -> &[[f64; 3]] {
         let base = i * (self.nc + 1);
@@ -392,6 +512,14 @@ impl Workspace {
     fn rows_at(&self, i: usize) -> &[[f64; 3]] {
         let base = i * (self.nc + 1);
         &self.rows[self.off[base]..self.off[base + self.nc]]
+    }
+
+    /// Rows of interior points of interval i, in (u, x_i).
+    pub(super) fn mid_rows(&self, i: usize) -> &[[f64; 3]] {
+        match self.mid_off.get(i + 1) {
+            Some(&end) => &self.mid[self.mid_off[i]..end],
+            None => &[],
+        }
     }
 
     /// The half-planes of stage i in (u, x), restricted to constraint `only` when given.
@@ -415,19 +543,63 @@ impl Workspace {
             } else {
                 &[]
             },
+            mid: match only {
+                Some(_) => &[],
+                None => self.mid_rows(i),
+            },
             two_delta: 2.0 * delta,
             khi,
             klo,
         }
     }
 
-    /// Backward and forward passes on `grid`; returns x_i = ṡ_i².
-    fn solve<P: Path>(&mut self, prob: &Toppra<'_, P>, grid: &[f64]) -> Result<Vec<f64>> {
+    /// Backward and forward passes on `grid`, into `x` (x_i = ṡ_i²). With `changed` =
+    /// `Some((lo, hi))`, only the interior rows of intervals lo..=hi changed since `x` was
+    /// solved: the backward pass starts at hi and stops below lo where the controllable sets
+    /// come out as before, and the forward pass runs from the first point that can differ until
+    /// it meets the previous solution again beyond hi.
+    fn solve<P: Path>(
+        &mut self,
+        prob: &Toppra<'_, P>,
+        grid: &[f64],
+        x: &mut Vec<f64>,
+        changed: Option<(usize, usize)>,
+    ) -> Result<()> {
+        let n = grid.len() - 1;
+        let first_k = match changed {
+            Some((lo, hi)) if x.len() == n + 1 && self.khi.len() == n + 1 => {
+                // x_m can change where K_m did (step m − 1) and beyond interval lo's rows.
+                let first_k = self.backward(prob, grid, hi + 1, lo)?;
+                first_k.saturating_sub(1).min(lo)
+            }
+            _ => {
+                self.start_backward(prob, grid)?;
+                self.backward(prob, grid, n, 0)?;
+                x.clear();
+                x.resize(n + 1, 0.0);
+                0
+            }
+        };
+        let o = &prob.options;
+        let x_start = o.start_velocity * o.start_velocity;
+        if x_start > self.khi[0] * (1.0 + 1e-9) + 1e-300 || x_start < self.klo[0] * (1.0 - 1e-9) {
+            return Err(Error::Infeasible(format!(
+                "the start path velocity ṡ = {} is not controllable: from s = {} the path velocity must be in [{}, {}] to meet the constraints and the end velocity",
+                o.start_velocity,
+                grid[0],
+                self.klo[0].sqrt(),
+                self.khi[0].sqrt()
+            )));
+        }
+        let settled_after = changed.map_or(n, |(_, hi)| hi);
+        self.forward(prob, grid, x, first_k, settled_after)
+    }
+
+    /// The end of the backward pass: K_N = {ṡ_end²}.
+    fn start_backward<P: Path>(&mut self, prob: &Toppra<'_, P>, grid: &[f64]) -> Result<()> {
         let o = &prob.options;
         let n = grid.len() - 1;
-        let disc = o.discretization;
         let x_end = o.end_velocity * o.end_velocity;
-        let x_start = o.start_velocity * o.start_velocity;
         self.klo.clear();
         self.klo.resize(n + 1, 0.0);
         self.khi.clear();
@@ -443,9 +615,23 @@ impl Workspace {
         }
         self.klo[n] = x_end;
         self.khi[n] = x_end;
+        Ok(())
+    }
+
+    /// Controllable sets K_i for i < `top` (K_top must be known). Below `settle`, stops at
+    /// the first set that comes out as it was. Returns the lowest index recomputed.
+    fn backward<P: Path>(
+        &mut self,
+        prob: &Toppra<'_, P>,
+        grid: &[f64],
+        top: usize,
+        settle: usize,
+    ) -> Result<usize> {
+        let disc = prob.options.discretization;
+        let incremental = settle > 0;
         let mut hint_max = [BOX, BOX];
         let mut hint_min = [BOX, BOX];
-        for i in (0..n).rev() {
+        for i in (0..top).rev() {
             let delta = grid[i + 1] - grid[i];
             let (klo, khi) = (self.klo[i + 1], self.khi[i + 1]);
             let tol = 1e-10 * (1.0 + khi);
@@ -460,7 +646,8 @@ impl Workspace {
             let rest_ok = xlo == 0.0
                 && klo <= 0.0
                 && self.rests[i]
-                && (disc == Discretization::Collocation || self.rests[i + 1]);
+                && (disc == Discretization::Collocation || self.rests[i + 1])
+                && self.mid_rows(i).iter().all(|r| r[2] >= 0.0);
             let worst = if rest_ok {
                 best.map(|_| lp::LpSolution {
                     v: [0.0, 0.0],
@@ -481,22 +668,35 @@ impl Workspace {
             }
             hint_max = best.active;
             hint_min = worst.active;
-            self.khi[i] = best.v[1].clamp(xlo, xhi);
-            self.klo[i] = worst.v[1].clamp(xlo, self.khi[i]);
+            let new_hi = best.v[1].clamp(xlo, xhi);
+            let new_lo = worst.v[1].clamp(xlo, new_hi);
+            if incremental && i < settle && same(new_hi, self.khi[i]) && same(new_lo, self.klo[i]) {
+                return Ok(i + 1);
+            }
+            self.khi[i] = new_hi;
+            self.klo[i] = new_lo;
         }
-        if x_start > self.khi[0] * (1.0 + 1e-9) + 1e-300 || x_start < self.klo[0] * (1.0 - 1e-9) {
-            return Err(Error::Infeasible(format!(
-                "the start path velocity ṡ = {} is not controllable: from s = {} the path velocity must be in [{}, {}] to meet the constraints and the end velocity",
-                o.start_velocity,
-                grid[0],
-                self.klo[0].sqrt(),
-                self.khi[0].sqrt()
-            )));
+        Ok(0)
+    }
+
+    /// Forward pass from x_`from` (recomputing x_0 when `from` is 0); stops early, beyond
+    /// `settled_after`, where x meets its previous value.
+    fn forward<P: Path>(
+        &mut self,
+        prob: &Toppra<'_, P>,
+        grid: &[f64],
+        x: &mut [f64],
+        from: usize,
+        settled_after: usize,
+    ) -> Result<()> {
+        let o = &prob.options;
+        let n = grid.len() - 1;
+        let disc = o.discretization;
+        if from == 0 {
+            let x_start = o.start_velocity * o.start_velocity;
+            x[0] = x_start.clamp(self.klo[0], self.khi[0]);
         }
-        // Forward pass.
-        let mut x = vec![0.0; n + 1];
-        x[0] = x_start.clamp(self.klo[0], self.khi[0]);
-        for i in 0..n {
+        for i in from..n {
             let delta = grid[i + 1] - grid[i];
             let xi = x[i];
             let next_rows: &[[f64; 3]] = if disc == Discretization::Interpolation {
@@ -511,13 +711,18 @@ impl Workspace {
                 xi,
                 (self.khi[i + 1] - xi) / (2.0 * delta),
             );
+            let u = largest_step(self.mid_rows(i), &[], 0.0, xi, u);
             let next = (xi + 2.0 * delta * u).clamp(self.klo[i + 1], self.khi[i + 1]);
-            x[i + 1] = next;
             if next <= 0.0 && xi <= 0.0 {
                 return Err(self.explain_stall(prob, grid, i));
             }
+            let settled = i >= settled_after && next == x[i + 1];
+            x[i + 1] = next;
+            if settled {
+                break;
+            }
         }
-        Ok(x)
+        Ok(())
     }
 
     fn name_of<P: Path>(&self, prob: &Toppra<'_, P>, k: usize) -> String {
@@ -610,92 +815,6 @@ impl Workspace {
             grid[i + 1]
         ))
     }
-
-    /// Checks each interval at its midpoint and at points approaching its ends; cuts intervals where a constraint is
-    /// exceeded. Returns whether the grid changed.
-    fn refine<P: Path>(
-        &mut self,
-        path: &P,
-        cons: &[Box<dyn Constraint + '_>],
-        grid: &mut Vec<f64>,
-        x: &[f64],
-        disc: Discretization,
-    ) -> bool {
-        let _ = disc;
-        let n = grid.len() - 1;
-        let need_q = cons.iter().any(|c| c.uses_position());
-        // For each interval, the number of equal parts to cut it into (1: leave it).
-        let mut split: Vec<usize> = vec![1; n];
-        let mut any = false;
-        self.clean.start_round();
-        for i in 0..n {
-            if self.clean.unchanged([grid[i], grid[i + 1], x[i], x[i + 1]]) {
-                continue;
-            }
-            let delta = grid[i + 1] - grid[i];
-            let u = (x[i + 1] - x[i]) / (2.0 * delta);
-            let mut worst = REFINE_TOL;
-            for theta in REFINE_POINTS {
-                let s = grid[i] + delta * theta;
-                if !(s > grid[i] && s < grid[i + 1]) {
-                    continue;
-                }
-                let xs = (x[i] + 2.0 * u * (s - grid[i])).max(0.0);
-                if need_q {
-                    path.eval(s, 0, &mut self.q);
-                }
-                path.eval(s, 1, &mut self.dq);
-                path.eval(s, 2, &mut self.ddq);
-                let p = PathPoint {
-                    s,
-                    q: &self.q,
-                    dq: &self.dq,
-                    ddq: &self.ddq,
-                };
-                for c in cons {
-                    self.cr.clear();
-                    c.write(&p, &mut self.cr);
-                    let e = self.cr.relative_excess(u, xs);
-                    if e > worst {
-                        worst = e;
-                        any = true;
-                    }
-                }
-            }
-            if worst > REFINE_TOL {
-                // The excess of a smooth constraint shrinks with the square of the interval
-                // length: cut into enough parts to bring it a few times below the tolerance.
-                let parts = (worst / (0.5 * REFINE_TOL)).sqrt().ceil();
-                split[i] = if parts.is_finite() {
-                    (parts as usize).clamp(2, 64)
-                } else {
-                    64
-                };
-            } else {
-                self.clean.mark([grid[i], grid[i + 1], x[i], x[i + 1]]);
-            }
-        }
-        let _ = disc;
-        let total: usize = split.iter().sum();
-        if !any || total > MAX_REFINED_INTERVALS {
-            return false;
-        }
-        let mut next = Vec::with_capacity(grid.len() * 2);
-        for i in 0..n {
-            next.push(grid[i]);
-            let m = split[i];
-            for k in 1..m {
-                let s = grid[i] + (grid[i + 1] - grid[i]) * (k as f64 / m as f64);
-                if s > next[next.len() - 1] && s < grid[i + 1] {
-                    next.push(s);
-                }
-            }
-        }
-        next.push(grid[n]);
-        let changed = next.len() != grid.len();
-        *grid = next;
-        changed
-    }
 }
 
 /// Steps (s_i, s_{i+1}, x_i, x_{i+1}) found within the limits by the last check between
@@ -738,10 +857,13 @@ impl CleanSteps {
 }
 
 /// The half-planes of one stage, computed on the fly from the gridpoint rows: the rows at s_i,
-/// the rows at s_{i+1} with x_{i+1} = x + 2Δu substituted, and x_{i+1} ∈ [klo, khi].
+/// the rows at s_{i+1} with x_{i+1} = x + 2Δu substituted, rows of interior points already in
+/// (u, x_i) (added where the check between gridpoints found an excess), and
+/// x_{i+1} ∈ [klo, khi].
 pub(crate) struct Stage<'a> {
     pub(crate) here: &'a [[f64; 3]],
     pub(crate) next: &'a [[f64; 3]],
+    pub(crate) mid: &'a [[f64; 3]],
     pub(crate) two_delta: f64,
     pub(crate) khi: f64,
     pub(crate) klo: f64,
@@ -750,27 +872,32 @@ pub(crate) struct Stage<'a> {
 impl lp::HalfPlanes for Stage<'_> {
     #[inline]
     fn count(&self) -> usize {
-        self.here.len() + self.next.len() + 2
+        self.here.len() + self.next.len() + self.mid.len() + 2
     }
     #[inline]
     fn get(&self, k: usize) -> [f64; 3] {
         let h = self.here.len();
+        let n = self.next.len();
+        let m = self.mid.len();
         if k < h {
             self.here[k]
-        } else if k < h + self.next.len() {
+        } else if k < h + n {
             let [a, b, g] = self.next[k - h];
             [a + self.two_delta * b, b, g]
-        } else if k == h + self.next.len() {
+        } else if k < h + n + m {
+            self.mid[k - h - n]
+        } else if k == h + n + m {
             [self.two_delta, 1.0, self.khi]
         } else {
             [-self.two_delta, -1.0, -self.klo]
         }
     }
-    /// Scans the two row slices directly (the solver's hot loop).
+    /// Scans the row slices directly (the solver's hot loop).
     #[inline]
     fn first_violated(&self, from: usize, v: [f64; 2], tol: f64) -> Option<usize> {
         let h = self.here.len();
         let n = self.next.len();
+        let m = self.mid.len();
         if from < h {
             for (j, &r) in self.here[from..].iter().enumerate() {
                 if lp::violates(r, v, tol) {
@@ -786,7 +913,15 @@ impl lp::HalfPlanes for Stage<'_> {
                 }
             }
         }
-        (from.max(h + n)..h + n + 2).find(|&k| lp::violates(self.get(k), v, tol))
+        let start = from.max(h + n) - h - n;
+        if start < m {
+            for (j, &r) in self.mid[start..].iter().enumerate() {
+                if lp::violates(r, v, tol) {
+                    return Some(h + n + start + j);
+                }
+            }
+        }
+        (from.max(h + n + m)..h + n + m + 2).find(|&k| lp::violates(self.get(k), v, tol))
     }
 }
 
@@ -861,9 +996,11 @@ mod tests {
             };
             let here: Vec<[f64; 3]> = (0..rng.below(6)).map(|_| row(&mut rng)).collect();
             let next: Vec<[f64; 3]> = (0..rng.below(6)).map(|_| row(&mut rng)).collect();
+            let mid: Vec<[f64; 3]> = (0..rng.below(4)).map(|_| row(&mut rng)).collect();
             let stage = Stage {
                 here: &here,
                 next: &next,
+                mid: &mid,
                 two_delta: rng.uniform(0.001, 0.5),
                 khi: rng.uniform(0.5, 3.0),
                 klo: rng.uniform(-0.5, 0.4),

@@ -1,0 +1,435 @@
+//! TOPP-RA between gridpoints: the check that makes the limits hold on the whole trajectory,
+//! not only at gridpoints.
+//!
+//! The discretized problem enforces the constraints at gridpoints; between them the profile
+//! has constant u = s̈ and x = ṡ² linear in s, and a constraint can be exceeded there. After
+//! each solve every interval that changed is checked:
+//! - **exactly** where the path is a polynomial of degree ≤ 3 on the interval
+//!   ([`crate::Path::piecewise_degree`], no breakpoint inside) and the constraint can bound
+//!   itself on such a piece ([`Constraint::excess_on_cubic`]: joint velocity and joint
+//!   acceleration, in closed form). An interval whose worst value exceeds the limit by more
+//!   than [`EXACT_TOL`] relative gets that constraint's rows *at the worst point* added to its
+//!   stage, written in (u, x_i) with x = x_i + 2u(s − s_i) — the same substitution the
+//!   interpolation scheme makes at s_{i+1} — and the problem is solved again on the same grid.
+//!   The added row holds the constraint exactly at the point that was worst; the new worst
+//!   point moves by the (small) change of u and x, so the next excess is of second order and
+//!   one or two rounds reach the tolerance. Only failing intervals pay, and only with rows.
+//! - **at sample points** otherwise (any other path, user constraints such as torque or
+//!   end-effector speed): the midpoint, the quarters and points approaching both ends
+//!   geometrically (down to 4⁻⁷ of the length, [`REFINE_POINTS`]); an interval exceeding
+//!   [`REFINE_TOL`] there is cut into equal parts (as many as the excess calls for: it shrinks
+//!   as Δ²) and the problem evaluated and solved again.
+//!
+//! Intervals found clean and unchanged since (same ends, x within 1e-9 relative) are not
+//! checked again.
+
+use super::constraint::{Constraint, CubicPiece, PathPoint};
+use super::toppra::{Discretization, Workspace, MAX_REFINED_INTERVALS, REFINE_POINTS, REFINE_TOL};
+use crate::Path;
+
+/// Relative excess accepted where the check is exact (joint velocity and acceleration on
+/// piecewise-cubic paths): the limits then hold everywhere within it, up to rounding.
+pub(crate) const EXACT_TOL: f64 = 1e-8;
+
+/// Rows of an interior point are kept when they are this close to active (relative excess
+/// above minus this) at the worst point: the others cannot bind after a small change.
+const NEAR_ACTIVE: f64 = 1e-3;
+
+/// What a check round found.
+pub(super) enum Check {
+    /// Every interval within the limits.
+    Clean,
+    /// Rows were added to the stages of intervals `lo..=hi` (not necessarily all of them); the
+    /// grid is unchanged.
+    Tightened(usize, usize),
+    /// Some intervals must be cut: the new grid.
+    Split(Vec<f64>),
+}
+
+/// The path's Taylor data on every interval of the grid: σ, σ′, σ″, σ‴ at the interval's
+/// start, from inside (`4·dim` numbers per interval), for intervals where the exact check
+/// applies. Between ordinary gridpoints one cubic covers both ends: the gridpoint values give
+/// σ, σ′, σ″ and (σ″(s_{i+1}) − σ″(s_i))/Δ gives σ‴. At a breakpoint the path is evaluated at
+/// the interval's midpoint (so that no convention about which piece a breakpoint belongs to
+/// matters) and the expansion moved to the start.
+#[derive(Default)]
+pub(super) struct Pieces {
+    /// Per interval: whether the path is a polynomial of degree ≤ 3 on it.
+    exact: Vec<bool>,
+    /// Per interval: whether an end is a breakpoint of the path (where σ″ may jump, so the
+    /// gridpoint's rows may belong to the neighbouring piece).
+    at_break: Vec<bool>,
+    data: Vec<f64>,
+    dim: usize,
+    built: bool,
+}
+
+impl Pieces {
+    fn build<P: Path>(&mut self, path: &P, grid: &[f64], need_q: bool, at_points: &[f64]) {
+        let n = grid.len() - 1;
+        let dim = path.dim();
+        self.dim = dim;
+        self.exact.clear();
+        self.at_break.clear();
+        self.built = true;
+        if path.piecewise_degree().is_none_or(|d| d > 3) {
+            self.exact.resize(n, false);
+            self.at_break.resize(n, true);
+            return;
+        }
+        let breaks = path.breakpoints();
+        // Every entry of an exact interval is written below (σ only when needed: zeros then).
+        self.data.resize(n * 4 * dim, 0.0);
+        let mut b = 0;
+        for i in 0..n {
+            let (s0, s1) = (grid[i], grid[i + 1]);
+            while b < breaks.len() && breaks[b] < s0 {
+                b += 1;
+            }
+            let starts_at_break = b < breaks.len() && breaks[b] == s0;
+            if starts_at_break {
+                b += 1;
+            }
+            let inside = b < breaks.len() && breaks[b] < s1;
+            let ends_at_break = b < breaks.len() && breaks[b] == s1;
+            self.exact.push(!inside);
+            self.at_break.push(starts_at_break || ends_at_break);
+            if inside {
+                continue;
+            }
+            let d = &mut self.data[i * 4 * dim..(i + 1) * 4 * dim];
+            let (d0, rest) = d.split_at_mut(dim);
+            let (d1, rest) = rest.split_at_mut(dim);
+            let (d2, d3) = rest.split_at_mut(dim);
+            if !(starts_at_break || ends_at_break) {
+                let here = &at_points[3 * dim * i..3 * dim * (i + 1)];
+                let next_ddq = &at_points[3 * dim * (i + 1) + 2 * dim..3 * dim * (i + 2)];
+                d0.copy_from_slice(&here[..dim]);
+                d1.copy_from_slice(&here[dim..2 * dim]);
+                d2.copy_from_slice(&here[2 * dim..]);
+                let h = s1 - s0;
+                for j in 0..dim {
+                    d3[j] = (next_ddq[j] - d2[j]) / h;
+                }
+                continue;
+            }
+            let sm = 0.5 * (s0 + s1);
+            if need_q {
+                path.eval(sm, 0, d0);
+            } else {
+                d0.iter_mut().for_each(|v| *v = 0.0);
+            }
+            path.eval_derivatives(sm, d1, d2);
+            path.eval(sm, 3, d3);
+            // From the midpoint to s0: t = −h/2.
+            let t = s0 - sm;
+            for j in 0..dim {
+                let (a, b, c) = (d1[j], d2[j], d3[j]);
+                if need_q {
+                    d0[j] += t * (a + t * (0.5 * b + t * c / 6.0));
+                }
+                d1[j] = a + t * (b + 0.5 * t * c);
+                d2[j] = b + t * c;
+            }
+            if !d.iter().all(|v| v.is_finite()) {
+                self.exact[i] = false;
+            }
+        }
+    }
+
+    fn piece(&self, grid: &[f64], i: usize) -> Option<CubicPiece<'_>> {
+        if !self.exact[i] {
+            return None;
+        }
+        let dim = self.dim;
+        let d = &self.data[i * 4 * dim..(i + 1) * 4 * dim];
+        Some(CubicPiece {
+            s0: grid[i],
+            s1: grid[i + 1],
+            d0: &d[..dim],
+            d1: &d[dim..2 * dim],
+            d2: &d[2 * dim..3 * dim],
+            d3: &d[3 * dim..],
+        })
+    }
+}
+
+impl Workspace {
+    /// Forgets the interior rows and Taylor data (a new grid).
+    pub(super) fn reset_between(&mut self) {
+        self.mid.clear();
+        self.mid_off.clear();
+        self.mid_add.clear();
+        self.pieces.built = false;
+        self.clean = Default::default();
+    }
+
+    /// Builds the Taylor data of the intervals and, where the path is a polynomial of degree
+    /// ≤ 3 on an interval, writes every constraint's sufficient rows
+    /// ([`Constraint::hold_on_cubic`], which leaves out rows that cannot bind within the
+    /// velocity bounds `xhi` at both ends) into the interval's stage.
+    pub(super) fn prepare_between<P: Path>(
+        &mut self,
+        path: &P,
+        cons: &[Box<dyn Constraint + '_>],
+        grid: &[f64],
+        xhi: &[f64],
+        at_points: &[f64],
+    ) {
+        let n = grid.len() - 1;
+        let need_q = cons.iter().any(|c| c.uses_position());
+        let mut pieces = std::mem::take(&mut self.pieces);
+        pieces.build(path, grid, need_q, at_points);
+        self.mid.clear();
+        self.mid_off.clear();
+        self.mid_add.clear();
+        self.mid_off.push(0);
+        self.proved.clear();
+        self.proved.resize(cons.len(), false);
+        for i in 0..n {
+            let Some(piece) = pieces.piece(grid, i) else {
+                self.mid_off.push(self.mid.len());
+                continue;
+            };
+            let x_max = [xhi[i], xhi[i + 1]];
+            for (k, c) in cons.iter().enumerate() {
+                self.cr.clear();
+                if !c.hold_on_cubic(&piece, x_max, &mut self.cr) {
+                    continue;
+                }
+                self.proved[k] = true;
+                self.mid.extend_from_slice(self.cr.half_planes());
+            }
+            self.mid_off.push(self.mid.len());
+        }
+        self.pieces = pieces;
+    }
+
+    /// Checks every interval that changed since the last round (see the module documentation).
+    /// Where the interpolation scheme holds a constraint's rows at both ends and its sufficient
+    /// rows were prepared on a piece whose ends are not breakpoints, the constraint holds on the
+    /// interval by construction and is not checked again.
+    pub(super) fn check_between<P: Path>(
+        &mut self,
+        path: &P,
+        cons: &[Box<dyn Constraint + '_>],
+        grid: &[f64],
+        x: &[f64],
+        disc: Discretization,
+    ) -> Check {
+        let n = grid.len() - 1;
+        let need_q = cons.iter().any(|c| c.uses_position());
+        if !self.pieces.built {
+            let mut pieces = std::mem::take(&mut self.pieces);
+            let at_points = std::mem::take(&mut self.at_points);
+            pieces.build(path, grid, need_q, &at_points);
+            self.at_points = at_points;
+            self.pieces = pieces;
+        }
+        let mut split: Vec<usize> = Vec::new();
+        let mut tightened: Option<(usize, usize)> = None;
+        self.clean.start_round();
+        let pieces = std::mem::take(&mut self.pieces);
+        for i in 0..n {
+            if self.clean.unchanged([grid[i], grid[i + 1], x[i], x[i + 1]]) {
+                continue;
+            }
+            let delta = grid[i + 1] - grid[i];
+            let u = (x[i + 1] - x[i]) / (2.0 * delta);
+            let piece = pieces.piece(grid, i);
+            let mut sampled = false;
+            let mut failed = false;
+            self.sample.clear();
+            let proved_here = disc == Discretization::Interpolation && !pieces.at_break[i];
+            for (k, c) in cons.iter().enumerate() {
+                if proved_here && piece.is_some() && self.proved.get(k) == Some(&true) {
+                    self.sample.push(false);
+                    continue;
+                }
+                match piece.and_then(|p| c.excess_on_cubic(&p, u, x[i])) {
+                    Some((e, s)) => {
+                        self.sample.push(false);
+                        if e > EXACT_TOL {
+                            self.add_rows_at(&**c, piece.as_ref(), path, grid, i, s, u, x[i]);
+                            failed = true;
+                        }
+                    }
+                    None => {
+                        self.sample.push(true);
+                        sampled = true;
+                    }
+                }
+            }
+            let worst = if sampled {
+                self.sampled_excess(path, cons, grid, i, u, x[i], need_q)
+            } else {
+                0.0
+            };
+            if worst > REFINE_TOL {
+                // The excess of a smooth constraint shrinks with the square of the interval
+                // length: cut into enough parts to bring it a few times below the tolerance.
+                let parts = (worst / (0.5 * REFINE_TOL)).sqrt().ceil();
+                if split.is_empty() {
+                    split.resize(n, 1);
+                }
+                split[i] = if parts.is_finite() {
+                    (parts as usize).clamp(2, 64)
+                } else {
+                    64
+                };
+            } else if failed {
+                tightened = Some(tightened.map_or((i, i), |(lo, _)| (lo, i)));
+            } else {
+                self.clean.mark([grid[i], grid[i + 1], x[i], x[i + 1]]);
+            }
+        }
+        self.pieces = pieces;
+        self.merge_added(n);
+        if !split.is_empty() {
+            let total: usize = split.iter().sum();
+            if total <= MAX_REFINED_INTERVALS {
+                return Check::Split(self.cut(grid, &split));
+            }
+        }
+        match tightened {
+            Some((lo, hi)) => Check::Tightened(lo, hi),
+            None => Check::Clean,
+        }
+    }
+
+    /// The largest relative excess of the constraints that have no exact bound on this interval
+    /// (marked in `self.sample`), at [`REFINE_POINTS`].
+    #[allow(clippy::too_many_arguments)]
+    fn sampled_excess<P: Path>(
+        &mut self,
+        path: &P,
+        cons: &[Box<dyn Constraint + '_>],
+        grid: &[f64],
+        i: usize,
+        u: f64,
+        x0: f64,
+        need_q: bool,
+    ) -> f64 {
+        let delta = grid[i + 1] - grid[i];
+        let mut worst = f64::NEG_INFINITY;
+        for theta in REFINE_POINTS {
+            let s = grid[i] + delta * theta;
+            if !(s > grid[i] && s < grid[i + 1]) {
+                continue;
+            }
+            let xs = (x0 + 2.0 * u * (s - grid[i])).max(0.0);
+            if need_q {
+                path.eval(s, 0, &mut self.q);
+            }
+            path.eval_derivatives(s, &mut self.dq, &mut self.ddq);
+            let p = PathPoint {
+                s,
+                q: &self.q,
+                dq: &self.dq,
+                ddq: &self.ddq,
+            };
+            for (c, &sample) in cons.iter().zip(&self.sample) {
+                if !sample {
+                    continue;
+                }
+                self.cr.clear();
+                c.write(&p, &mut self.cr);
+                worst = worst.max(self.cr.relative_excess(u, xs));
+            }
+        }
+        worst
+    }
+
+    /// Adds constraint `c`'s rows at the interior point `s` of interval i to the interval's
+    /// stage, written in (u, x_i): a row α·u + β·x(s) ≤ γ with x(s) = x_i + 2u(s − s_i) becomes
+    /// (α + 2(s − s_i)β)·u + β·x_i ≤ γ. Rows far from active at (u, x) are left out.
+    #[allow(clippy::too_many_arguments)]
+    fn add_rows_at<P: Path>(
+        &mut self,
+        c: &dyn Constraint,
+        piece: Option<&CubicPiece<'_>>,
+        path: &P,
+        grid: &[f64],
+        i: usize,
+        s: f64,
+        u: f64,
+        x0: f64,
+    ) {
+        match piece {
+            Some(p) => p.eval_into(s, &mut self.q, &mut self.dq, &mut self.ddq),
+            None => {
+                path.eval(s, 0, &mut self.q);
+                path.eval_derivatives(s, &mut self.dq, &mut self.ddq);
+            }
+        }
+        let point = PathPoint {
+            s,
+            q: &self.q,
+            dq: &self.dq,
+            ddq: &self.ddq,
+        };
+        self.cr.clear();
+        c.write(&point, &mut self.cr);
+        let two_t = 2.0 * (s - grid[i]);
+        let xs = (x0 + two_t * u).max(0.0);
+        let rows = &mut self.mid_add;
+        for &[a, b, g] in self.cr.half_planes() {
+            let scale = g.abs().max((a * u).abs()).max((b * xs).abs());
+            if scale > 0.0 && (a * u + b * xs - g) / scale > -NEAR_ACTIVE {
+                rows.push((i, [a + two_t * b, b, g]));
+            }
+        }
+        let (x_min, x_max) = self.cr.x_bounds();
+        if x_max.is_finite() && xs >= x_max * (1.0 - 2.0 * NEAR_ACTIVE) {
+            rows.push((i, [two_t, 1.0, x_max]));
+        }
+        if x_min > 0.0 {
+            rows.push((i, [-two_t, -1.0, -x_min]));
+        }
+    }
+
+    /// Moves the rows found by a check round (`mid_add`, in interval order) into `mid`.
+    fn merge_added(&mut self, n: usize) {
+        if self.mid_add.is_empty() {
+            return;
+        }
+        let mut mid = Vec::with_capacity(self.mid.len() + self.mid_add.len());
+        let mut off = Vec::with_capacity(n + 1);
+        off.push(0);
+        let mut a = 0;
+        for i in 0..n {
+            mid.extend_from_slice(self.mid_rows(i));
+            while a < self.mid_add.len() && self.mid_add[a].0 == i {
+                mid.push(self.mid_add[a].1);
+                a += 1;
+            }
+            off.push(mid.len());
+        }
+        self.mid = mid;
+        self.mid_off = off;
+        self.mid_add.clear();
+    }
+
+    /// The grid with interval i cut into `split[i]` equal parts. Interior rows are dropped (the
+    /// caller prepares the new grid's).
+    fn cut(&mut self, grid: &[f64], split: &[usize]) -> Vec<f64> {
+        let n = grid.len() - 1;
+        let mut next = Vec::with_capacity(grid.len() * 2);
+        for i in 0..n {
+            next.push(grid[i]);
+            let m = split[i];
+            for k in 1..m {
+                let s = grid[i] + (grid[i + 1] - grid[i]) * (k as f64 / m as f64);
+                if s > next[next.len() - 1] && s < grid[i + 1] {
+                    next.push(s);
+                }
+            }
+        }
+        next.push(grid[n]);
+        self.mid.clear();
+        self.mid_off.clear();
+        self.mid_add.clear();
+        self.pieces.built = false;
+        next
+    }
+}
