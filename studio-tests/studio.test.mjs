@@ -203,7 +203,7 @@ test('plan: the default path is planned, plotted and downloadable', async () => 
     limits: { preset: 'panda' },
     method: 'toppra',
     path: 'natural',
-    gridpoints: 1000,
+    gridpoints: 'auto',
     jerk_limit: true,
     rate: 200,
   });

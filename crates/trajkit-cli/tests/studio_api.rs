@@ -520,7 +520,12 @@ fn plan_matches_the_cli_and_checks_its_output() {
         "{}",
         &text[..80]
     );
-    assert_eq!(text.lines().count(), 1 + 1338);
+    // A header, then samples at every millisecond up to the duration and at the end.
+    let d = f(&post(s.addr, "/api/plan", &default_plan(json!({}))).json()["duration"]);
+    assert_eq!(
+        text.lines().count(),
+        1 + (d * 1000.0 + 1e-9).floor() as usize + 2
+    );
     let r = post(
         s.addr,
         "/api/plan?format=json",
@@ -707,6 +712,16 @@ fn plan_refuses_bad_waypoints_and_caps() {
         400,
         "gridpoints",
         "below 1",
+    );
+    refused(
+        &post(
+            s.addr,
+            "/api/plan",
+            &default_plan(json!({"gridpoints": "fine"})),
+        ),
+        400,
+        "gridpoints",
+        "auto",
     );
     refused(
         &post(s.addr, "/api/plan", &default_plan(json!({"rate": 20000}))),

@@ -133,10 +133,10 @@ pub struct PlanArgs {
     /// corner of a linear path). Splines are kept inside the position ranges.
     #[arg(long, value_enum, default_value = "natural")]
     pub path: PathArg,
-    /// TOPP-RA gridpoints (NI: initial knots) per rest-to-rest piece: an interval count, or
-    /// `auto` (from a 1e-4 chord tolerance). Limits are also checked between gridpoints and the
-    /// grid refined there.
-    #[arg(long, value_name = "N|auto", default_value = "1000", value_parser = parse_gridpoints)]
+    /// TOPP-RA gridpoints (NI: initial knots) per rest-to-rest piece: `auto` (the grid is
+    /// refined until the duration is within 1e-4 relative of the converged optimum) or an
+    /// interval count. Limits hold between gridpoints too (see the README).
+    #[arg(long, value_name = "auto|N", default_value = "auto", value_parser = parse_gridpoints)]
     pub gridpoints: trajkit::topp::Gridpoints,
     /// Plan without jerk limits: every joint's jerk limit becomes unlimited, and toppra and ni
     /// keep their raw result (piecewise-constant path acceleration). `trajkit check` agrees

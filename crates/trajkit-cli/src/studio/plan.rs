@@ -75,6 +75,23 @@ pub enum ViaIn {
     Zero,
 }
 
+/// Gridpoints per rest-to-rest piece: `"auto"` (the default: refined until the duration is
+/// within 1e-4 relative of the converged optimum, as `trajkit plan`) or an interval count.
+#[derive(Debug, Clone, Deserialize, PartialEq, Eq)]
+#[serde(untagged)]
+pub enum GridIn {
+    /// An interval count, 1..=20000.
+    Count(usize),
+    /// `"auto"`.
+    Word(String),
+}
+
+impl Default for GridIn {
+    fn default() -> Self {
+        GridIn::Word("auto".into())
+    }
+}
+
 /// `POST /api/plan`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -96,8 +113,8 @@ pub struct Request {
     #[serde(default)]
     pub path: PathIn,
     /// Gridpoint intervals per rest-to-rest piece for `toppra`/`ni`, 1..=20000 (default 1000).
-    #[serde(default = "default_gridpoints")]
-    pub gridpoints: usize,
+    #[serde(default)]
+    pub gridpoints: GridIn,
     /// Bound the jerk after `toppra`/`ni` (default true; needs jerk limits).
     #[serde(default = "yes")]
     pub jerk_limit: bool,
@@ -117,9 +134,6 @@ pub struct Request {
     pub phase_plane: bool,
 }
 
-fn default_gridpoints() -> usize {
-    1000
-}
 fn default_rate() -> f64 {
     100.0
 }
@@ -236,12 +250,24 @@ impl Options {
                 PathIn::Clamped => PathKind::ClampedCubic,
                 PathIn::Linear => PathKind::Linear,
             },
-            gridpoints: trajkit::topp::Gridpoints::Uniform(caps::count(
-                "gridpoints",
-                r.gridpoints,
-                1,
-                caps::MAX_GRIDPOINTS,
-            )?),
+            gridpoints: match &r.gridpoints {
+                GridIn::Count(n) => trajkit::topp::Gridpoints::Uniform(caps::count(
+                    "gridpoints",
+                    *n,
+                    1,
+                    caps::MAX_GRIDPOINTS,
+                )?),
+                GridIn::Word(w) if w == "auto" => {
+                    trajkit::topp::Gridpoints::Auto { tolerance: 1e-4 }
+                }
+                GridIn::Word(w) => {
+                    return Err(ApiError::bad(
+                        "gridpoints",
+                        json!(w),
+                        "is not \"auto\" or an interval count",
+                    ))
+                }
+            },
             jerk: if jerk_limit {
                 JerkStage::Filter
             } else {

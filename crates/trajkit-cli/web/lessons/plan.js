@@ -34,7 +34,7 @@ export async function mount(root) {
     waypointsName: defaults.waypoints_name,
     method: 'toppra',
     path: 'natural',
-    gridpoints: 1000,
+    gridpoints: 'auto',
     jerkLimit: true,
     maxDeviation: 0.1,
     degree: 'quintic',
@@ -72,7 +72,11 @@ export async function mount(root) {
     if (s.method === 'toppra' || s.method === 'ni') {
       parts.push(
         select({ id: 'path', label: 'path', value: s.path, options: defaults.paths.map((p) => [p, p]), onChange: set('path') }),
-        numberField({ id: 'gridpoints', label: 'gridpoints', value: s.gridpoints, step: 1, min: 1, onChange: set('gridpoints') }),
+        select({
+          id: 'gridpoints', label: 'gridpoints', value: String(s.gridpoints),
+          options: [['auto', 'auto (1e-4 of the optimum)'], ['100', '100'], ['1000', '1000'], ['10000', '10000']],
+          onChange: (v) => { s.gridpoints = v === 'auto' ? 'auto' : Number(v); },
+        }),
         checkbox({ id: 'jerk', label: 'bound jerk', checked: s.jerkLimit, onChange: set('jerkLimit') }));
     } else if (s.method === 'totg') {
       parts.push(numberField({ id: 'maxdev', label: 'max deviation [rad]', value: s.maxDeviation, step: 0.01, onChange: set('maxDeviation') }));

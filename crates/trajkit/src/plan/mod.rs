@@ -139,7 +139,8 @@ pub struct PlanOptions {
     /// Path through the waypoints for `toppra` and `ni`. Default [`PathKind::NaturalCubic`].
     pub path: PathKind,
     /// TOPP-RA gridpoints (NI: initial knots) per rest-to-rest piece. Default
-    /// `Gridpoints::Uniform(1000)`.
+    /// `Gridpoints::Auto { tolerance: 1e-4 }` (a duration within 1e-4 relative of the
+    /// converged optimum).
     pub gridpoints: Gridpoints,
     /// The jerk stage of `toppra` and `ni`. Default [`JerkStage::Filter`].
     pub jerk: JerkStage,
@@ -181,7 +182,7 @@ impl Default for PlanOptions {
         PlanOptions {
             method: Method::Toppra,
             path: PathKind::NaturalCubic,
-            gridpoints: Gridpoints::Uniform(1000),
+            gridpoints: Gridpoints::Auto { tolerance: 1e-4 },
             jerk: JerkStage::Filter,
             max_deviation: 0.1,
             degree: Degree::Quintic,
@@ -407,7 +408,7 @@ fn check_options(o: &PlanOptions, dof: usize) -> Result<()> {
     let grid = match &o.gridpoints {
         Gridpoints::Uniform(n) => *n as f64,
         Gridpoints::Given(v) => v.len() as f64,
-        Gridpoints::Auto { .. } => 0.0,
+        Gridpoints::Auto { .. } | Gridpoints::Chord { .. } => 0.0,
     };
     // Per gridpoint: constraint rows (velocity and acceleration of every joint, a, b, c),
     // controllable and reachable sets, the profile.

@@ -189,6 +189,13 @@ impl Path for PiecePath {
             PiecePath::Linear(p) => p.breakpoints(),
         }
     }
+    fn piecewise_degree(&self) -> Option<usize> {
+        match self {
+            PiecePath::Cubic(p) => p.piecewise_degree(),
+            PiecePath::Bounded(p) => p.piecewise_degree(),
+            PiecePath::Linear(p) => p.piecewise_degree(),
+        }
+    }
 }
 
 /// Trajectories played one after the other (each starts where the previous ended).
