@@ -5,10 +5,14 @@
 //! native submodule (`_trajkit.spline`, `_trajkit.otg`, ...) that the Python package
 //! (`python/trajkit/`) re-exports as `trajkit.spline`, `trajkit.otg`, ...
 
+mod batch;
 mod convert;
 mod limits;
 mod otg;
+mod poly;
+mod primitives;
 mod spline;
+mod topp;
 mod traj;
 
 use pyo3::prelude::*;
@@ -19,9 +23,10 @@ fn submodule(
     name: &str,
     register: fn(&Bound<'_, PyModule>) -> PyResult<()>,
 ) -> PyResult<()> {
-    let m = PyModule::new(parent.py(), name)?;
+    // The full name makes functions pickle by reference (`trajkit.poly.rest_to_rest`).
+    let m = PyModule::new(parent.py(), &format!("trajkit.{name}"))?;
     register(&m)?;
-    parent.add_submodule(&m)
+    parent.add(name, m)
 }
 
 /// The extension module; `trajkit/__init__.py` and the submodules import from it.
@@ -33,5 +38,9 @@ fn _trajkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     limits::register(m)?;
     submodule(m, "spline", spline::register)?;
     submodule(m, "otg", otg::register)?;
+    submodule(m, "poly", poly::register)?;
+    submodule(m, "topp", topp::register)?;
+    submodule(m, "primitives", primitives::register)?;
+    submodule(m, "batch", batch::register)?;
     Ok(())
 }

@@ -62,7 +62,7 @@ pub struct Curve {
 }
 
 impl Curve {
-    fn make(path: SharedPath, squeeze: bool, args: Bound<'_, PyTuple>) -> Self {
+    pub fn make(path: SharedPath, squeeze: bool, args: Bound<'_, PyTuple>) -> Self {
         Curve {
             path,
             squeeze,
@@ -248,7 +248,7 @@ impl PyCubicSpline {
                 obj(&x),
                 obj(&y),
                 axis.into_pyobject(py)?.into_any(),
-                bc_type.map_or_else(|| py.None().into_bound(py), |b| b),
+                bc_type.unwrap_or_else(|| py.None().into_bound(py)),
             ],
         )?;
         Ok(

@@ -130,3 +130,17 @@ impl PyTrajectory {
         )
     }
 }
+
+/// A trajectory object whose pickling recipe is `module.func(*args)`.
+pub fn with_recipe<'py>(
+    py: Python<'py>,
+    inner: SharedTrajectory,
+    module: &str,
+    func: &str,
+    args: Bound<'py, PyTuple>,
+) -> PyResult<Bound<'py, PyTrajectory>> {
+    let t = PyTrajectory::new(inner);
+    let f = py.import(module)?.getattr(func)?;
+    let _ = t.recipe.set((f.unbind(), args.unbind()));
+    Bound::new(py, t)
+}
