@@ -57,10 +57,13 @@ pub fn obj<'py>(a: &Floats<'py>) -> Bound<'py, PyAny> {
 
 /// The values of an array in C order: borrowed when the array is C-contiguous, else copied.
 pub fn values<'a>(a: &'a Floats<'_>) -> Cow<'a, [f64]> {
-    match a.as_slice() {
-        Ok(s) => Cow::Borrowed(s),
-        Err(_) => Cow::Owned(a.as_array().iter().copied().collect()),
+    // `as_slice` also accepts Fortran order, whose memory order is not C order.
+    if a.is_c_contiguous() {
+        if let Ok(s) = a.as_slice() {
+            return Cow::Borrowed(s);
+        }
     }
+    Cow::Owned(a.as_array().iter().copied().collect())
 }
 
 /// A table of `rows × dim` values (row-major) from a 1-D array (`dim = 1`, `was_1d`) or a 2-D
