@@ -8,7 +8,8 @@
 - TOPP: the standard problem of tools/bench_topp_peer.py (7-DOF Panda limits, natural cubic
   spline through the 7 waypoints of the `standard_7wp_natural_N1000` fixture, 1000 uniform
   intervals plus breakpoints): trajkit.topp.TOPPRA(...).compute_trajectory() vs toppra's
-  TOPPRA constructor + compute_parameterization (seidel).
+  TOPPRA constructor + compute_parameterization (seidel); trajkit on the same grid
+  (refine=False), and once more with its default grid refinement.
 
 Run inside an environment with the package and the peers (python/requirements-test.txt):
     python tools/bench_python.py [repeats]
@@ -108,9 +109,14 @@ def bench_topp(repeats):
     cons = [topp.JointVelocityConstraint(vlim), topp.JointAccelerationConstraint(alim)]
 
     def ours():
+        # Like toppra: the given grid only (refine=False); the default also refines.
+        topp.TOPPRA(cons, path, gridpoints=1000, refine=False).compute_trajectory(0.0, 0.0)
+
+    def refined():
         topp.TOPPRA(cons, path, gridpoints=1000).compute_trajectory(0.0, 0.0)
-    return [("TOPP-RA, standard problem (N = 1000), from Python",
-             timeit(ours, repeats), timeit(peer, max(3, repeats // 3)))]
+    t_peer = timeit(peer, max(3, repeats // 3))
+    return [("TOPP-RA, standard problem (N = 1000), from Python", timeit(ours, repeats), t_peer),
+            ("  the same with trajkit's grid refinement (default)", timeit(refined, 3), t_peer)]
 
 
 def main():
