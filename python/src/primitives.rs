@@ -41,6 +41,22 @@ fn reduce<'py>(py: Python<'py>, r: &Recipe) -> (Py<PyAny>, Py<PyTuple>) {
 }
 
 /// Demonstrations as `[(t, q), ...]` with `t` of shape `(n,)` and `q` `(n, dof)`.
+/// `dof × dof` covariances of position (`order=0`) or velocity (`order=1`) at every time of
+/// `t`, shape `t.shape + (dof, dof)`.
+fn covariances<'py>(
+    py: Python<'py>,
+    t: &Floats<'py>,
+    order: i64,
+    d: usize,
+    f: impl Fn(f64, Order, &mut [f64]) + Sync + Send,
+) -> PyResult<Bound<'py, PyAny>> {
+    let o = Order::from_index(self::order(order, 1)?).expect("checked");
+    let flat = eval_times(py, t, d * d, false, |ti, out| f(ti, o, out))?;
+    let mut shape: Vec<usize> = t.shape().to_vec();
+    shape.extend([d, d]);
+    flat.call_method1("reshape", (shape,))
+}
+
 /// Demonstrations as owned `(t, q)` data.
 type Demos = Vec<(Vec<f64>, Vec<f64>)>;
 
@@ -324,13 +340,10 @@ impl PyProMp {
         t: Floats<'py>,
         order: i64,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let o = Order::from_index(self::order(order, 1)?).expect("checked");
         let p = self.promp.as_ref();
-        let d = p.dof();
-        let flat = eval_times(py, &t, d * d, false, |ti, out| p.covariance(ti, o, out))?;
-        let mut shape: Vec<usize> = t.shape().to_vec();
-        shape.extend([d, d]);
-        flat.call_method1("reshape", (shape,))
+        covariances(py, &t, order, p.dof(), |ti, o, out| {
+            p.covariance(ti, o, out)
+        })
     }
 
     /// A trajectory drawn from the distribution with a seeded generator.
@@ -469,13 +482,10 @@ impl PyKmp {
         t: Floats<'py>,
         order: i64,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let o = Order::from_index(self::order(order, 1)?).expect("checked");
         let k = self.kmp.as_ref();
-        let d = k.dof();
-        let flat = eval_times(py, &t, d * d, false, |ti, out| k.covariance(ti, o, out))?;
-        let mut shape: Vec<usize> = t.shape().to_vec();
-        shape.extend([d, d]);
-        flat.call_method1("reshape", (shape,))
+        covariances(py, &t, order, k.dof(), |ti, o, out| {
+            k.covariance(ti, o, out)
+        })
     }
 
     /// Number of joints.
