@@ -1,0 +1,839 @@
+//! `trajkit.otg`: Ruckig's Python API on trajkit's online generator.
+//!
+//! Class, attribute, enum and method names, argument orders and return conventions are those
+//! of the `ruckig` wheel (lists out, `at_time` returning a tuple of lists, `Bound` extrema,
+//! `RuckigError` raised on bad input), so a Ruckig script runs after changing its import.
+//! `InputParameter` holds a `trajkit::otg::DynInputParameter` and hands it to
+//! `trajkit::otg::calculate_dyn` as it is (no conversion per call).
+//!
+//! `Ruckig.update` keeps Ruckig's (and `trajkit::otg::Otg::update`'s) contract for a run-time
+//! number of DOFs: it calculates when the input differs from the one it last calculated for,
+//! then advances one control period and writes the state there; the state it returns is
+//! written into its copy of the input, so feeding it back (`pass_to_input`) does not cause a
+//! new calculation.
+
+use std::time::Instant;
+
+use pyo3::exceptions::PyIndexError;
+use pyo3::prelude::*;
+use pyo3::types::PyTuple;
+use trajkit::otg::{
+    calculate_dyn, ControlInterface as CI, DurationDiscretization as DD, DynInputParameter,
+    DynTrajectory, Synchronization as Sync_,
+};
+
+use crate::convert::{bad, floats, Floats};
+use crate::traj::eval_traj;
+
+/// The library's error as `trajkit.TrajkitError` (exported as `trajkit.otg.RuckigError` too).
+pub fn otg_err(e: impl std::fmt::Display) -> PyErr {
+    bad(e.to_string())
+}
+
+/// Ruckig's `Result`: the status of `calculate` and `update` (errors are raised as
+/// `RuckigError`; the error members exist for code that compares against them).
+#[pyclass(module = "trajkit.otg", name = "Result", eq, eq_int, frozen)]
+#[derive(Clone, Copy, PartialEq)]
+pub enum PyResult_ {
+    /// The trajectory is being followed.
+    Working = 0,
+    /// The target has been reached.
+    Finished = 1,
+    /// Any error.
+    Error = -1,
+    /// Invalid input.
+    ErrorInvalidInput = -100,
+    /// Position limits (not supported by trajkit).
+    ErrorPositionalLimits = -102,
+    /// Calculation failed.
+    ErrorExecutionTimeCalculation = -110,
+    /// Synchronization failed.
+    ErrorSynchronizationCalculation = -111,
+}
+
+/// Ruckig's `Synchronization` (`No` is trajkit's `None`).
+#[pyclass(
+    module = "trajkit.otg",
+    name = "Synchronization",
+    from_py_object,
+    eq,
+    eq_int,
+    frozen
+)]
+#[derive(Clone, Copy, PartialEq)]
+pub enum PySync {
+    /// All DOFs finish together.
+    Time = 0,
+    /// Only DOFs with a non-zero target velocity or acceleration are synchronized.
+    TimeIfNecessary = 1,
+    /// Straight line in joint space where the boundary states allow it.
+    Phase = 2,
+    /// Every DOF as fast as it can.
+    No = 3,
+}
+
+/// Ruckig's `ControlInterface`.
+#[pyclass(
+    module = "trajkit.otg",
+    name = "ControlInterface",
+    from_py_object,
+    eq,
+    eq_int,
+    frozen
+)]
+#[derive(Clone, Copy, PartialEq)]
+pub enum PyInterface {
+    /// Position target (and velocity, acceleration).
+    Position = 0,
+    /// Velocity target (and acceleration) only.
+    Velocity = 1,
+}
+
+/// Ruckig's `DurationDiscretization`.
+#[pyclass(
+    module = "trajkit.otg",
+    name = "DurationDiscretization",
+    from_py_object,
+    eq,
+    eq_int,
+    frozen
+)]
+#[derive(Clone, Copy, PartialEq)]
+pub enum PyDiscretization {
+    /// Any duration.
+    Continuous = 0,
+    /// A multiple of the control period.
+    Discrete = 1,
+}
+
+fn sync_to(s: PySync) -> Sync_ {
+    match s {
+        PySync::Time => Sync_::Time,
+        PySync::TimeIfNecessary => Sync_::TimeIfNecessary,
+        PySync::Phase => Sync_::Phase,
+        PySync::No => Sync_::None,
+    }
+}
+
+fn sync_from(s: Sync_) -> PySync {
+    match s {
+        Sync_::Time => PySync::Time,
+        Sync_::TimeIfNecessary => PySync::TimeIfNecessary,
+        Sync_::Phase => PySync::Phase,
+        Sync_::None => PySync::No,
+    }
+}
+
+/// Ruckig's `InputParameter(dofs)`: current and target state, limits, options.
+#[pyclass(module = "trajkit.otg", name = "InputParameter", from_py_object)]
+#[derive(Clone)]
+pub struct PyInput {
+    /// The library's input.
+    pub inner: DynInputParameter,
+}
+
+impl PyInput {
+    /// A fresh input for `dofs` degrees of freedom.
+    pub fn with_dofs(dofs: usize) -> Self {
+        PyInput {
+            inner: DynInputParameter::new(dofs),
+        }
+    }
+}
+
+#[pymethods]
+impl PyInput {
+    /// `dofs` degrees of freedom: states zero, limits infinite (set them), all enabled.
+    #[new]
+    fn new(dofs: usize) -> Self {
+        PyInput::with_dofs(dofs)
+    }
+
+    /// Number of degrees of freedom.
+    #[getter]
+    fn degrees_of_freedom(&self) -> usize {
+        self.inner.dof()
+    }
+
+    /// `current_position`: a list, one value per DOF.
+    #[getter]
+    fn current_position(&self) -> Vec<f64> {
+        self.inner.current_position.clone()
+    }
+    #[setter]
+    fn set_current_position(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.inner.current_position = floats(v, "current_position", None)?;
+        Ok(())
+    }
+
+    /// `current_velocity`: a list, one value per DOF.
+    #[getter]
+    fn current_velocity(&self) -> Vec<f64> {
+        self.inner.current_velocity.clone()
+    }
+    #[setter]
+    fn set_current_velocity(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.inner.current_velocity = floats(v, "current_velocity", None)?;
+        Ok(())
+    }
+
+    /// `current_acceleration`: a list, one value per DOF.
+    #[getter]
+    fn current_acceleration(&self) -> Vec<f64> {
+        self.inner.current_acceleration.clone()
+    }
+    #[setter]
+    fn set_current_acceleration(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.inner.current_acceleration = floats(v, "current_acceleration", None)?;
+        Ok(())
+    }
+
+    /// `target_position`: a list, one value per DOF.
+    #[getter]
+    fn target_position(&self) -> Vec<f64> {
+        self.inner.target_position.clone()
+    }
+    #[setter]
+    fn set_target_position(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.inner.target_position = floats(v, "target_position", None)?;
+        Ok(())
+    }
+
+    /// `target_velocity`: a list, one value per DOF.
+    #[getter]
+    fn target_velocity(&self) -> Vec<f64> {
+        self.inner.target_velocity.clone()
+    }
+    #[setter]
+    fn set_target_velocity(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.inner.target_velocity = floats(v, "target_velocity", None)?;
+        Ok(())
+    }
+
+    /// `target_acceleration`: a list, one value per DOF.
+    #[getter]
+    fn target_acceleration(&self) -> Vec<f64> {
+        self.inner.target_acceleration.clone()
+    }
+    #[setter]
+    fn set_target_acceleration(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.inner.target_acceleration = floats(v, "target_acceleration", None)?;
+        Ok(())
+    }
+
+    /// `max_velocity`: a list, one value per DOF.
+    #[getter]
+    fn max_velocity(&self) -> Vec<f64> {
+        self.inner.max_velocity.clone()
+    }
+    #[setter]
+    fn set_max_velocity(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.inner.max_velocity = floats(v, "max_velocity", None)?;
+        Ok(())
+    }
+
+    /// `max_acceleration`: a list, one value per DOF.
+    #[getter]
+    fn max_acceleration(&self) -> Vec<f64> {
+        self.inner.max_acceleration.clone()
+    }
+    #[setter]
+    fn set_max_acceleration(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.inner.max_acceleration = floats(v, "max_acceleration", None)?;
+        Ok(())
+    }
+
+    /// `max_jerk`: a list, one value per DOF.
+    #[getter]
+    fn max_jerk(&self) -> Vec<f64> {
+        self.inner.max_jerk.clone()
+    }
+    #[setter]
+    fn set_max_jerk(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.inner.max_jerk = floats(v, "max_jerk", None)?;
+        Ok(())
+    }
+
+    /// Direction-dependent minimum velocity (negative), or `None` for `-max_velocity`.
+    #[getter]
+    fn min_velocity(&self) -> Option<Vec<f64>> {
+        self.inner.min_velocity.clone()
+    }
+    #[setter]
+    fn set_min_velocity(&mut self, v: Option<Bound<'_, PyAny>>) -> PyResult<()> {
+        self.inner.min_velocity = v.map(|v| floats(&v, "min_velocity", None)).transpose()?;
+        Ok(())
+    }
+
+    /// Direction-dependent minimum acceleration (negative), or `None` for `-max_acceleration`.
+    #[getter]
+    fn min_acceleration(&self) -> Option<Vec<f64>> {
+        self.inner.min_acceleration.clone()
+    }
+    #[setter]
+    fn set_min_acceleration(&mut self, v: Option<Bound<'_, PyAny>>) -> PyResult<()> {
+        self.inner.min_acceleration = v
+            .map(|v| floats(&v, "min_acceleration", None))
+            .transpose()?;
+        Ok(())
+    }
+
+    /// Which DOFs are planned (a disabled one keeps its current acceleration).
+    #[getter]
+    fn enabled(&self) -> Vec<bool> {
+        self.inner.enabled.clone()
+    }
+    #[setter]
+    fn set_enabled(&mut self, v: Vec<bool>) {
+        self.inner.enabled = v;
+    }
+
+    /// The trajectory lasts at least this long (seconds), or `None`.
+    #[getter]
+    fn minimum_duration(&self) -> Option<f64> {
+        self.inner.options.minimum_duration
+    }
+    #[setter]
+    fn set_minimum_duration(&mut self, v: Option<f64>) {
+        self.inner.options.minimum_duration = v;
+    }
+
+    /// Time synchronization of the DOFs.
+    #[getter]
+    fn synchronization(&self) -> PySync {
+        sync_from(self.inner.options.synchronization)
+    }
+    #[setter]
+    fn set_synchronization(&mut self, s: PySync) {
+        self.inner.options.synchronization = sync_to(s);
+    }
+
+    /// Position or velocity control.
+    #[getter]
+    fn control_interface(&self) -> PyInterface {
+        match self.inner.options.control_interface {
+            CI::Velocity => PyInterface::Velocity,
+            _ => PyInterface::Position,
+        }
+    }
+    #[setter]
+    fn set_control_interface(&mut self, c: PyInterface) {
+        self.inner.options.control_interface = match c {
+            PyInterface::Position => CI::Position,
+            PyInterface::Velocity => CI::Velocity,
+        };
+    }
+
+    /// Continuous duration, or a multiple of the control period.
+    #[getter]
+    fn duration_discretization(&self) -> PyDiscretization {
+        match self.inner.options.duration_discretization {
+            DD::Discrete => PyDiscretization::Discrete,
+            _ => PyDiscretization::Continuous,
+        }
+    }
+    #[setter]
+    fn set_duration_discretization(&mut self, d: PyDiscretization) {
+        self.inner.options.duration_discretization = match d {
+            PyDiscretization::Continuous => DD::Continuous,
+            PyDiscretization::Discrete => DD::Discrete,
+        };
+    }
+
+    fn __eq__(&self, other: &Self) -> bool {
+        self.inner == other.inner
+    }
+
+    fn __getnewargs__(&self) -> (usize,) {
+        (self.inner.dof(),)
+    }
+
+    fn __getstate__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
+        let i = &self.inner;
+        let o = &i.options;
+        (
+            (
+                i.current_position.clone(),
+                i.current_velocity.clone(),
+                i.current_acceleration.clone(),
+                i.target_position.clone(),
+                i.target_velocity.clone(),
+                i.target_acceleration.clone(),
+            ),
+            (
+                i.max_velocity.clone(),
+                i.max_acceleration.clone(),
+                i.max_jerk.clone(),
+                i.min_velocity.clone(),
+                i.min_acceleration.clone(),
+                i.enabled.clone(),
+            ),
+            (
+                o.minimum_duration,
+                sync_from(o.synchronization) as i64,
+                matches!(o.control_interface, CI::Velocity),
+                matches!(o.duration_discretization, DD::Discrete),
+            ),
+        )
+            .into_pyobject(py)
+    }
+
+    fn __setstate__(&mut self, state: &Bound<'_, PyTuple>) -> PyResult<()> {
+        type States = (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>);
+        type Limits = (
+            Vec<f64>,
+            Vec<f64>,
+            Vec<f64>,
+            Option<Vec<f64>>,
+            Option<Vec<f64>>,
+            Vec<bool>,
+        );
+        let (s, l, o): (States, Limits, (Option<f64>, i64, bool, bool)) = state.extract()?;
+        let i = &mut self.inner;
+        (
+            i.current_position,
+            i.current_velocity,
+            i.current_acceleration,
+            i.target_position,
+            i.target_velocity,
+            i.target_acceleration,
+        ) = s;
+        (
+            i.max_velocity,
+            i.max_acceleration,
+            i.max_jerk,
+            i.min_velocity,
+            i.min_acceleration,
+            i.enabled,
+        ) = l;
+        i.options.minimum_duration = o.0;
+        i.options.synchronization = sync_to(match o.1 {
+            1 => PySync::TimeIfNecessary,
+            2 => PySync::Phase,
+            3 => PySync::No,
+            _ => PySync::Time,
+        });
+        i.options.control_interface = if o.2 { CI::Velocity } else { CI::Position };
+        i.options.duration_discretization = if o.3 { DD::Discrete } else { DD::Continuous };
+        Ok(())
+    }
+
+    fn __repr__(&self) -> String {
+        let i = &self.inner;
+        let mut s = String::new();
+        for (name, v) in [
+            ("current_position", &i.current_position),
+            ("current_velocity", &i.current_velocity),
+            ("current_acceleration", &i.current_acceleration),
+            ("target_position", &i.target_position),
+            ("target_velocity", &i.target_velocity),
+            ("target_acceleration", &i.target_acceleration),
+            ("max_velocity", &i.max_velocity),
+            ("max_acceleration", &i.max_acceleration),
+            ("max_jerk", &i.max_jerk),
+        ] {
+            s.push_str(&format!("inp.{name} = {v:?}\n"));
+        }
+        s
+    }
+}
+
+/// Ruckig's `Bound`: a DOF's position extrema over the trajectory and their times.
+#[pyclass(module = "trajkit.otg", name = "Bound", frozen, get_all)]
+#[derive(Clone)]
+pub struct PyBound {
+    /// Smallest position.
+    min: f64,
+    /// Largest position.
+    max: f64,
+    /// Time of the smallest position.
+    t_min: f64,
+    /// Time of the largest position.
+    t_max: f64,
+}
+
+#[pymethods]
+impl PyBound {
+    fn __repr__(&self) -> String {
+        format!("[{:.6}, {:.6}]", self.min, self.max)
+    }
+}
+
+/// Ruckig's `Trajectory(dofs)`: filled by `Ruckig.calculate`.
+#[pyclass(module = "trajkit.otg", name = "Trajectory")]
+#[derive(Clone)]
+pub struct PyOtgTrajectory {
+    dofs: usize,
+    traj: Option<DynTrajectory>,
+    /// The input and control period it was calculated from (for pickling).
+    source: Option<(DynInputParameter, f64)>,
+}
+
+impl PyOtgTrajectory {
+    fn get(&self) -> PyResult<&DynTrajectory> {
+        self.traj
+            .as_ref()
+            .ok_or_else(|| bad("this trajectory has not been calculated yet"))
+    }
+
+    /// A calculated trajectory (for batches).
+    pub fn calculated(input: DynInputParameter, delta_time: f64, traj: DynTrajectory) -> Self {
+        PyOtgTrajectory {
+            dofs: traj.dof(),
+            traj: Some(traj),
+            source: Some((input, delta_time)),
+        }
+    }
+}
+
+#[pymethods]
+impl PyOtgTrajectory {
+    #[new]
+    fn new(dofs: usize) -> Self {
+        PyOtgTrajectory {
+            dofs,
+            traj: None,
+            source: None,
+        }
+    }
+
+    /// Duration in seconds (0 before a calculation).
+    #[getter]
+    fn duration(&self) -> f64 {
+        self.traj.as_ref().map_or(0.0, |t| t.duration())
+    }
+
+    /// Number of degrees of freedom.
+    #[getter]
+    fn degrees_of_freedom(&self) -> usize {
+        self.dofs
+    }
+
+    /// `(position, velocity, acceleration)` lists at `time`; after the end each DOF continues
+    /// with constant acceleration (Ruckig's convention). `return_section=True` appends the
+    /// section index (always 0: no intermediate waypoints).
+    #[pyo3(signature = (time, return_section = false))]
+    fn at_time<'py>(
+        &self,
+        py: Python<'py>,
+        time: f64,
+        return_section: bool,
+    ) -> PyResult<Bound<'py, PyTuple>> {
+        let t = self.get()?;
+        let n = t.dof();
+        let (mut p, mut v, mut a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        t.at_time(time, &mut p, &mut v, &mut a);
+        if return_section {
+            (p, v, a, 0usize).into_pyobject(py)
+        } else {
+            (p, v, a).into_pyobject(py)
+        }
+    }
+
+    /// The duration each DOF would need on its own.
+    #[getter]
+    fn independent_min_durations(&self) -> PyResult<Vec<f64>> {
+        let t = self.get()?;
+        let mut out = vec![0.0; t.dof()];
+        t.independent_min_durations(&mut out);
+        Ok(out)
+    }
+
+    /// Position extrema per DOF (`Bound` objects with `min`, `max`, `t_min`, `t_max`).
+    #[getter]
+    fn position_extrema(&self) -> PyResult<Vec<PyBound>> {
+        let t = self.get()?;
+        Ok((0..t.dof())
+            .filter_map(|i| t.position_extrema(i))
+            .map(|(min, t_min, max, t_max)| PyBound {
+                min,
+                max,
+                t_min,
+                t_max,
+            })
+            .collect())
+    }
+
+    /// The first time DOF `dof` is at `position`, or `None`.
+    #[pyo3(signature = (dof, position, time_after = 0.0))]
+    fn get_first_time_at_position(
+        &self,
+        dof: usize,
+        position: f64,
+        time_after: f64,
+    ) -> PyResult<Option<f64>> {
+        if time_after != 0.0 {
+            return Err(bad(format!(
+                "time_after = {time_after}: only 0 is supported (the first time from the start)"
+            )));
+        }
+        let t = self.get()?;
+        if dof >= t.dof() {
+            return Err(PyIndexError::new_err(format!(
+                "dof = {dof} is not below the number of DOFs ({})",
+                t.dof()
+            )));
+        }
+        Ok(t.first_time_at_position(dof, position))
+    }
+
+    /// trajkit's vectorized evaluation: the `order`-th derivative (0..3) at every time of `t`
+    /// (any shape), shape `t.shape + (dofs,)`, time clamped to `[0, duration]`.
+    #[pyo3(signature = (t, order = 0))]
+    fn __call__<'py>(
+        &self,
+        py: Python<'py>,
+        t: Floats<'py>,
+        order: i64,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let traj = self.get()?;
+        eval_traj(py, traj, &t, order)
+    }
+
+    fn __getnewargs__(&self) -> (usize,) {
+        (self.dofs,)
+    }
+
+    fn __getstate__(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
+        match &self.source {
+            None => Ok(py.None()),
+            Some((input, dt)) => {
+                let inp = Py::new(
+                    py,
+                    PyInput {
+                        inner: input.clone(),
+                    },
+                )?;
+                Ok((inp, *dt).into_pyobject(py)?.into_any().unbind())
+            }
+        }
+    }
+
+    fn __setstate__(&mut self, state: &Bound<'_, PyAny>) -> PyResult<()> {
+        if state.is_none() {
+            return Ok(());
+        }
+        let (inp, dt): (PyInput, f64) = state.extract()?;
+        let traj = calculate_dyn(&inp.inner, dt).map_err(otg_err)?;
+        self.traj = Some(traj);
+        self.source = Some((inp.inner, dt));
+        Ok(())
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "trajkit.otg.Trajectory(dofs={}, duration={})",
+            self.dofs,
+            self.duration()
+        )
+    }
+}
+
+/// Ruckig's `OutputParameter(dofs)`: the state after an `update`.
+#[pyclass(module = "trajkit.otg", name = "OutputParameter", get_all)]
+pub struct PyOutput {
+    /// Position at the new time.
+    new_position: Vec<f64>,
+    /// Velocity at the new time.
+    new_velocity: Vec<f64>,
+    /// Acceleration at the new time.
+    new_acceleration: Vec<f64>,
+    /// Jerk at the new time.
+    new_jerk: Vec<f64>,
+    /// Time since the trajectory was calculated.
+    time: f64,
+    /// Whether this update calculated a new trajectory.
+    new_calculation: bool,
+    /// Always False (trajkit's calculation is not interrupted).
+    was_calculation_interrupted: bool,
+    /// Wall-clock duration of the calculation in microseconds.
+    calculation_duration: f64,
+    /// Number of degrees of freedom.
+    degrees_of_freedom: usize,
+    /// Section index (always 0: no intermediate waypoints).
+    new_section: usize,
+    /// Always False (no intermediate waypoints).
+    did_section_change: bool,
+    /// The trajectory being followed.
+    trajectory: Py<PyOtgTrajectory>,
+}
+
+#[pymethods]
+impl PyOutput {
+    #[new]
+    fn new(py: Python<'_>, dofs: usize) -> PyResult<Self> {
+        Ok(PyOutput {
+            new_position: vec![0.0; dofs],
+            new_velocity: vec![0.0; dofs],
+            new_acceleration: vec![0.0; dofs],
+            new_jerk: vec![0.0; dofs],
+            time: 0.0,
+            new_calculation: false,
+            was_calculation_interrupted: false,
+            calculation_duration: 0.0,
+            degrees_of_freedom: dofs,
+            new_section: 0,
+            did_section_change: false,
+            trajectory: Py::new(py, PyOtgTrajectory::new(dofs))?,
+        })
+    }
+
+    /// Copies the new state into `input`'s current state (the usual control loop).
+    fn pass_to_input(&self, input: &mut PyInput) {
+        input.inner.current_position.clone_from(&self.new_position);
+        input.inner.current_velocity.clone_from(&self.new_velocity);
+        input
+            .inner
+            .current_acceleration
+            .clone_from(&self.new_acceleration);
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "out.new_position = {:?}\nout.new_velocity = {:?}\nout.new_acceleration = {:?}\nout.new_jerk = {:?}\nout.time = {}\nout.calculation_duration = {}\n",
+            self.new_position,
+            self.new_velocity,
+            self.new_acceleration,
+            self.new_jerk,
+            self.time,
+            self.calculation_duration
+        )
+    }
+}
+
+/// Ruckig's `Ruckig(dofs, delta_time)`: the online trajectory generator.
+#[pyclass(module = "trajkit.otg", name = "Ruckig")]
+pub struct PyRuckig {
+    /// Number of degrees of freedom.
+    #[pyo3(get)]
+    degrees_of_freedom: usize,
+    /// Control period in seconds.
+    #[pyo3(get, set)]
+    delta_time: f64,
+    /// The input of the last calculation in `update` (with the state it advanced to).
+    last: Option<DynInputParameter>,
+    traj: Option<DynTrajectory>,
+    time: f64,
+}
+
+impl PyRuckig {
+    fn check_dofs(&self, n: usize, what: &str) -> PyResult<()> {
+        if n != self.degrees_of_freedom {
+            return Err(bad(format!(
+                "{what} has {n} degrees of freedom, the generator {}",
+                self.degrees_of_freedom
+            )));
+        }
+        Ok(())
+    }
+}
+
+#[pymethods]
+impl PyRuckig {
+    /// A generator for `dofs` degrees of freedom with control period `delta_time` (seconds;
+    /// needed by `update` and by discrete durations). `max_number_of_waypoints` must be 0.
+    #[new]
+    #[pyo3(signature = (dofs, delta_time = 0.0, max_number_of_waypoints = 0))]
+    fn new(dofs: usize, delta_time: f64, max_number_of_waypoints: usize) -> PyResult<Self> {
+        if max_number_of_waypoints != 0 {
+            return Err(bad(format!(
+                "max_number_of_waypoints = {max_number_of_waypoints}: intermediate waypoints are not supported"
+            )));
+        }
+        Ok(PyRuckig {
+            degrees_of_freedom: dofs,
+            delta_time,
+            last: None,
+            traj: None,
+            time: 0.0,
+        })
+    }
+
+    /// Calculates the trajectory for `input` into `trajectory`; returns `Result.Working`.
+    /// Raises `RuckigError` (= `trajkit.TrajkitError`) with trajkit's message on failure.
+    fn calculate(
+        &self,
+        input: PyRef<'_, PyInput>,
+        mut trajectory: PyRefMut<'_, PyOtgTrajectory>,
+    ) -> PyResult<PyResult_> {
+        self.check_dofs(input.inner.dof(), "the input")?;
+        let t = calculate_dyn(&input.inner, self.delta_time).map_err(otg_err)?;
+        trajectory.dofs = t.dof();
+        trajectory.traj = Some(t);
+        trajectory.source = Some((input.inner.clone(), self.delta_time));
+        Ok(PyResult_::Working)
+    }
+
+    /// One control cycle: calculate if `input` changed, advance by `delta_time`, write the new
+    /// state into `output`. Returns `Result.Working` or `Result.Finished`.
+    fn update(
+        &mut self,
+        py: Python<'_>,
+        input: PyRef<'_, PyInput>,
+        mut output: PyRefMut<'_, PyOutput>,
+    ) -> PyResult<PyResult_> {
+        self.check_dofs(input.inner.dof(), "the input")?;
+        output.new_calculation = false;
+        output.calculation_duration = 0.0;
+        if self.last.as_ref() != Some(&input.inner) || self.traj.is_none() {
+            let start = Instant::now();
+            let r = calculate_dyn(&input.inner, self.delta_time);
+            output.calculation_duration = start.elapsed().as_secs_f64() * 1e6;
+            match r {
+                Ok(t) => self.traj = Some(t),
+                Err(e) => {
+                    self.last = None;
+                    return Err(otg_err(e));
+                }
+            }
+            self.last = Some(input.inner.clone());
+            self.time = 0.0;
+            output.new_calculation = true;
+            let mut ot = output.trajectory.borrow_mut(py);
+            ot.traj.clone_from(&self.traj);
+            ot.source = Some((input.inner.clone(), self.delta_time));
+        }
+        self.time += self.delta_time;
+        let traj = self.traj.as_ref().expect("calculated above");
+        let out = &mut *output;
+        traj.at_time_with_jerk(
+            self.time,
+            &mut out.new_position,
+            &mut out.new_velocity,
+            &mut out.new_acceleration,
+            &mut out.new_jerk,
+        );
+        out.time = self.time;
+        if let Some(last) = self.last.as_mut() {
+            last.current_position.clone_from(&out.new_position);
+            last.current_velocity.clone_from(&out.new_velocity);
+            last.current_acceleration.clone_from(&out.new_acceleration);
+        }
+        Ok(if self.time >= traj.duration() {
+            PyResult_::Finished
+        } else {
+            PyResult_::Working
+        })
+    }
+
+    /// Forgets the last input: the next `update` calculates anew.
+    fn reset(&mut self) {
+        self.last = None;
+        self.traj = None;
+        self.time = 0.0;
+    }
+}
+
+/// Registers the online-generation classes.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyResult_>()?;
+    m.add_class::<PySync>()?;
+    m.add_class::<PyInterface>()?;
+    m.add_class::<PyDiscretization>()?;
+    m.add_class::<PyInput>()?;
+    m.add_class::<PyOutput>()?;
+    m.add_class::<PyOtgTrajectory>()?;
+    m.add_class::<PyBound>()?;
+    m.add_class::<PyRuckig>()?;
+    Ok(())
+}

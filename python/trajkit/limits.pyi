@@ -1,0 +1,1 @@
+from ._trajkit import Limits as Limits

@@ -1,0 +1,73 @@
+"""Online jerk-limited trajectory generation with Ruckig's Python API.
+
+A Ruckig script runs after changing ``from ruckig import ...`` to
+``from trajkit.otg import ...``::
+
+    from trajkit.otg import InputParameter, OutputParameter, Result, Ruckig
+
+    otg = Ruckig(3, 0.01)
+    inp, out = InputParameter(3), OutputParameter(3)
+    inp.current_position = [0.0, 0.0, 0.5]
+    inp.target_position = [5.0, -2.0, -3.5]
+    inp.max_velocity = [3.0, 1.0, 3.0]
+    inp.max_acceleration = [3.0, 2.0, 1.0]
+    inp.max_jerk = [4.0, 3.0, 2.0]
+    res = Result.Working
+    while res == Result.Working:
+        res = otg.update(inp, out)
+        out.pass_to_input(inp)
+
+Same names as Ruckig: ``Ruckig``, ``InputParameter``, ``OutputParameter``, ``Trajectory``
+(``duration``, ``at_time``, ``position_extrema``, ``independent_min_durations``,
+``get_first_time_at_position``), ``Bound``, ``Result``, ``Synchronization`` (``Time``,
+``TimeIfNecessary``, ``Phase``, ``No``), ``ControlInterface``, ``DurationDiscretization`` and
+``RuckigError`` (here the same class as ``trajkit.TrajkitError``, a ``ValueError``).
+Not supported (Ruckig Pro features): intermediate waypoints, position limits, per-section
+limits; setting those attributes raises ``AttributeError``.
+
+trajkit adds vectorized evaluation: ``trajectory(t, order=0)`` for an array ``t``.
+"""
+
+from ._trajkit import TrajkitError
+from ._trajkit import otg as _o
+
+Ruckig = _o.Ruckig
+InputParameter = _o.InputParameter
+OutputParameter = _o.OutputParameter
+Trajectory = _o.Trajectory
+Bound = _o.Bound
+Result = _o.Result
+Synchronization = _o.Synchronization
+ControlInterface = _o.ControlInterface
+DurationDiscretization = _o.DurationDiscretization
+RuckigError = TrajkitError
+
+# Ruckig also exports the enum members at module level.
+Working = Result.Working
+Finished = Result.Finished
+Error = Result.Error
+ErrorInvalidInput = Result.ErrorInvalidInput
+ErrorPositionalLimits = Result.ErrorPositionalLimits
+ErrorExecutionTimeCalculation = Result.ErrorExecutionTimeCalculation
+ErrorSynchronizationCalculation = Result.ErrorSynchronizationCalculation
+Time = Synchronization.Time
+TimeIfNecessary = Synchronization.TimeIfNecessary
+Phase = Synchronization.Phase
+No = Synchronization.No
+Position = ControlInterface.Position
+Velocity = ControlInterface.Velocity
+Continuous = DurationDiscretization.Continuous
+Discrete = DurationDiscretization.Discrete
+
+__all__ = [
+    "Ruckig",
+    "InputParameter",
+    "OutputParameter",
+    "Trajectory",
+    "Bound",
+    "Result",
+    "Synchronization",
+    "ControlInterface",
+    "DurationDiscretization",
+    "RuckigError",
+]

@@ -1,0 +1,59 @@
+from typing import List, Optional, Tuple
+from ._trajkit import ArrayLike, FloatArray, TrajkitError
+
+RuckigError = TrajkitError
+
+class Result:
+    Working: "Result"; Finished: "Result"; Error: "Result"; ErrorInvalidInput: "Result"
+    ErrorPositionalLimits: "Result"; ErrorExecutionTimeCalculation: "Result"; ErrorSynchronizationCalculation: "Result"
+    def __int__(self) -> int: ...
+class Synchronization:
+    Time: "Synchronization"; TimeIfNecessary: "Synchronization"; Phase: "Synchronization"; No: "Synchronization"
+class ControlInterface:
+    Position: "ControlInterface"; Velocity: "ControlInterface"
+class DurationDiscretization:
+    Continuous: "DurationDiscretization"; Discrete: "DurationDiscretization"
+
+class InputParameter:
+    current_position: List[float]; current_velocity: List[float]; current_acceleration: List[float]
+    target_position: List[float]; target_velocity: List[float]; target_acceleration: List[float]
+    max_velocity: List[float]; max_acceleration: List[float]; max_jerk: List[float]
+    min_velocity: Optional[List[float]]; min_acceleration: Optional[List[float]]
+    enabled: List[bool]; minimum_duration: Optional[float]
+    synchronization: Synchronization; control_interface: ControlInterface
+    duration_discretization: DurationDiscretization
+    def __init__(self, dofs: int) -> None: ...
+    @property
+    def degrees_of_freedom(self) -> int: ...
+
+class Bound:
+    min: float; max: float; t_min: float; t_max: float
+
+class Trajectory:
+    def __init__(self, dofs: int) -> None: ...
+    @property
+    def duration(self) -> float: ...
+    @property
+    def degrees_of_freedom(self) -> int: ...
+    @property
+    def independent_min_durations(self) -> List[float]: ...
+    @property
+    def position_extrema(self) -> List[Bound]: ...
+    def at_time(self, time: float, return_section: bool = False) -> Tuple[List[float], List[float], List[float]]: ...
+    def get_first_time_at_position(self, dof: int, position: float, time_after: float = 0.0) -> Optional[float]: ...
+    def __call__(self, t: ArrayLike, order: int = 0) -> FloatArray: ...
+
+class OutputParameter:
+    new_position: List[float]; new_velocity: List[float]; new_acceleration: List[float]; new_jerk: List[float]
+    time: float; new_calculation: bool; was_calculation_interrupted: bool; calculation_duration: float
+    degrees_of_freedom: int; new_section: int; did_section_change: bool; trajectory: Trajectory
+    def __init__(self, dofs: int) -> None: ...
+    def pass_to_input(self, input: InputParameter) -> None: ...
+
+class Ruckig:
+    degrees_of_freedom: int
+    delta_time: float
+    def __init__(self, dofs: int, delta_time: float = 0.0, max_number_of_waypoints: int = 0) -> None: ...
+    def calculate(self, input: InputParameter, trajectory: Trajectory) -> Result: ...
+    def update(self, input: InputParameter, output: OutputParameter) -> Result: ...
+    def reset(self) -> None: ...

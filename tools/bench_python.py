@@ -1,0 +1,133 @@
+#!/usr/bin/env python3
+"""Speed of the trajkit Python package next to the Python peers, in one run, one process.
+
+- OTG: ``calculate`` per call on the same seeded 7-DOF problems, trajkit.otg vs the ruckig
+  wheel (rest to rest and general states), median over repeated passes;
+- splines: vectorized evaluation of a 7-joint not-a-knot cubic spline (100 waypoints) at
+  10^6 times, trajkit.spline.CubicSpline vs scipy.interpolate.CubicSpline (values);
+- TOPP: the standard problem of tools/bench_topp_peer.py (7-DOF Panda limits, natural cubic
+  spline through the 7 waypoints of the `standard_7wp_natural_N1000` fixture, 1000 uniform
+  intervals plus breakpoints): trajkit.topp.TOPPRA(...).compute_trajectory() vs toppra's
+  TOPPRA constructor + compute_parameterization (seidel); trajkit on the same grid
+  (refine=False), and once more with its default grid refinement.
+
+Run inside an environment with the package and the peers (python/requirements-test.txt):
+    python tools/bench_python.py [repeats]
+"""
+import json
+import os
+import statistics
+import sys
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def timeit(f, repeats, inner=1):
+    ts = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        for _ in range(inner):
+            f()
+        ts.append((time.perf_counter() - t0) / inner)
+    return statistics.median(ts)
+
+
+def otg_problems(mod, n, general, seed=3):
+    rng = np.random.default_rng(seed)
+    out = []
+    for _ in range(n):
+        inp = mod.InputParameter(7)
+        vmax, amax, jmax = rng.uniform(0.5, 3, 7), rng.uniform(1, 8, 7), rng.uniform(5, 40, 7)
+        inp.current_position = list(rng.uniform(-3, 3, 7))
+        inp.target_position = list(rng.uniform(-3, 3, 7))
+        if general:
+            inp.current_velocity = list(rng.uniform(-0.9, 0.9, 7) * vmax)
+            inp.current_acceleration = list(rng.uniform(-0.9, 0.9, 7) * amax)
+            inp.target_velocity = list(rng.uniform(-0.5, 0.5, 7) * vmax)
+        inp.max_velocity, inp.max_acceleration, inp.max_jerk = list(vmax), list(amax), list(jmax)
+        out.append(inp)
+    return out
+
+
+def bench_otg(repeats):
+    import ruckig
+    from trajkit import otg as tk
+    rows = []
+    for general in (False, True):
+        res = {}
+        for mod in (ruckig, tk):
+            probs = otg_problems(mod, 500, general)
+            gen, traj = mod.Ruckig(7, 0.001), mod.Trajectory(7)
+
+            def run():
+                for p in probs:
+                    gen.calculate(p, traj)
+            res[mod.__name__] = timeit(run, repeats) / len(probs)
+        rows.append(("OTG calculate, 7 DOF, " + ("general states" if general else "rest to rest"),
+                     res["trajkit.otg"], res["ruckig"]))
+    return rows
+
+
+def bench_spline(repeats):
+    from scipy.interpolate import CubicSpline as SciCS
+    from trajkit.spline import CubicSpline
+    rng = np.random.default_rng(0)
+    x = np.cumsum(rng.uniform(0.1, 1, 100))
+    y = rng.normal(size=(100, 7))
+    t = np.sort(rng.uniform(x[0], x[-1], 1_000_000))
+    ours, ref = CubicSpline(x, y), SciCS(x, y)
+    assert np.allclose(ours(t), ref(t), atol=1e-12)
+    return [("CubicSpline eval, 7 joints, 1e6 times (per call)",
+             timeit(lambda: ours(t), repeats), timeit(lambda: ref(t), repeats))]
+
+
+def bench_topp(repeats):
+    import toppra as ta
+    import toppra.algorithm as algo
+    import toppra.constraint as constraint
+    from trajkit import topp
+    ta.setup_logging("WARNING")
+    fix = os.path.join(HERE, "..", "crates", "trajkit", "tests", "fixtures", "topp", "toppra_panda.json")
+    prob = next(p for p in json.load(open(fix))["problems"] if p["name"] == "standard_7wp_natural_N1000")
+    wp = np.array(prob["waypoints"])
+    ss = np.linspace(0.0, 1.0, len(wp))
+    vmax, amax = np.array(prob["vmax"]), np.array(prob["amax"])
+    vlim, alim = np.vstack([-vmax, vmax]).T, np.vstack([-amax, amax]).T
+    g = np.linspace(0.0, 1.0, 1001)
+    grid = np.array(sorted(set(list(ss) + [s for s in g if np.min(np.abs(ss - s)) > 1e-9])))
+    path_ref = ta.SplineInterpolator(ss, wp, bc_type="natural")
+    pc = [constraint.JointVelocityConstraint(vlim),
+          constraint.JointAccelerationConstraint(alim, discretization_scheme=constraint.DiscretizationType.Interpolation)]
+
+    def peer():
+        algo.TOPPRA(pc, path_ref, gridpoints=grid, solver_wrapper="seidel",
+                    parametrizer="ParametrizeConstAccel").compute_parameterization(0.0, 0.0)
+    path = topp.SplineInterpolator(ss, wp, bc_type="natural")
+    cons = [topp.JointVelocityConstraint(vlim), topp.JointAccelerationConstraint(alim)]
+
+    def ours():
+        # Like toppra: the given grid only (refine=False); the default also refines.
+        topp.TOPPRA(cons, path, gridpoints=1000, refine=False).compute_trajectory(0.0, 0.0)
+
+    def refined():
+        topp.TOPPRA(cons, path, gridpoints=1000).compute_trajectory(0.0, 0.0)
+    t_peer = timeit(peer, max(3, repeats // 3))
+    return [("TOPP-RA, standard problem (N = 1000), from Python", timeit(ours, repeats), t_peer),
+            ("  the same with trajkit's grid refinement (default)", timeit(refined, 3), t_peer)]
+
+
+def main():
+    repeats = int(sys.argv[1]) if len(sys.argv) > 1 else 15
+    print(f"load: {os.getloadavg()}")
+    rows = bench_otg(repeats) + bench_spline(repeats) + bench_topp(repeats)
+    print(f"{'benchmark':55} {'trajkit':>12} {'peer':>12} {'peer/trajkit':>12}")
+    for name, ours, peer in rows:
+        print(f"{name:55} {ours * 1e6:10.2f}us {peer * 1e6:10.2f}us {peer / ours:11.1f}x")
+    print(f"load: {os.getloadavg()}")
+
+
+if __name__ == "__main__":
+    main()
