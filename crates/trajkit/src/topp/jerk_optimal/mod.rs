@@ -306,7 +306,7 @@ impl<'c, P: Path> JerkOptimal<'c, P> {
             let change = previous
                 .as_ref()
                 .map_or(f64::INFINITY, |p| (p.duration() - t_new).abs() / t_new);
-            let done = self.options.steps.is_some() || change <= tol || 2 * steps > MAX_STEPS;
+            let done = self.options.steps.is_some() || change <= tol || 2 * steps > MAX_AUTO_STEPS;
             if done {
                 let scale = time_scale_for(solved.worst);
                 profile.set_scale(scale);
@@ -333,9 +333,11 @@ impl<'c, P: Path> JerkOptimal<'c, P> {
 /// TOPP-RA intervals of the raw timing that seeds the planner.
 const RAW_STEPS: usize = 400;
 /// Time steps of the first grid.
-const INITIAL_STEPS: usize = 100;
+const INITIAL_STEPS: usize = 200;
 /// Largest number of time steps.
 const MAX_STEPS: usize = 1 << 20;
+/// Largest number of time steps the automatic grid doubles to.
+const MAX_AUTO_STEPS: usize = 1600;
 /// Halvings of the first and last intervals.
 const END_LEVELS: usize = 12;
 

@@ -12,10 +12,10 @@ use crate::Path;
 
 /// Limits at cuts are met with this relative margin, so that a cut placed at the worst point
 /// of an interval also covers its neighbourhood after the next solve.
-const CUT_SHRINK: f64 = 1.0 - 1e-8;
+const CUT_SHRINK: f64 = 1.0 - 1e-6;
 
 /// Relative excess accepted between gridpoints (rounding of the certification itself).
-pub(crate) const CERT_TOL: f64 = 1e-9;
+pub(crate) const CERT_TOL: f64 = 1e-7;
 
 /// Rounds of linearization and certification at most.
 pub(crate) const MAX_ROUNDS: usize = 12;
