@@ -138,7 +138,7 @@ fn one_joint_line_limits_hold_continuously_and_beat_the_filter() {
     assert!(w.iter().all(|&r| r <= 1.0 + 1e-7), "{w:?}");
     // The exact optimum is 1.7 s; the filter takes 1.9 s.
     let t = traj.duration();
-    assert!(t >= 1.7 * (1.0 - 1e-9) && t < 1.8, "{t}");
+    assert!((1.7 * (1.0 - 1e-9)..1.8).contains(&t), "{t}");
     let (_, filt) = raw_and_filter(&path, &limits);
     assert!(t < filt, "{t} vs filter {filt}");
     let fd = finite_difference_error(&traj, 997);
@@ -258,7 +258,7 @@ fn line_pieces(c: &Value) -> Vec<LinearPath> {
         .as_array()
         .unwrap()
         .iter()
-        .flat_map(|r| topp_common::floats(r))
+        .flat_map(topp_common::floats)
         .collect();
     let count = w.len() / dof;
     let mut cuts = vec![0];
@@ -304,7 +304,7 @@ fn straight_lines_are_never_faster_than_ruckig_and_close_to_it() {
         let exact = c["duration"].as_f64().unwrap();
         let ratio = seq.duration() / exact;
         assert!(
-            ratio >= 1.0 - 1e-7 && ratio < 1.05,
+            (1.0 - 1e-7..1.05).contains(&ratio),
             "{}: {} vs {exact}",
             c["name"],
             seq.duration()
@@ -366,6 +366,64 @@ fn report_random_paths() {
                 100.0 * (filt / raw - 1.0),
                 100.0 * (t / raw - 1.0),
                 (t - raw) / (filt - raw)
+            );
+        }
+    }
+}
+
+/// BENCHMARKS.md: the 7-waypoint standard problem (natural spline through the
+/// `standard_7wp_natural_N1000` waypoints at s = 0, 1/6, …, 1) and seeded random paths of 10
+/// and 100 waypoints, Panda limits, default options: median of 3 solves (`Instant`), duration
+/// against raw TOPP-RA and the filter.
+#[test]
+#[ignore]
+fn report_speed_and_standard_problem() {
+    let p = topp_common::fixtures()
+        .into_iter()
+        .find(|p| p["name"] == "standard_7wp_natural_N1000")
+        .unwrap();
+    let wp: Vec<f64> = p["waypoints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(topp_common::floats)
+        .collect();
+    let n = wp.len() / 7;
+    let ss: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
+    let standard = CubicSpline::natural(&ss, &wp, 7).unwrap();
+    println!("| problem | jerk | raw TOPP-RA (s) | filter (s) | jerk_optimal (s) | gridpoints | rounds | cuts | median solve ms | filter ms |");
+    println!("|---|---|---|---|---|---|---|---|---|---|");
+    let cases: Vec<(String, CubicSpline)> = vec![
+        ("standard_7wp".into(), standard),
+        ("random_10wp".into(), random_path(2026, 10)),
+        ("random_100wp".into(), random_path(2026, 100)),
+    ];
+    for (name, path) in cases {
+        for scale in [1.0, 0.01] {
+            let limits = panda_with_jerk_scale(scale);
+            let t0 = std::time::Instant::now();
+            let (raw, filt) = raw_and_filter(&path, &limits);
+            let filter_ms = t0.elapsed().as_secs_f64() * 1e3;
+            let mut times = Vec::new();
+            let mut last = None;
+            for _ in 0..3 {
+                let t0 = std::time::Instant::now();
+                let traj = JerkOptimal::new(&path, &limits).unwrap().solve().unwrap();
+                times.push(t0.elapsed().as_secs_f64() * 1e3);
+                last = Some(traj);
+            }
+            times.sort_by(f64::total_cmp);
+            let traj = last.unwrap();
+            let w = worst_ratio(&traj, &limits, 50_000.0);
+            assert!(w.iter().all(|&r| r <= 1.0 + 1e-7), "{w:?}");
+            let r = traj.law().report();
+            println!(
+                "| {name} | {scale} | {raw:.5} | {filt:.5} | {:.5} | {} | {} | {} | {:.0} | {filter_ms:.0} |",
+                traj.duration(),
+                r.gridpoints,
+                r.total_rounds,
+                r.cuts,
+                times[1]
             );
         }
     }

@@ -93,7 +93,7 @@ impl JerkProfile {
         let mut v = vec![0.0; n];
         let mut t = vec![0.0; n + 1];
         let d0 = s[1] - s[0];
-        if !(u[1] > 0.0) {
+        if u[1].is_nan() || u[1] <= 0.0 {
             return Err(Error::Infeasible(format!(
                 "the path cannot start moving from s = {} (path acceleration {} at s = {})",
                 s[0], u[1], s[1]
@@ -116,7 +116,7 @@ impl JerkProfile {
             t[i + 1] = t[i] + dt;
         }
         let dl = s[n] - s[n - 1];
-        if !(u[n - 1] < 0.0) {
+        if u[n - 1].is_nan() || u[n - 1] >= 0.0 {
             return Err(Error::Infeasible(format!(
                 "the path cannot come to rest at s = {} (path acceleration {} at s = {})",
                 s[n],

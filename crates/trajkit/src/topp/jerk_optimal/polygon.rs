@@ -170,6 +170,7 @@ impl Polygon {
 
     /// The interval of t for which `p + t·d` lies in the polygon (with the polygon's
     /// tolerance), or `None` when the line misses it.
+    #[cfg(test)]
     pub(crate) fn line_range(&self, p: Pt, d: Pt) -> Option<(f64, f64)> {
         self.line_range_tol(p, d, 1e-9)
     }
@@ -180,8 +181,10 @@ impl Polygon {
     /// violation of an edge), as a one-point interval.
     pub(crate) fn line_range_robust(&self, p: Pt, d: Pt) -> Option<(f64, f64)> {
         if self.v.len() >= 3 {
-            if let Some(r) = self.line_range_tol(p, d, -1e-10) {
-                return Some(r);
+            for rel in [-1e-10, -1e-13, 0.0] {
+                if let Some(r) = self.line_range_tol(p, d, rel) {
+                    return Some(r);
+                }
             }
         }
         if let Some(r) = self.line_range_tol(p, d, 1e-9) {

@@ -373,6 +373,14 @@ impl<'a, 'c, P: Path> Problem<'a, 'c, P> {
                 let len = self.g.s[i + 1] - self.g.s[i];
                 let d = d.clamp(1e-6 * len, (1.0 - 1e-6) * len);
                 self.add_cut(i, d, xs.max(1e-300))?;
+                // An interval that keeps failing (its worst point moves from round to round)
+                // gets its rows at a few more points.
+                if round >= 3 {
+                    let st = self.state(&x, &u, i);
+                    for f in [0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875] {
+                        self.add_cut(i, f * len, st.x_at(f * len).max(1e-300))?;
+                    }
+                }
             }
         }
         unreachable!("the loop returns in its last round")

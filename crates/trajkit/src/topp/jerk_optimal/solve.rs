@@ -52,8 +52,8 @@ pub(crate) enum PassError {
 pub(crate) struct Passes {
     pub(crate) k: Vec<Polygon>,
     rows: Vec<Row>,
-    up: Vec<[f64; 3]>,
-    lo: Vec<[f64; 3]>,
+    up: Vec<Row>,
+    lo: Vec<Row>,
     scratch: Vec<Pt>,
     used: Vec<bool>,
     /// Largest relative violation of a stage row accepted by the forward pass.
@@ -131,22 +131,31 @@ impl Passes {
         Ok(())
     }
 
-    /// Eliminates v from `self.rows` into `p` (see the module documentation).
+    /// Eliminates v from `self.rows` into `p` (see the module documentation). Rows are
+    /// normalized by the polygon's extent; a pair (k, l) of an upper and a lower bound on v is
+    /// combined without dividing by either coefficient of v, `|a_v,l|·r_k + a_v,k·r_l ≤ 0`, so
+    /// that a row almost free of v keeps its own scale (and its own tolerance).
     fn project(&mut self, p: &mut Polygon) {
         self.up.clear();
         self.lo.clear();
+        let (ex, eu) = p.extent();
         for r in &self.rows {
             let [ax, au, av, c] = *r;
             if av == 0.0 {
                 p.clip([ax, au], c, &mut self.scratch);
+                continue;
+            }
+            let m = ax.abs() * ex + au.abs() * eu + c.abs();
+            let m = if m > 0.0 && m.is_finite() {
+                1.0 / m
             } else {
-                // v ≤ or ≥ (c − ax·x − au·u)/av.
-                let b = [-ax / av, -au / av, c / av];
-                if av > 0.0 {
-                    self.up.push(b);
-                } else {
-                    self.lo.push(b);
-                }
+                1.0
+            };
+            let row = [ax * m, au * m, av * m, c * m];
+            if av > 0.0 {
+                self.up.push(row);
+            } else {
+                self.lo.push(row);
             }
         }
         if self.up.is_empty() || self.lo.is_empty() || p.is_empty() {
@@ -155,43 +164,47 @@ impl Passes {
         let (nu, nl) = (self.up.len(), self.lo.len());
         self.used.clear();
         self.used.resize(nu * nl, false);
-        let ev = |b: &[f64; 3], q: &Pt| b[0] * q[0] + b[1] * q[1] + b[2];
-        let mag = |b: &[f64; 3], q: &Pt| (b[0] * q[0]).abs() + (b[1] * q[1]).abs() + b[2].abs();
+        // v bound of a row at q: (c − ax·x − au·u)/av.
+        let bound = |r: &[f64; 4], q: &Pt| (r[3] - r[0] * q[0] - r[1] * q[1]) / r[2];
         for _ in 0..nu * nl {
-            // The most violated vertex and its pair.
             let mut worst: Option<(f64, usize, usize)> = None;
             for q in &p.v {
-                let (mut umin, mut ku, mut su) = (f64::INFINITY, 0, 0.0);
-                for (k, b) in self.up.iter().enumerate() {
-                    let val = ev(b, q);
-                    if val < umin {
-                        umin = val;
+                let (mut umin, mut ku) = (f64::INFINITY, 0);
+                for (k, r) in self.up.iter().enumerate() {
+                    let b = bound(r, q);
+                    if b < umin {
+                        umin = b;
                         ku = k;
-                        su = mag(b, q);
                     }
                 }
-                let (mut lmax, mut kl, mut sl) = (f64::NEG_INFINITY, 0, 0.0);
-                for (k, b) in self.lo.iter().enumerate() {
-                    let val = ev(b, q);
-                    if val > lmax {
-                        lmax = val;
+                let (mut lmax, mut kl) = (f64::NEG_INFINITY, 0);
+                for (k, r) in self.lo.iter().enumerate() {
+                    let b = bound(r, q);
+                    if b > lmax {
+                        lmax = b;
                         kl = k;
-                        sl = mag(b, q);
                     }
                 }
-                let gap = lmax - umin;
-                let tol = 1e-11 * (su + sl);
-                if gap > tol && !self.used[ku * nl + kl] && worst.is_none_or(|w| gap > w.0) {
+                if lmax <= umin || self.used[ku * nl + kl] {
+                    continue;
+                }
+                let (ru, rl) = (&self.up[ku], &self.lo[kl]);
+                let (wu, wl) = (-rl[2], ru[2]);
+                let val = |r: &[f64; 4]| r[0] * q[0] + r[1] * q[1] - r[3];
+                let mag = |r: &[f64; 4]| (r[0] * q[0]).abs() + (r[1] * q[1]).abs() + r[3].abs();
+                let gap = wu * val(ru) + wl * val(rl);
+                let tol = 1e-12 * (wu * mag(ru) + wl * mag(rl));
+                if gap > tol && worst.is_none_or(|w| gap > w.0) {
                     worst = Some((gap, ku, kl));
                 }
             }
             let Some((_, ku, kl)) = worst else { break };
             self.used[ku * nl + kl] = true;
-            let (bu, bl) = (self.up[ku], self.lo[kl]);
-            // L ≤ U ⇔ (L − U)·(x, u) ≤ U_c − L_c.
+            let (ru, rl) = (self.up[ku], self.lo[kl]);
+            let (wu, wl) = (-rl[2], ru[2]);
             p.clip(
-                [bl[0] - bu[0], bl[1] - bu[1]],
-                bu[2] - bl[2],
+                [wu * ru[0] + wl * rl[0], wu * ru[1] + wl * rl[1]],
+                wu * ru[3] + wl * rl[3],
                 &mut self.scratch,
             );
             if p.is_empty() {
@@ -219,7 +232,7 @@ impl Passes {
             .line_range_robust([0.0, 0.0], [1.5 * d0, 1.0])
             .ok_or(PassError::NoStart)?;
         let u1 = hi.min(src.first_rest());
-        if !(u1 > 0.0) {
+        if u1.is_nan() || u1 <= 0.0 {
             return Err(PassError::NoStart);
         }
         u[1] = u1;
@@ -248,6 +261,8 @@ impl Passes {
                 else {
                     return Err(PassError::Lost(i + 1));
                 };
+                // Staying controllable comes first: a state a hair outside K_i (rounding) may
+                // leave the rows no room; the certification then measures the excess.
                 vhi.min(khi).max(klo)
             };
             if v > vhi || v < vlo {
@@ -268,7 +283,7 @@ impl Passes {
 /// Whether the state at N−1 is off the final ray by more than rounding.
 fn i_last_bad(x: &[f64], u: &[f64], n: usize, dl: f64) -> bool {
     let want = -1.5 * dl * u[n - 1];
-    !(u[n - 1] < 0.0) || (x[n - 1] - want).abs() > 1e-6 * want.abs().max(x[n - 1].abs())
+    u[n - 1].is_nan() || u[n - 1] >= 0.0 || (x[n - 1] - want).abs() > 1e-6 * want.abs().max(x[n - 1].abs())
 }
 
 /// The v of the last middle stage (length Δ) that lands on the final rest ray (length Δ_L):
