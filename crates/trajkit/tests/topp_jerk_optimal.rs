@@ -428,3 +428,98 @@ fn report_speed_and_standard_problem() {
         }
     }
 }
+
+/// BENCHMARKS.md: a path with 1e-3 rad segments (a cluster of waypoints 1e-3 rad apart in the
+/// middle of a 5-waypoint Panda path), Panda limits: the filter's one local spike decides the
+/// whole motion there.
+#[test]
+#[ignore]
+fn report_short_segments() {
+    let mut rng = SplitMix64::new(33);
+    let panda = Limits::preset("panda").unwrap();
+    let mut w: Vec<f64> = Vec::new();
+    let random = |rng: &mut SplitMix64| -> Vec<f64> {
+        panda
+            .joints()
+            .iter()
+            .map(|j| rng.uniform(j.position_min + 0.3, j.position_max - 0.3))
+            .collect()
+    };
+    let (a, b) = (random(&mut rng), random(&mut rng));
+    w.extend(&a);
+    // Three 1e-3 rad steps along a random direction halfway to b.
+    let dir: Vec<f64> = (0..7).map(|_| rng.uniform(-1.0, 1.0)).collect();
+    let norm = dir.iter().map(|d| d * d).sum::<f64>().sqrt();
+    let mid: Vec<f64> = (0..7).map(|j| 0.5 * (a[j] + b[j])).collect();
+    for k in 0..4 {
+        w.extend((0..7).map(|j| mid[j] + 1e-3 * k as f64 * dir[j] / norm));
+    }
+    w.extend(&b);
+    let count = w.len() / 7;
+    let mut s = vec![0.0; count];
+    for i in 1..count {
+        let d: f64 = (0..7)
+            .map(|j| (w[i * 7 + j] - w[(i - 1) * 7 + j]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        s[i] = s[i - 1] + d;
+    }
+    let path = CubicSpline::natural(&s, &w, 7).unwrap();
+    let (raw, filt) = raw_and_filter(&path, &panda);
+    let t0 = std::time::Instant::now();
+    let traj = JerkOptimal::new(&path, &panda).unwrap().solve().unwrap();
+    let ms = t0.elapsed().as_secs_f64() * 1e3;
+    let w = worst_ratio(&traj, &panda, 50_000.0);
+    assert!(w.iter().all(|&r| r <= 1.0 + 1e-7), "{w:?}");
+    let t = traj.duration();
+    println!(
+        "| short_segments_1e-3 | raw {raw:.4} | filter {filt:.4} ({:+.1} %) | jerk_optimal {t:.4} ({:+.2} %) | {ms:.0} ms | {:?}",
+        100.0 * (filt / raw - 1.0),
+        100.0 * (t / raw - 1.0),
+        traj.law().report()
+    );
+}
+
+/// BENCHMARKS.md: curved paths against the independent fine-grid IPOPT reference
+/// (`tests/fixtures/jerk/curved_ipopt.json` from `tools/jerk_reference_ipopt.py`).
+#[test]
+#[ignore]
+fn report_curved_against_ipopt() {
+    let p = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/jerk/curved_ipopt.json"
+    );
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
+    println!("| path | jerk | IPOPT reference (s) | raw TOPP-RA (s) | filter (s) | jerk_optimal (s) | jerk_optimal / IPOPT | filter / IPOPT |");
+    println!("|---|---|---|---|---|---|---|---|");
+    for c in v["cases"].as_array().unwrap() {
+        let w: Vec<f64> = c["waypoints"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .flat_map(topp_common::floats)
+            .collect();
+        let count = w.len() / 7;
+        let mut s = vec![0.0; count];
+        for i in 1..count {
+            let d: f64 = (0..7)
+                .map(|j| (w[i * 7 + j] - w[(i - 1) * 7 + j]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            s[i] = s[i - 1] + d;
+        }
+        let path = CubicSpline::natural(&s, &w, 7).unwrap();
+        let scale = c["jerk_scale"].as_f64().unwrap();
+        let limits = panda_with_jerk_scale(scale);
+        let (raw, filt) = raw_and_filter(&path, &limits);
+        let traj = JerkOptimal::new(&path, &limits).unwrap().solve().unwrap();
+        let reference = c["duration"].as_f64().unwrap();
+        println!(
+            "| {} | {scale} | {reference:.5} | {raw:.5} | {filt:.5} | {:.5} | {:.4} | {:.4} |",
+            c["name"].as_str().unwrap(),
+            traj.duration(),
+            traj.duration() / reference,
+            filt / reference
+        );
+    }
+}
