@@ -523,3 +523,25 @@ fn report_curved_against_ipopt() {
         );
     }
 }
+
+/// BENCHMARKS.md: one solve of a seeded 100-waypoint path at the Panda's limits.
+#[test]
+#[ignore]
+fn report_hundred_waypoints() {
+    let path = random_path(2026, 100);
+    let limits = panda_with_jerk_scale(1.0);
+    let (raw, filt) = raw_and_filter(&path, &limits);
+    let t0 = std::time::Instant::now();
+    let traj = JerkOptimal::new(&path, &limits).unwrap().solve().unwrap();
+    let ms = t0.elapsed().as_secs_f64() * 1e3;
+    let w = worst_ratio(&traj, &limits, 50_000.0);
+    assert!(w.iter().all(|&r| r <= 1.0 + 1e-7), "{w:?}");
+    let r = traj.law().report();
+    println!(
+        "| random_100wp | 1 | {raw:.5} | {filt:.5} | {:.5} | {} | {} | {} | {ms:.0} (one solve) | — |",
+        traj.duration(),
+        r.gridpoints,
+        r.total_rounds,
+        r.cuts
+    );
+}

@@ -27,8 +27,10 @@
 //!   interval ([`certify`]) and adds the worst point of a failing interval as a cut (rows
 //!   enforced at that point).
 //! - **Grid** ([`mesh`]): even in the raw TOPP-RA time, with the path's breakpoints and
-//!   geometric refinement at both ends; the number of steps doubles until two durations agree
-//!   within [`JerkOptions::tolerance`].
+//!   geometric refinement at both ends; the number of steps doubles (200 to at most 1600)
+//!   until two durations agree within [`JerkOptions::tolerance`]. If the passes break down on
+//!   a finer grid (rounding in very thin controllable sets), the last grid's result is kept;
+//!   on the first grid, a finer one is tried.
 //!
 //! # Precision contract
 //! - Joint velocity, acceleration and jerk hold **along the continuous trajectory**, to
@@ -46,7 +48,9 @@
 //!   slowed down uniformly by the smallest factor that removes it (velocity scales by 1/k,
 //!   acceleration 1/k², jerk 1/k³); [`JerkReport::time_scale`] says by how much (1 when not).
 //! - The duration is within [`JerkOptions::tolerance`] (relative) of the same method's
-//!   duration on a grid twice as fine; the time law is evaluated exactly ([`law`]).
+//!   duration on a grid twice as fine **when the grid cap allows it**: the doubling stops at
+//!   1600 steps, and [`JerkReport::grid_change`] reports the last change (often 1e-3 to 6e-3
+//!   today, so the tolerance is not reached). The time law is evaluated exactly ([`law`]).
 //!
 //! ```
 //! use trajkit::topp::jerk_optimal::{JerkOptimal, JerkOptions};
@@ -305,29 +309,43 @@ impl<'c, P: Path> JerkOptimal<'c, P> {
                 xbox,
                 ubox,
             )?;
-            let solved = prob.solve(0.1 * tol)?;
+            let solved = match prob.solve(0.1 * tol) {
+                Ok(solved) => solved,
+                Err(e) => {
+                    // The passes broke down on this grid: keep the last grid's certified
+                    // result, or try a finer grid when there is none yet.
+                    if let Some(p) = previous {
+                        return Ok(p);
+                    }
+                    if self.options.steps.is_none() && 2 * steps <= MAX_AUTO_STEPS {
+                        steps *= 2;
+                        continue;
+                    }
+                    return Err(e);
+                }
+            };
             total_rounds += solved.rounds;
             let mut profile = solved.profile;
+            let scale = time_scale_for(solved.worst);
+            profile.set_scale(scale);
             let t_new = profile.duration();
             let change = previous
                 .as_ref()
                 .map_or(f64::INFINITY, |p| (p.duration() - t_new).abs() / t_new);
+            profile.report = JerkReport {
+                gridpoints: grid.len(),
+                steps,
+                rounds: solved.rounds,
+                total_rounds,
+                cuts: solved.cuts,
+                worst_excess: solved.worst,
+                sampled_intervals: solved.sampled_intervals,
+                time_scale: scale,
+                raw_duration: raw.duration(),
+                grid_change: change,
+            };
             let done = self.options.steps.is_some() || change <= tol || 2 * steps > MAX_AUTO_STEPS;
             if done {
-                let scale = time_scale_for(solved.worst);
-                profile.set_scale(scale);
-                profile.report = JerkReport {
-                    gridpoints: grid.len(),
-                    steps,
-                    rounds: solved.rounds,
-                    total_rounds,
-                    cuts: solved.cuts,
-                    worst_excess: solved.worst,
-                    sampled_intervals: solved.sampled_intervals,
-                    time_scale: scale,
-                    raw_duration: raw.duration(),
-                    grid_change: change,
-                };
                 return Ok(profile);
             }
             previous = Some(profile);
