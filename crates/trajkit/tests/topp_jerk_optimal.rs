@@ -524,10 +524,12 @@ fn report_curved_against_ipopt() {
     }
 }
 
-/// BENCHMARKS.md: one solve of a seeded 100-waypoint path at the Panda's limits.
+/// Reproduces an open bug: on this seeded 100-waypoint path at the Panda's limits the forward
+/// pass stalls ("the path velocity vanishes between s = … and s = …") on every grid the
+/// planner tries, so this fails today (see BENCHMARKS.md). Ignored; kept as the reproduction.
 #[test]
 #[ignore]
-fn report_hundred_waypoints() {
+fn known_failure_hundred_waypoints() {
     let path = random_path(2026, 100);
     let limits = panda_with_jerk_scale(1.0);
     let (raw, filt) = raw_and_filter(&path, &limits);
