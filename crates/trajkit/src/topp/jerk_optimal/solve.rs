@@ -283,7 +283,9 @@ impl Passes {
 /// Whether the state at N−1 is off the final ray by more than rounding.
 fn i_last_bad(x: &[f64], u: &[f64], n: usize, dl: f64) -> bool {
     let want = -1.5 * dl * u[n - 1];
-    u[n - 1].is_nan() || u[n - 1] >= 0.0 || (x[n - 1] - want).abs() > 1e-6 * want.abs().max(x[n - 1].abs())
+    u[n - 1].is_nan()
+        || u[n - 1] >= 0.0
+        || (x[n - 1] - want).abs() > 1e-6 * want.abs().max(x[n - 1].abs())
 }
 
 /// The v of the last middle stage (length Δ) that lands on the final rest ray (length Δ_L):
