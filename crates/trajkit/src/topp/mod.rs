@@ -47,6 +47,7 @@ pub mod blend;
 pub mod constraint;
 pub mod grid;
 pub mod jerk;
+pub mod jerk_optimal;
 pub mod lp;
 pub mod messy;
 pub mod mvc;
