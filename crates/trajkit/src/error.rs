@@ -100,6 +100,9 @@ pub enum Error {
     /// zero); the message says where and why.
     #[error("infeasible: {0}")]
     Infeasible(String),
+    /// Online generation failed (see [`crate::otg::OtgError`]: the DOF, field and value).
+    #[error("otg: {0}")]
+    Otg(#[from] crate::otg::OtgError),
 }
 
 /// Checks that `value` is finite; `field` names it in the error.

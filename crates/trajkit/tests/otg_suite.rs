@@ -7,8 +7,8 @@
 mod otg_common;
 use otg_common::*;
 use trajkit::otg::{
-    ControlInterface, DurationDiscretization, InputParameter, Otg, OtgResult, OutputParameter,
-    Synchronization,
+    ControlInterface, DurationDiscretization, InputParameter, Otg, OtgError, OtgResult,
+    OutputParameter, Synchronization,
 };
 use trajkit::rng::SplitMix64;
 use trajkit::{Order, Trajectory};
@@ -112,7 +112,7 @@ fn update_loop_reaches_target_and_recalculates_only_on_change() {
     loop {
         let r = otg.update(&inp, &mut out);
         calcs += out.new_calculation as usize;
-        assert!(r.is_ok(), "{r}");
+        let r = r.unwrap();
         out.pass_to_input(&mut inp);
         steps += 1;
         if r == OtgResult::Finished {
@@ -125,7 +125,7 @@ fn update_loop_reaches_target_and_recalculates_only_on_change() {
     assert!((steps as f64 * 0.004 - d) < 0.004 + 1e-12);
     // Changing the target triggers one new calculation.
     inp.target_position = [0.0, 0.0];
-    otg.update(&inp, &mut out);
+    otg.update(&inp, &mut out).unwrap();
     assert!(out.new_calculation && out.calculation_duration_us >= 0.0);
 }
 
@@ -140,8 +140,8 @@ fn invalid_input_names_field_dof_and_value() {
     let e = otg.calculate(&inp).unwrap_err();
     assert!(matches!(
         e,
-        OtgResult::InvalidInput {
-            dof: 2,
+        OtgError::InvalidInput {
+            dof: Some(2),
             field: "target_position",
             ..
         }
@@ -227,7 +227,9 @@ fn suite<const N: usize>(n: usize, seed: u64) -> (usize, usize) {
                         let end = tr.dofs()[i].profile.duration();
                         if matches!(
                             inp.options.synchronization,
-                            Synchronization::Time | Synchronization::Phase
+                            Synchronization::Time
+                                | Synchronization::Phase
+                                | Synchronization::StraightLine
                         ) {
                             assert!(
                                 (end - tr.duration()).abs() <= 1e-9 * tr.duration().max(1.0),
@@ -244,7 +246,7 @@ fn suite<const N: usize>(n: usize, seed: u64) -> (usize, usize) {
                 }
                 Err(e) => {
                     assert!(
-                        !matches!(e, OtgResult::InvalidInput { .. }),
+                        !matches!(e, OtgError::InvalidInput { .. }),
                         "{cat:?} {k}: {e}\n{inp:?}"
                     );
                     failed += 1;
@@ -354,12 +356,14 @@ fn velocity_interface_and_phase() {
     inp.max_acceleration = [1.0, 2.0];
     inp.max_jerk = [5.0, 3.0];
     inp.target_position = [1.0, 2.0];
-    inp.options.synchronization = Synchronization::Phase;
-    let tr = otg.calculate(&inp).unwrap();
-    for k in 0..=50 {
-        let t = tr.duration() * k as f64 / 50.0;
-        tr.at_time(t, &mut p, &mut v, &mut a);
-        assert!((p[1] - 2.0 * p[0]).abs() < 1e-12, "{t}: {p:?}");
+    for mode in [Synchronization::Phase, Synchronization::StraightLine] {
+        inp.options.synchronization = mode;
+        let tr = otg.calculate(&inp).unwrap();
+        for k in 0..=50 {
+            let t = tr.duration() * k as f64 / 50.0;
+            tr.at_time(t, &mut p, &mut v, &mut a);
+            assert!((p[1] - 2.0 * p[0]).abs() < 1e-12, "{mode:?} {t}: {p:?}");
+        }
     }
 }
 

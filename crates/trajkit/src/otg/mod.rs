@@ -4,10 +4,10 @@
 //! Data in, data out: an [`InputParameter`] (current state, target state, limits, options)
 //! goes through [`Otg::calculate`] (or [`Otg::calculate_into`], into a trajectory the caller
 //! reuses) or, once per control cycle, [`Otg::update`], and comes out
-//! as an [`OtgTrajectory`] or an [`OutputParameter`], with an [`OtgResult`] status. Nothing on
-//! that path allocates when the number of degrees of freedom is a compile-time constant, and no
-//! input makes it panic: non-finite numbers are an `InvalidInput` result naming the field, the
-//! degree of freedom and the value.
+//! as an [`OtgTrajectory`] or an [`OutputParameter`], with an [`OtgResult`] status (`Working`,
+//! `Finished`) or an [`OtgError`]. Nothing on that path allocates when the number of degrees
+//! of freedom is a compile-time constant, and no input makes it panic: non-finite numbers are
+//! an `InvalidInput` error naming the field, the degree of freedom and the value.
 //!
 //! ```
 //! use trajkit::otg::{InputParameter, Otg};
@@ -21,7 +21,7 @@
 //! assert!((otg.calculate(&input)?.duration() - 2.5166666666666667).abs() < 1e-12);
 //! input.max_jerk = [f64::INFINITY]; // trapezoidal
 //! assert!((otg.calculate(&input)?.duration() - 2.2666666666666667).abs() < 1e-12);
-//! # Ok::<(), trajkit::otg::OtgResult>(())
+//! # Ok::<(), trajkit::otg::OtgError>(())
 //! ```
 //!
 //! # Precision contract
@@ -42,6 +42,8 @@ mod families;
 mod families_gen;
 pub mod generator;
 pub mod input;
+pub mod json;
+mod phase;
 pub mod problem;
 pub mod profile;
 pub mod result;
@@ -53,6 +55,7 @@ pub mod step2;
 pub mod sync;
 pub mod trajectory;
 pub mod velocity_change;
+pub mod zero;
 
 pub use generator::{calculate_dyn, Otg, OutputParameter};
 pub use input::{
@@ -61,7 +64,7 @@ pub use input::{
 };
 pub use problem::{Dof1, ProfileOrder};
 pub use profile::{Profile, State1};
-pub use result::OtgResult;
+pub use result::{OtgError, OtgResult};
 pub use trajectory::{DofTrajectory, DynTrajectory, FixedTrajectory, OtgTrajectory};
 
 /// Time-optimal profile of one degree of freedom (brake pre-profile included), or `None` when

@@ -71,6 +71,7 @@ use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
 use super::roots::{find_roots_coarse, MAX_POLY, MAX_ROOTS};
 use super::velocity_change::{fastest, VelChange};
+use super::zero::{coast_into, coasts};
 
 /// Largest number of candidate durations kept per degree of freedom.
 pub(crate) const MAX_CANDIDATES: usize = 24;
@@ -459,8 +460,70 @@ pub(crate) fn step1_fastest_into(
 /// candidate durations (brake included) go there and their number is returned (the full
 /// mode), without it only the fastest profile is wanted (fastest-only mode; returns 0).
 /// Inlined into both callers, so that each mode's code is specialised.
+///
+/// Two cases come first: a degree of freedom that coasts ([`super::zero`]) has one profile,
+/// and one whose state already is its target state (exactly) needs no time: duration 0, the
+/// fastest of its candidates (the others, in the full mode, still bound its blocked
+/// intervals: a moving state cannot stay on its target for a short while).
 #[inline(always)]
 fn step1_run(
+    dof: &Dof1,
+    profile: &mut Profile,
+    spare: &mut Option<Profile>,
+    cand: Option<&mut [f64; MAX_CANDIDATES]>,
+) -> Option<usize> {
+    if coasts(dof) {
+        if !coast_into(dof, None, profile) {
+            return None;
+        }
+        return Some(match cand {
+            Some(c) => {
+                c[0] = profile.duration();
+                1
+            }
+            None => 0,
+        });
+    }
+    if is_on_target(dof) {
+        let n = match cand {
+            None => 0,
+            Some(c) => {
+                // The other candidates (durations of loops back to the target state), for the
+                // blocked intervals.
+                let n = step1_enumerate(dof, profile, spare, Some(c)).unwrap_or(0);
+                let n = n.min(MAX_CANDIDATES - 1);
+                c.copy_within(0..n, 1);
+                c[0] = 0.0;
+                n + 1
+            }
+        };
+        profile.reset(State1 {
+            p: dof.p0,
+            v: dof.v0,
+            a: dof.a0,
+        });
+        if dof.order() == ProfileOrder::Second {
+            profile.set_final(dof.vf, 0.0);
+        }
+        return Some(n);
+    }
+    step1_enumerate(dof, profile, spare, cand)
+}
+
+/// Whether the start state is the target state, exactly (position only for the position
+/// interface; acceleration only for third order).
+#[inline]
+pub(crate) fn is_on_target(dof: &Dof1) -> bool {
+    let order = dof.order();
+    (dof.interface == ControlInterface::Velocity || dof.p0 == dof.pf)
+        && (order == ProfileOrder::First || dof.v0 == dof.vf)
+        && (order != ProfileOrder::Third || dof.a0 == dof.af)
+}
+
+/// [`step1_run`] for the ordinary case: the rest-to-rest closed form, else the brake and the
+/// enumeration of the families.
+#[inline(always)]
+fn step1_enumerate(
     dof: &Dof1,
     profile: &mut Profile,
     spare: &mut Option<Profile>,

@@ -38,6 +38,9 @@ pub(crate) fn step2_into(dof: &Dof1, t: f64, out: &mut Profile) -> bool {
     if !t.is_finite() || t < 0.0 {
         return false;
     }
+    if super::zero::coasts(dof) {
+        return super::zero::coast_into(dof, Some(t), out);
+    }
     let ok = |pr: &Profile| verify(dof, pr) && (pr.duration() - t).abs() <= 1e-12 * t.max(1.0);
     if dof.interface == ControlInterface::Position
         && dof.order() != ProfileOrder::First

@@ -301,7 +301,10 @@ pub fn ruckig_duration<const N: usize>(inp: &InputParameter<N>, dt: f64) -> Opti
         trajkit::otg::Synchronization::TimeIfNecessary => {
             rsruckig::prelude::Synchronization::TimeIfNecessary
         }
-        trajkit::otg::Synchronization::Phase => rsruckig::prelude::Synchronization::Phase,
+        // (Ruckig has no straight-line mode: its phase mode is the nearest.)
+        trajkit::otg::Synchronization::Phase | trajkit::otg::Synchronization::StraightLine => {
+            rsruckig::prelude::Synchronization::Phase
+        }
         trajkit::otg::Synchronization::None => rsruckig::prelude::Synchronization::None,
     };
     ri.control_interface = match inp.options.control_interface {
