@@ -103,7 +103,7 @@ pub(crate) fn phase(ctx: &PhaseCtx<'_, '_>, out: &mut [DofTrajectory], t: f64) -
         if d.order() != ld.order() || d.interface != ld.interface || sc[i].brake {
             return None;
         }
-        let q = lp.scaled_from(lambda(i), d.p0);
+        let q = scaled(&lp, lambda(i), d);
         if !jerk_within(&q, d.jmax) || !verify(d, &q) {
             return None;
         }
@@ -113,10 +113,25 @@ pub(crate) fn phase(ctx: &PhaseCtx<'_, '_>, out: &mut [DofTrajectory], t: f64) -
         out[i].profile = if i == lim {
             lp
         } else {
-            lp.scaled_from(lambda(i), d.p0)
+            scaled(&lp, lambda(i), d)
         };
     }
     Some(t)
+}
+
+/// The limiting profile `lp` scaled by `s` onto DOF `d`, from its own start state.
+fn scaled(lp: &Profile, s: f64, d: &Dof1) -> Profile {
+    let order = match d.order() {
+        super::problem::ProfileOrder::First => 1,
+        super::problem::ProfileOrder::Second => 2,
+        super::problem::ProfileOrder::Third => 3,
+    };
+    let start = super::profile::State1 {
+        p: d.p0,
+        v: d.v0,
+        a: d.a0,
+    };
+    lp.scaled_onto(s, start, order)
 }
 
 /// Whether every segment's jerk is within `jmax` (to Ruckig's slack of 1e-12 relative).

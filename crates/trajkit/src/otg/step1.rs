@@ -76,8 +76,34 @@ use super::zero::{coast_into, coasts};
 /// Largest number of candidate durations kept per degree of freedom.
 pub(crate) const MAX_CANDIDATES: usize = 24;
 
-/// Position tolerance of the target (absolute).
+/// Position tolerance of the target (absolute) for motions of at least 1e-3; smaller motions
+/// have a tolerance relative to their scale (1e-5 of it).
 pub const TOL_POSITION: f64 = 1e-8;
+/// Motions shorter than this have a position tolerance relative to their scale (see
+/// [`position_tolerance`]).
+const SMALL_MOTION: f64 = 1e-3;
+
+/// The position tolerance of the target for profile `pr` of `dof`: [`TOL_POSITION`] for
+/// motions of at least [`SMALL_MOTION`]; below, 1e-5 of the motion's scale S (the larger of
+/// the displacement and the largest distance from the start at a segment boundary), plus 16
+/// rounding units of the positions involved, so that a motion of 1e-11 arrives (to 1e-5 of
+/// itself) instead of ending where it started.
+pub(crate) fn position_tolerance(dof: &Dof1, pr: &Profile) -> f64 {
+    let d = (dof.pf - dof.p0).abs();
+    if d >= SMALL_MOTION {
+        return TOL_POSITION;
+    }
+    let mut s = d;
+    for k in 0..pr.segments() {
+        if let Some((_, _, st, _)) = pr.segment(k) {
+            s = s.max((st.p - dof.p0).abs());
+        }
+    }
+    s = s.max((pr.end().p - dof.p0).abs());
+    let ulps = 16.0 * f64::EPSILON * dof.p0.abs().max(dof.pf.abs()).max(s);
+    TOL_POSITION.min(1e-5 * s) + ulps
+}
+
 /// Velocity and acceleration tolerance of the target (absolute).
 pub const TOL_VELOCITY: f64 = 1e-10;
 /// Relative tolerance of the limits.
@@ -285,7 +311,9 @@ pub(crate) fn verify(dof: &Dof1, pr: &Profile) -> bool {
     let e = pr.end();
     let order = dof.order();
     let within = |x: f64, tol: f64| x.abs() <= tol;
-    if dof.interface == ControlInterface::Position && !within(e.p - dof.pf, TOL_POSITION) {
+    if dof.interface == ControlInterface::Position
+        && !within(e.p - dof.pf, position_tolerance(dof, pr))
+    {
         return false;
     }
     if order != ProfileOrder::First && !within(e.v - dof.vf, TOL_VELOCITY) {

@@ -90,7 +90,12 @@ fn other_families(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<
             pr.set_final(dof.vf, 0.0);
             ok(&pr).then_some(pr)
         }
-        (ProfileOrder::Third, ControlInterface::Velocity) => velocity3(dof, t, ok),
+        (ProfileOrder::Third, ControlInterface::Velocity) => {
+            if let r @ Some(_) = velocity3_closed(dof, t, ok) {
+                return r;
+            }
+            velocity3(dof, t, ok)
+        }
         (ProfileOrder::Second, ControlInterface::Position) => cruise(dof, t, ok),
         (ProfileOrder::Third, ControlInterface::Position) => {
             // Early returns rather than an `or_else` chain, which moves the profile through
@@ -382,6 +387,76 @@ fn hold(
         }
     });
     best
+}
+
+/// Velocity interface, third order, in closed form and in Ruckig's order of preference (so
+/// that a DOF synchronized to a longer duration makes Ruckig's motion, not just one of the
+/// same duration): in the direction of the velocity change first, the shapes
+/// a₀ ↗ α (hold) ↘ a_f, a₀ ↗ α (hold) ↗ a_f, a₀ (hold) ↗ a_f, then a₀ → a_f with a reduced
+/// jerk followed by a hold at a_f (or a plain hold when nothing changes). The first valid
+/// profile wins; `None` leaves the bracketing family ([`velocity3`]) to try.
+fn velocity3_closed(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
+    let (a0, af) = (dof.a0, dof.af);
+    let vd = dof.vf - dof.v0;
+    let ad = af - a0;
+    let start = State1 {
+        p: dof.p0,
+        v: dof.v0,
+        a: a0,
+    };
+    // Segments (duration, jerk); None when a duration is negative or not finite.
+    let build = |segs: &[(f64, f64)]| -> Option<Profile> {
+        let mut pr = Profile::new(start);
+        for &(d, j) in segs {
+            if !(d >= 0.0) || !pr.push(d, if d > 0.0 { j } else { 0.0 }) {
+                return None;
+            }
+        }
+        ok(&pr).then_some(pr)
+    };
+    let dirs = if vd > 0.0 {
+        [dof.jmax, -dof.jmax]
+    } else {
+        [-dof.jmax, dof.jmax]
+    };
+    for j in dirs {
+        // Up, hold, down.
+        let h1 = ((-ad * ad + 2.0 * j * ((a0 + af) * t - 2.0 * vd)) / (j * j) + t * t).sqrt();
+        let t0 = ad / (2.0 * j) + (t - h1) / 2.0;
+        if h1 >= f64::EPSILON {
+            if let r @ Some(_) = build(&[(t0, j), (h1, 0.0), (t - (t0 + h1), -j)]) {
+                return r;
+            }
+        }
+        // Up, hold, up.
+        let h = -ad + j * t;
+        let t0 = -ad * ad / (2.0 * j * h) + (vd - a0 * t) / h;
+        let t1 = -ad / j + t;
+        if t1 >= f64::EPSILON {
+            if let r @ Some(_) = build(&[(t0, j), (t1, 0.0), (t - (t0 + t1), j)]) {
+                return r;
+            }
+            // Hold, up.
+            if let r @ Some(_) = build(&[(t1, 0.0), (ad / j, j)]) {
+                return r;
+            }
+        }
+        // Nothing to change: hold.
+        if a0.abs() < f64::EPSILON && af.abs() < f64::EPSILON && vd.abs() < f64::EPSILON {
+            if let r @ Some(_) = build(&[(t, 0.0)]) {
+                return r;
+            }
+        }
+        // A ramp with a reduced jerk to a_f, then a hold there.
+        let h = 2.0 * (af * t - vd);
+        let (t0, jf) = (h / ad, ad * ad / h);
+        if jf.abs() < j.abs() + 1e-12 {
+            if let r @ Some(_) = build(&[(t0, jf), (t - t0, 0.0)]) {
+                return r;
+            }
+        }
+    }
+    None
 }
 
 /// Velocity interface, third order: a₀ → α (hold) → a_f in exactly t.
