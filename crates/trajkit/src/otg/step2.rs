@@ -109,7 +109,15 @@ fn other_families(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<
                     return r;
                 }
             }
-            cruise(dof, t, ok)
+            if let r @ Some(_) = cruise(dof, t, ok) {
+                return r;
+            }
+            for mirror in [false, true] {
+                if let r @ Some(_) = four_ramps(dof, t, mirror, ok) {
+                    return r;
+                }
+            }
+            None
         }
     }
 }
@@ -386,6 +394,79 @@ fn hold(
             }
         }
     });
+    best
+}
+
+/// Four ramps without a hold (third order): a₀ ↘ α₁ ↗ α₂ ↘ α₃ ↗ a_f under full jerk (the
+/// negative direction by mirroring), the shape of a synchronized profile that swings twice
+/// and has neither a cruise nor a plateau. With the middle level α₂ as free parameter the
+/// duration gives α₁ + α₃ = (a₀ + a_f + 2α₂ − jT)/2 and the velocity change
+/// α₁² + α₃² = (a₀² + a_f² + 2α₂² − 2jΔv)/2, so α₁ and α₃ are the two roots of a quadratic
+/// (either order); the position residual is then bracketed in α₂.
+fn four_ramps(dof: &Dof1, t: f64, mirror: bool, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
+    let q = if mirror { dof.mirrored() } else { *dof };
+    let (j, a0, af) = (q.jmax, q.a0, q.af);
+    let dv = q.vf - q.v0;
+    let tol = 1e-12 * (q.amax - q.amin);
+    let levels = |a2: f64, first_low: bool| -> Option<(f64, f64)> {
+        let sum = (a0 + af + 2.0 * a2 - j * t) / 2.0;
+        let sq = (a0 * a0 + af * af + 2.0 * a2 * a2 - 2.0 * j * dv) / 2.0;
+        let rad = 2.0 * sq - sum * sum;
+        if rad < 0.0 {
+            return None;
+        }
+        let r = rad.sqrt();
+        let (lo, hi) = ((sum - r) / 2.0, (sum + r) / 2.0);
+        let (a1, a3) = if first_low { (lo, hi) } else { (hi, lo) };
+        let valid = a1 <= a0 + tol
+            && a1 <= a2 + tol
+            && a3 <= a2 + tol
+            && a3 <= af + tol
+            && a1 >= q.amin - tol
+            && a3 >= q.amin - tol
+            && a2 <= q.amax + tol;
+        valid.then_some((a1, a3))
+    };
+    let build = |a2: f64, first_low: bool| -> Option<Profile> {
+        let (a1, a3) = levels(a2, first_low)?;
+        let mut pr = Profile::new(State1 {
+            p: q.p0,
+            v: q.v0,
+            a: a0,
+        });
+        pr.push(((a0 - a1) / j).max(0.0), -j);
+        pr.push(((a2 - a1) / j).max(0.0), j);
+        pr.push(((a2 - a3) / j).max(0.0), -j);
+        pr.push(((af - a3) / j).max(0.0), j);
+        if mirror {
+            pr.mirror();
+        }
+        Some(pr)
+    };
+    let sgn = if mirror { -1.0 } else { 1.0 };
+    let mut best = None;
+    for first_low in [true, false] {
+        let mut f = |x: f64| build(x, first_low).map(|pr| sgn * (pr.end().p - dof.pf));
+        let mut roots = [0.0; MAX_ROOTS];
+        let mut cuts = [q.amin, q.amax, 0.0, a0, af];
+        for_each_piece(&mut cuts, |lo, hi| {
+            if best.is_some() {
+                return;
+            }
+            let n = find_roots(&mut f, lo, hi, &mut roots);
+            for &x in &roots[..n] {
+                if let Some(pr) = build(x, first_low) {
+                    if ok(&pr) {
+                        best = Some(pr);
+                        return;
+                    }
+                }
+            }
+        });
+        if best.is_some() {
+            break;
+        }
+    }
     best
 }
 
