@@ -31,8 +31,12 @@ fn sweep_reproducers_are_never_longer_than_ruckig() {
         // The target is reached.
         for (i, d) in tr.dofs().iter().enumerate() {
             let e = d.profile.end();
-            if p.input.enabled[i] && p.input.options.control_interface == ControlInterface::Position
-            {
+            let iface = p
+                .input
+                .per_dof_control_interface
+                .as_ref()
+                .map_or(p.input.options.control_interface, |c| c[i]);
+            if p.input.enabled[i] && iface == ControlInterface::Position {
                 assert!(
                     (e.p - p.input.target_position[i]).abs() <= 1e-8,
                     "line {}",

@@ -116,6 +116,11 @@ fn other_families(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<
                 if let r @ Some(_) = four_ramps(dof, t, mirror, ok) {
                     return r;
                 }
+                for plateau in [true, false] {
+                    if let r @ Some(_) = split_ramp(dof, t, mirror, plateau, ok) {
+                        return r;
+                    }
+                }
             }
             None
         }
@@ -467,6 +472,86 @@ fn four_ramps(dof: &Dof1, t: f64, mirror: bool, ok: &impl Fn(&Profile) -> bool) 
             break;
         }
     }
+    best
+}
+
+/// A ramp split by a hold (third order): a₀ ↘ α (hold τ) ↘ β (hold h) ↗ a_f under full jerk,
+/// the negative direction by mirroring; the hold at α is at a level that is not a limit and
+/// not an extremum. `plateau`: β is the acceleration limit and h ≥ 0 (then τ + h is fixed by
+/// the duration and τ follows from the velocity change); otherwise h = 0 and β follows from
+/// the duration and the velocity change (a quadratic). Free parameter α ∈ [β, a₀], the
+/// position residual bracketed.
+fn split_ramp(
+    dof: &Dof1,
+    t: f64,
+    mirror: bool,
+    plateau: bool,
+    ok: &impl Fn(&Profile) -> bool,
+) -> Option<Profile> {
+    let q = if mirror { dof.mirrored() } else { *dof };
+    let (j, a0, af, m) = (q.jmax, q.a0, q.af, q.amin);
+    let dv = q.vf - q.v0;
+    // Returns (τ, β, h).
+    let levels = |al: f64| -> Option<(f64, f64, f64)> {
+        let (tau, beta, h) = if plateau {
+            let rest = t - (a0 - m) / j - (af - m) / j;
+            let k = (a0 * a0 - 2.0 * m * m + af * af) / (2.0 * j);
+            let tau = (dv - k - m * rest) / (al - m);
+            (tau, m, rest - tau)
+        } else {
+            let c = al * t * j - al * (a0 + af) - j * dv + (a0 * a0 + af * af) / 2.0;
+            let rad = al * al + c;
+            if rad < 0.0 {
+                return None;
+            }
+            let beta = al - rad.sqrt();
+            (t - (a0 + af - 2.0 * beta) / j, beta, 0.0)
+        };
+        let valid = tau >= 0.0
+            && h >= 0.0
+            && beta >= m * (1.0 + 1e-12)
+            && beta <= al
+            && al <= a0
+            && beta <= af
+            && al <= q.amax;
+        valid.then_some((tau, beta, h))
+    };
+    let build = |al: f64| -> Option<Profile> {
+        let (tau, beta, h) = levels(al)?;
+        let mut pr = Profile::new(State1 {
+            p: q.p0,
+            v: q.v0,
+            a: a0,
+        });
+        pr.push(((a0 - al) / j).max(0.0), -j);
+        pr.push(tau, 0.0);
+        pr.push(((al - beta) / j).max(0.0), -j);
+        pr.push(h, 0.0);
+        pr.push(((af - beta) / j).max(0.0), j);
+        if mirror {
+            pr.mirror();
+        }
+        Some(pr)
+    };
+    let sgn = if mirror { -1.0 } else { 1.0 };
+    let mut f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf));
+    let mut roots = [0.0; MAX_ROOTS];
+    let mut cuts = [m, a0, 0.0, af.clamp(m.min(a0), a0.max(m))];
+    let mut best = None;
+    for_each_piece(&mut cuts, |lo, hi| {
+        if best.is_some() {
+            return;
+        }
+        let n = find_roots(&mut f, lo, hi, &mut roots);
+        for &x in &roots[..n] {
+            if let Some(pr) = build(x) {
+                if ok(&pr) {
+                    best = Some(pr);
+                    return;
+                }
+            }
+        }
+    });
     best
 }
 
