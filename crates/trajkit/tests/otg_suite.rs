@@ -444,3 +444,57 @@ fn synchronization_none_and_time_if_necessary() {
     }
     assert!(within_contract(&check(&inp, &tr)));
 }
+
+/// Tiny motions arrive, and rest-to-rest durations equal the closed form
+/// 4·∛(D/(2j)) (no acceleration plateau, no cruise) to a few ulps, D = p_f − p_0 as given.
+#[test]
+fn tiny_rest_to_rest_moves_arrive_with_the_closed_form_duration() {
+    let otg = Otg::<1>::new(0.001);
+    for &p0 in &[0.0, 0.7, -3.3, 1234.5] {
+        for &d in &[2e-12, 6.4e-11, 1e-9, 3e-7, 1e-4] {
+            for &j in &[0.5, 7.0, 3000.0] {
+                let mut inp = one(p0 + d, 1.0, 100.0, j);
+                inp.current_position = [p0];
+                let dist = inp.target_position[0] - p0;
+                let tr = otg.calculate(&inp).unwrap();
+                let closed = 4.0 * (dist / (2.0 * j)).cbrt();
+                assert!(
+                    (tr.duration() - closed).abs() <= 8.0 * f64::EPSILON * closed,
+                    "p0 {p0} d {d} j {j}: {} vs {closed}",
+                    tr.duration()
+                );
+                let end = tr.dofs()[0].profile.end().p;
+                // It arrives: the error is a small part of the motion (or a few ulps of p).
+                let tol = 1e-5 * dist + 16.0 * f64::EPSILON * (p0.abs() + dist);
+                assert!((end - inp.target_position[0]).abs() <= tol, "{p0} {d} {j}: {end}");
+            }
+        }
+    }
+    // A motion of 6.4e-11 with noise of 1e-14 on the start velocity: it moves.
+    let mut inp = one(0.25 + 6.4e-11, 1.0, 1.0, 10.0);
+    inp.current_position = [0.25];
+    inp.current_velocity = [1e-14];
+    let tr = otg.calculate(&inp).unwrap();
+    let end = tr.dofs()[0].profile.end().p;
+    assert!((end - inp.target_position[0]).abs() <= 1e-15, "{end}");
+}
+
+/// Start state equal to the target state: 0 s, whatever the velocity and acceleration.
+#[test]
+fn identical_start_and_target_take_no_time() {
+    let otg = Otg::<2>::new(0.001);
+    let mut inp = InputParameter::<2>::new();
+    inp.max_velocity = [1.0, 2.0];
+    inp.max_acceleration = [1.0, 3.0];
+    inp.max_jerk = [5.0, 7.0];
+    inp.current_position = [0.3, -1.0];
+    inp.target_position = inp.current_position;
+    for (v, a) in [(0.0, 0.0), (0.0, 0.5), (0.4, 0.0), (-0.3, -0.6)] {
+        inp.current_velocity = [v, -v];
+        inp.target_velocity = [v, -v];
+        inp.current_acceleration = [a, 0.0];
+        inp.target_acceleration = [a, 0.0];
+        let tr = otg.calculate(&inp).unwrap();
+        assert_eq!(tr.duration(), 0.0, "{v} {a}");
+    }
+}
