@@ -466,7 +466,10 @@ fn tiny_rest_to_rest_moves_arrive_with_the_closed_form_duration() {
                 let end = tr.dofs()[0].profile.end().p;
                 // It arrives: the error is a small part of the motion (or a few ulps of p).
                 let tol = 1e-5 * dist + 16.0 * f64::EPSILON * (p0.abs() + dist);
-                assert!((end - inp.target_position[0]).abs() <= tol, "{p0} {d} {j}: {end}");
+                assert!(
+                    (end - inp.target_position[0]).abs() <= tol,
+                    "{p0} {d} {j}: {end}"
+                );
             }
         }
     }

@@ -498,8 +498,19 @@ fn step1_run(
     dof: &Dof1,
     profile: &mut Profile,
     spare: &mut Option<Profile>,
-    cand: Option<&mut [f64; MAX_CANDIDATES]>,
+    mut cand: Option<&mut [f64; MAX_CANDIDATES]>,
 ) -> Option<usize> {
+    // The common rest-to-rest case first (it never applies to the two cases below: it needs a
+    // displacement, and a coasting DOF's closed form does not pass verification).
+    if rest_to_rest(dof, profile).is_some() {
+        return Some(match cand.as_deref_mut() {
+            Some(c) => {
+                c[0] = profile.duration();
+                1
+            }
+            None => 0,
+        });
+    }
     if coasts(dof) {
         if !coast_into(dof, None, profile) {
             return None;
@@ -548,8 +559,8 @@ pub(crate) fn is_on_target(dof: &Dof1) -> bool {
         && (order != ProfileOrder::Third || dof.a0 == dof.af)
 }
 
-/// [`step1_run`] for the ordinary case: the rest-to-rest closed form, else the brake and the
-/// enumeration of the families.
+/// [`step1_run`] for the ordinary case (after the rest-to-rest closed form): the brake and
+/// the enumeration of the families.
 #[inline(always)]
 fn step1_enumerate(
     dof: &Dof1,
@@ -557,16 +568,6 @@ fn step1_enumerate(
     spare: &mut Option<Profile>,
     cand: Option<&mut [f64; MAX_CANDIDATES]>,
 ) -> Option<usize> {
-    if rest_to_rest(dof, profile).is_some() {
-        // Its duration is the only candidate.
-        return Some(match cand {
-            Some(c) => {
-                c[0] = profile.duration();
-                1
-            }
-            None => 0,
-        });
-    }
     let fastest_only = cand.is_none();
     profile.reset(State1 {
         p: dof.p0,

@@ -211,19 +211,22 @@ fn bound_third(d: &Dof1) -> f64 {
             v / a + a / j
         }
     };
-    // Peak velocity without a cruise: x = v·t1(v).
-    let tri = (x * x * j / 4.0).cbrt();
-    let vp = if tri <= knee {
-        tri
+    // A cruise at the limit when the two changes to it and back cover at most x (t1 grows
+    // with v, so this is "peak velocity ≥ v_l"); otherwise the peak velocity v_p without a
+    // cruise: x = v_p·t1(v_p). (Decided first: the cube root is needed only without a
+    // cruise.)
+    let tl = t1(vl);
+    let tm = if x >= vl * tl {
+        2.0 * tl + (x - vl * tl) / vl
     } else {
-        let k = a / j;
-        (-k + (k * k + 4.0 * x / a).sqrt()) * a / 2.0
-    };
-    let tm = if vp <= vl {
+        let tri = (x * x * j / 4.0).cbrt();
+        let vp = if tri <= knee {
+            tri
+        } else {
+            let k = a / j;
+            (-k + (k * k + 4.0 * x / a).sqrt()) * a / 2.0
+        };
         2.0 * t1(vp)
-    } else {
-        let t = t1(vl);
-        2.0 * t + (x - vl * t) / vl
     };
     ts + tm + te
 }
@@ -321,6 +324,19 @@ fn calculate_profiles(
         scratch[i].dof = view.dof_problem(i)?;
     }
     let opts = view.options;
+    // One DOF, nothing to synchronize with: its time-optimal profile (as in Ruckig).
+    if n == 1
+        && view.enabled[0]
+        && opts.minimum_duration.is_none()
+        && opts.duration_discretization == DurationDiscretization::Continuous
+    {
+        let sc = &mut scratch[0];
+        sc.sync = false;
+        if !solve(sc, &mut spare[0], &mut out[0].profile, false) {
+            return Err(OtgError::CalculationFailed { dof: 0 });
+        }
+        return Ok(sc.t_min);
+    }
     let discrete = opts.duration_discretization == DurationDiscretization::Discrete;
     let disc = |t: f64| {
         if discrete {
@@ -543,6 +559,7 @@ fn calculate_profiles(
 /// The synchronized profiles at duration `t` are in `out`: Ruckig's phase synchronization
 /// replaces them by scaled copies of the limiting DOF's profile where it applies
 /// ([`super::phase`]); returns the trajectory's duration.
+#[inline]
 fn finish(
     view: &InputView<'_>,
     delta_time: f64,
@@ -551,7 +568,11 @@ fn finish(
     t: f64,
 ) -> Result<f64, OtgError> {
     let n = view.dof();
-    if view.any_sync(Synchronization::Phase) {
+    let phase_any = match view.sync {
+        None => view.options.synchronization == Synchronization::Phase,
+        Some(_) => view.any_sync(Synchronization::Phase),
+    };
+    if phase_any {
         let ctx = PhaseCtx {
             view,
             delta_time,
