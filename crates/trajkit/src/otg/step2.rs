@@ -380,16 +380,27 @@ fn hold(
     };
     let d = dof.pf - dof.p0;
     let sgn = if mirror { -1.0 } else { 1.0 };
-    let mut f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf) + 0.0 * d);
+    let f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf) + 0.0 * d);
     let (lo, hi) = if at_valley { (-a2, af) } else { (a0, amax) };
+    let cuts = [lo, hi, 0.0, if at_valley { a0.min(af) } else { af.max(a0) }];
+    first_root(cuts, f, &build, ok)
+}
+
+/// The first profile, built by `build` at a root of `f` (bracketed on the pieces between
+/// `cuts`, in increasing order), that `ok` accepts.
+fn first_root<const N: usize>(
+    mut cuts: [f64; N],
+    mut f: impl FnMut(f64) -> Option<f64>,
+    build: &impl Fn(f64) -> Option<Profile>,
+    ok: &impl Fn(&Profile) -> bool,
+) -> Option<Profile> {
     let mut roots = [0.0; MAX_ROOTS];
-    let mut cuts = [lo, hi, 0.0, if at_valley { a0.min(af) } else { af.max(a0) }];
     let mut best = None;
-    for_each_piece(&mut cuts, |a, b| {
+    for_each_piece(&mut cuts, |lo, hi| {
         if best.is_some() {
             return;
         }
-        let n = find_roots(&mut f, a, b, &mut roots);
+        let n = find_roots(&mut f, lo, hi, &mut roots);
         for &x in &roots[..n] {
             if let Some(pr) = build(x) {
                 if ok(&pr) {
@@ -449,30 +460,14 @@ fn four_ramps(dof: &Dof1, t: f64, mirror: bool, ok: &impl Fn(&Profile) -> bool) 
         Some(pr)
     };
     let sgn = if mirror { -1.0 } else { 1.0 };
-    let mut best = None;
     for first_low in [true, false] {
-        let mut f = |x: f64| build(x, first_low).map(|pr| sgn * (pr.end().p - dof.pf));
-        let mut roots = [0.0; MAX_ROOTS];
-        let mut cuts = [q.amin, q.amax, 0.0, a0, af];
-        for_each_piece(&mut cuts, |lo, hi| {
-            if best.is_some() {
-                return;
-            }
-            let n = find_roots(&mut f, lo, hi, &mut roots);
-            for &x in &roots[..n] {
-                if let Some(pr) = build(x, first_low) {
-                    if ok(&pr) {
-                        best = Some(pr);
-                        return;
-                    }
-                }
-            }
-        });
-        if best.is_some() {
-            break;
+        let b = |x: f64| build(x, first_low);
+        let f = |x: f64| b(x).map(|pr| sgn * (pr.end().p - dof.pf));
+        if let r @ Some(_) = first_root([q.amin, q.amax, 0.0, a0, af], f, &b, ok) {
+            return r;
         }
     }
-    best
+    None
 }
 
 /// A ramp split by a hold (third order): a₀ ↘ α (hold τ) ↘ β (hold h) ↗ a_f under full jerk,
@@ -534,25 +529,8 @@ fn split_ramp(
         Some(pr)
     };
     let sgn = if mirror { -1.0 } else { 1.0 };
-    let mut f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf));
-    let mut roots = [0.0; MAX_ROOTS];
-    let mut cuts = [m, a0, 0.0, af.clamp(m.min(a0), a0.max(m))];
-    let mut best = None;
-    for_each_piece(&mut cuts, |lo, hi| {
-        if best.is_some() {
-            return;
-        }
-        let n = find_roots(&mut f, lo, hi, &mut roots);
-        for &x in &roots[..n] {
-            if let Some(pr) = build(x) {
-                if ok(&pr) {
-                    best = Some(pr);
-                    return;
-                }
-            }
-        }
-    });
-    best
+    let f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf));
+    first_root([m, a0, 0.0, af.clamp(m.min(a0), a0.max(m))], f, &build, ok)
 }
 
 /// Velocity interface, third order, in closed form and in Ruckig's order of preference (so
@@ -646,28 +624,11 @@ fn velocity3(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profi
         pr.push(t3, if dof.af >= al { j } else { -j });
         Some(pr)
     };
-    let mut f = |al: f64| build(al).map(|pr| pr.end().v - dof.vf);
-    let mut roots = [0.0; MAX_ROOTS];
+    let f = |al: f64| build(al).map(|pr| pr.end().v - dof.vf);
     // τ ≥ 0 ⇔ |α − a₀| + |a_f − α| ≤ j·t: an explicit window around [a₀, a_f].
     let w_lo = ((dof.a0 + dof.af - j * t) / 2.0).max(dof.amin);
     let w_hi = ((dof.a0 + dof.af + j * t) / 2.0).min(dof.amax);
-    let mut cuts = [w_lo, w_hi, dof.a0, dof.af, 0.0];
-    let mut best = None;
-    for_each_piece(&mut cuts, |a, b| {
-        if best.is_some() {
-            return;
-        }
-        let n = find_roots(&mut f, a, b, &mut roots);
-        for &al in &roots[..n] {
-            if let Some(pr) = build(al) {
-                if ok(&pr) {
-                    best = Some(pr);
-                    return;
-                }
-            }
-        }
-    });
-    best
+    first_root([w_lo, w_hi, dof.a0, dof.af, 0.0], f, &build, ok)
 }
 
 #[cfg(test)]
