@@ -64,7 +64,7 @@ fn batch_one_line_per_problem() {
         .contains("max_velocity[0] = -1"));
     assert_eq!(rows[3]["dof"], 0);
     // With --profiles, every DOF's segments; all lines solved: exit 0.
-    std::fs::write(d.join("c.jsonl"), &lines[..2].join("\n")).unwrap();
+    std::fs::write(d.join("c.jsonl"), lines[..2].join("\n")).unwrap();
     let o = trajkit_stdin(
         &["otg", "--batch", "c.jsonl", "--profiles", "--out", "c.out"],
         &d,

@@ -62,7 +62,7 @@ fn calculate_update_and_queries_allocate_nothing() {
             let mut inp = *p;
             for _ in 0..20 {
                 results[k] = otg.update(&inp, &mut out);
-                if !results[k].is_ok() {
+                if results[k].is_err() {
                     break;
                 }
                 out.pass_to_input(&mut inp);

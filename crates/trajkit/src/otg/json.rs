@@ -173,9 +173,9 @@ impl Reader<'_> {
             Some(w) => return Err(self.bad_word("duration_discretization", w, DISC)),
         };
         input.per_dof_synchronization =
-            self.words("per_dof_synchronization", n, |w| sync_word(w), SYNC)?;
+            self.words("per_dof_synchronization", n, sync_word, SYNC)?;
         input.per_dof_control_interface =
-            self.words("per_dof_control_interface", n, |w| iface_word(w), IFACE)?;
+            self.words("per_dof_control_interface", n, iface_word, IFACE)?;
         let position_dofs = match &input.per_dof_control_interface {
             Some(c) => c.contains(&ControlInterface::Position),
             None => input.options.control_interface == ControlInterface::Position,

@@ -552,7 +552,7 @@ fn velocity3_closed(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Optio
     let build = |segs: &[(f64, f64)]| -> Option<Profile> {
         let mut pr = Profile::new(start);
         for &(d, j) in segs {
-            if !(d >= 0.0) || !pr.push(d, if d > 0.0 { j } else { 0.0 }) {
+            if d.is_nan() || d < 0.0 || !pr.push(d, if d > 0.0 { j } else { 0.0 }) {
                 return None;
             }
         }
