@@ -41,7 +41,7 @@ fn err(what: impl std::fmt::Display) -> CliError {
 
 /// Parses one problem (the library's strict reader); `line` is 0 for a whole file.
 fn parse(text: &str, src: &str, line: usize) -> CliResult<OtgProblem> {
-    parse_problem(text, src, line).map_err(|e| err(e))
+    parse_problem(text, src, line).map_err(err)
 }
 
 /// Final-state error (position, velocity, acceleration) and worst limit ratio, checked at every
