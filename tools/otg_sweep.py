@@ -19,7 +19,10 @@ For every problem of every category (seeded, fresh seeds give fresh problems) it
      be equal and the states equal at sampled times.
 The summary (per category: counts, failures, worst ratios) is written to OUT/summary.json and
 printed; every problem that breaks a rule is written, with Ruckig's duration, to
-OUT/failures.jsonl (the source of the regression fixtures).
+OUT/failures.jsonl. `--fixture FILE` appends the problems where trajkit was longer than Ruckig
+or failed where Ruckig succeeded to FILE in the format of
+crates/trajkit/tests/fixtures/otg/regressions.jsonl (category, Ruckig's duration, problem),
+which tests/otg_regressions.rs replays.
 """
 import argparse
 import json
@@ -430,6 +433,7 @@ def run(args):
     summary = {"ruckig": RUCKIG, "seed": args.seed, "count_per_category": per_cat, "commit": commit,
                "date": time.strftime("%Y-%m-%d %H:%M:%S"), "categories": {}}
     failures = open(os.path.join(args.out, "failures.jsonl"), "w")
+    fixture = open(args.fixture, "a") if args.fixture else None
     times = [0.1, 0.3, 0.5, 0.7, 0.9]
     t0 = time.time()
     for ci, cat in enumerate(cats):
@@ -494,6 +498,10 @@ def run(args):
                                 break
                     elif cat in SAME_MOTION:
                         reasons.append("duration differs")
+                if reasons and fixture and tr is not None and any(
+                        x.startswith(("longer", "trajkit failed")) for x in reasons
+                    ):
+                        fixture.write(json.dumps({"category": cat, "ruckig_duration": tr, "problem": p}) + "\n")
                 if reasons:
                     failures.write(json.dumps({"category": cat, "problem": p, "ruckig_duration": tr,
                                                "trajkit": {k: rec.get(k) for k in ("result", "duration", "message")},
@@ -517,6 +525,7 @@ if __name__ == "__main__":
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--categories", default="", help="comma-separated subset")
     ap.add_argument("--out", default="/tmp/otg-sweep")
+    ap.add_argument("--fixture", default="", help="append regression problems to this JSONL file")
     ap.add_argument("--exe", default="", help="a trajkit binary to use instead of building one")
     ap.add_argument("--no-venv", action="store_true")
     run(ap.parse_args())
