@@ -121,6 +121,9 @@ fn other_families(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<
                         return r;
                     }
                 }
+                if let r @ Some(_) = peak_then_hold(dof, t, mirror, ok) {
+                    return r;
+                }
             }
             None
         }
@@ -530,7 +533,56 @@ fn split_ramp(
     };
     let sgn = if mirror { -1.0 } else { 1.0 };
     let f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf));
-    first_root([m, a0, 0.0, af.clamp(m.min(a0), a0.max(m))], f, &build, ok)
+    first_root(
+        [m, a0, 0.0, af.max(m.min(a0)).min(a0.max(m))],
+        f,
+        &build,
+        ok,
+    )
+}
+
+/// A peak, then a hold on the way down (third order): a₀ ↗ α₁ ↘ α₂ (hold τ) ↘ a_f under full
+/// jerk, the negative direction by mirroring (the time reversal of [`split_ramp`] without a
+/// plateau). The duration gives τ = T − (2α₁ − a₀ − a_f)/j and the velocity change
+/// α₂ = (Δv − (2α₁² − a₀² − a_f²)/(2j))/τ; free parameter α₁ ∈ [max(a₀, a_f), a_max], the
+/// position residual bracketed. (Ruckig plans a DOF whose target is at the velocity limit
+/// this way when it is synchronized to a longer duration.)
+fn peak_then_hold(
+    dof: &Dof1,
+    t: f64,
+    mirror: bool,
+    ok: &impl Fn(&Profile) -> bool,
+) -> Option<Profile> {
+    let q = if mirror { dof.mirrored() } else { *dof };
+    let (j, a0, af) = (q.jmax, q.a0, q.af);
+    let dv = q.vf - q.v0;
+    let levels = |a1: f64| -> Option<(f64, f64)> {
+        let tau = t - (2.0 * a1 - a0 - af) / j;
+        let a2 = (dv - (2.0 * a1 * a1 - a0 * a0 - af * af) / (2.0 * j)) / tau;
+        let valid = tau >= 0.0 && a1 >= a0 && a1 >= a2 && a2 >= af && a1 <= q.amax;
+        valid.then_some((tau, a2))
+    };
+    let build = |a1: f64| -> Option<Profile> {
+        let (tau, a2) = levels(a1)?;
+        let mut pr = Profile::new(State1 {
+            p: q.p0,
+            v: q.v0,
+            a: a0,
+        });
+        pr.push(((a1 - a0) / j).max(0.0), j);
+        pr.push(((a1 - a2) / j).max(0.0), -j);
+        pr.push(tau, 0.0);
+        pr.push(((a2 - af) / j).max(0.0), -j);
+        if mirror {
+            pr.mirror();
+        }
+        Some(pr)
+    };
+    let sgn = if mirror { -1.0 } else { 1.0 };
+    let f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf));
+    let lo = a0.max(af);
+    let hi = q.amax.max(lo);
+    first_root([lo, hi, 0.0f64.max(lo).min(hi)], f, &build, ok)
 }
 
 /// Velocity interface, third order, in closed form and in Ruckig's order of preference (so
