@@ -121,8 +121,10 @@ fn other_families(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<
                         return r;
                     }
                 }
-                if let r @ Some(_) = peak_then_hold(dof, t, mirror, ok) {
-                    return r;
+                for plateau in [false, true] {
+                    if let r @ Some(_) = peak_then_hold(dof, t, mirror, plateau, ok) {
+                        return r;
+                    }
                 }
             }
             None
@@ -542,34 +544,49 @@ fn split_ramp(
 }
 
 /// A peak, then a hold on the way down (third order): a₀ ↗ α₁ ↘ α₂ (hold τ) ↘ a_f under full
-/// jerk, the negative direction by mirroring (the time reversal of [`split_ramp`] without a
-/// plateau). The duration gives τ = T − (2α₁ − a₀ − a_f)/j and the velocity change
-/// α₂ = (Δv − (2α₁² − a₀² − a_f²)/(2j))/τ; free parameter α₁ ∈ [max(a₀, a_f), a_max], the
-/// position residual bracketed. (Ruckig plans a DOF whose target is at the velocity limit
-/// this way when it is synchronized to a longer duration.)
+/// jerk, the negative direction by mirroring (the time reversal of [`split_ramp`]). Without a
+/// plateau the duration gives τ = T − (2α₁ − a₀ − a_f)/j and the velocity change
+/// α₂ = (Δv − (2α₁² − a₀² − a_f²)/(2j))/τ, free parameter α₁ ∈ [max(a₀, a_f), a_max]; with a
+/// plateau at α₁ = a_max (lasting h) the duration fixes h + τ and the velocity change gives
+/// τ, free parameter α₂ ∈ [a_f, a_max]. The position residual is bracketed. (Ruckig plans a
+/// DOF this way, for example, when its target is at the velocity limit or it must pass a
+/// plateau first, and it is synchronized to a slightly longer duration.)
 fn peak_then_hold(
     dof: &Dof1,
     t: f64,
     mirror: bool,
+    plateau: bool,
     ok: &impl Fn(&Profile) -> bool,
 ) -> Option<Profile> {
     let q = if mirror { dof.mirrored() } else { *dof };
-    let (j, a0, af) = (q.jmax, q.a0, q.af);
+    let (j, a0, af, amax) = (q.jmax, q.a0, q.af, q.amax);
     let dv = q.vf - q.v0;
-    let levels = |a1: f64| -> Option<(f64, f64)> {
-        let tau = t - (2.0 * a1 - a0 - af) / j;
-        let a2 = (dv - (2.0 * a1 * a1 - a0 * a0 - af * af) / (2.0 * j)) / tau;
-        let valid = tau >= 0.0 && a1 >= a0 && a1 >= a2 && a2 >= af && a1 <= q.amax;
-        valid.then_some((tau, a2))
+    // Returns (α₁, h, α₂, τ) from the free parameter.
+    let levels = |x: f64| -> Option<(f64, f64, f64, f64)> {
+        let (a1, h, a2, tau) = if plateau {
+            let (a1, a2) = (amax, x);
+            let rest = t - (2.0 * a1 - a0 - af) / j;
+            let k = (2.0 * a1 * a1 - a0 * a0 - af * af) / (2.0 * j);
+            let tau = (dv - k - a1 * rest) / (a2 - a1);
+            (a1, rest - tau, a2, tau)
+        } else {
+            let a1 = x;
+            let tau = t - (2.0 * a1 - a0 - af) / j;
+            let a2 = (dv - (2.0 * a1 * a1 - a0 * a0 - af * af) / (2.0 * j)) / tau;
+            (a1, 0.0, a2, tau)
+        };
+        let valid = tau >= 0.0 && h >= 0.0 && a1 >= a0 && a1 >= a2 && a2 >= af && a1 <= amax;
+        valid.then_some((a1, h, a2, tau))
     };
-    let build = |a1: f64| -> Option<Profile> {
-        let (tau, a2) = levels(a1)?;
+    let build = |x: f64| -> Option<Profile> {
+        let (a1, h, a2, tau) = levels(x)?;
         let mut pr = Profile::new(State1 {
             p: q.p0,
             v: q.v0,
             a: a0,
         });
         pr.push(((a1 - a0) / j).max(0.0), j);
+        pr.push(h, 0.0);
         pr.push(((a1 - a2) / j).max(0.0), -j);
         pr.push(tau, 0.0);
         pr.push(((a2 - af) / j).max(0.0), -j);
@@ -580,8 +597,8 @@ fn peak_then_hold(
     };
     let sgn = if mirror { -1.0 } else { 1.0 };
     let f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf));
-    let lo = a0.max(af);
-    let hi = q.amax.max(lo);
+    let lo = if plateau { af } else { a0.max(af) };
+    let hi = amax.max(lo);
     first_root([lo, hi, 0.0f64.max(lo).min(hi)], f, &build, ok)
 }
 
