@@ -275,7 +275,7 @@ def ruckig_solve(p, dt, times, want_states):
     if res not in (ruckig.Result.Working, ruckig.Result.Finished):
         return None, None
     states = [traj.at_time(t * traj.duration) for t in times] if want_states else None
-    if not ruckig_arrives(p, traj.at_time(traj.duration)):
+    if not ruckig_arrives(p, traj):
         return "misses", None
     return traj.duration, states
 
@@ -382,19 +382,45 @@ def position_tolerance(p0, pf, excursion):
     return tol + 16 * EPS * max(abs(p0), abs(pf), s) + 1e-14 * s
 
 
-def ruckig_arrives(p, traj_end):
+def ruckig_arrives(p, traj):
     """Whether Ruckig's final state meets the same tolerance (Ruckig's own is 1e-8
-    absolute: a motion of 1e-11 may end where it started)."""
+    absolute: a motion of 1e-11 may end where it started). A DOF that is not synchronized
+    ends at its own minimum duration (and then moves on with its target velocity)."""
     n = len(p["current_position"])
     ifaces = p.get("per_dof_control_interface", [p.get("control_interface", "position")] * n)
+    syncs = p.get("per_dof_synchronization", [p.get("synchronization", "time")] * n)
     enabled = p.get("enabled", [True] * n)
+    mins = traj.independent_min_durations
     for i in range(n):
         if not enabled[i] or ifaces[i] != "position":
             continue
-        p0, pf, pe = p["current_position"][i], p["target_position"][i], traj_end[0][i]
+        own = syncs[i] == "none" or (syncs[i] == "time_if_necessary" and p["target_velocity"][i] == 0
+                                     and p["target_acceleration"][i] == 0)
+        end = traj.at_time(mins[i] if own else traj.duration)
+        p0, pf, pe = p["current_position"][i], p["target_position"][i], end[0][i]
         if abs(pe - pf) > position_tolerance(p0, pf, abs(pe - p0)):
             return False
     return True
+
+
+def determined(p, cat):
+    """The DOFs whose motion must be Ruckig's: all under phase synchronization; otherwise
+    those not planned by step 2 as time-synchronized position DOFs (a profile of a given
+    duration is not unique, and Ruckig's choice among them is not part of its contract):
+    velocity-interface DOFs, DOFs that are not synchronized, DOFs with a zero limit."""
+    n = len(p["current_position"])
+    if cat == "phase":
+        return range(n)
+    ifaces = p.get("per_dof_control_interface", [p.get("control_interface", "position")] * n)
+    syncs = p.get("per_dof_synchronization", [p.get("synchronization", "time")] * n)
+    out = []
+    for i in range(n):
+        moving = p["target_velocity"][i] != 0 or p["target_acceleration"][i] != 0
+        synced = syncs[i] == "time" or (syncs[i] == "time_if_necessary" and moving)
+        zero = p["max_velocity"][i] * p["max_acceleration"][i] * p["max_jerk"][i] == 0
+        if ifaces[i] == "velocity" or not synced or zero:
+            out.append(i)
+    return out
 
 
 def trajkit_state(prob, rec, t):
@@ -489,10 +515,11 @@ def run(args):
                     else:
                         st["equal"] += 1
                     if cat in SAME_MOTION and abs(t - tr) <= 1e-9 * max(tr, 1.0):
+                        own = determined(p, cat)
                         for tt, rs in zip(times, states):
                             ks = trajkit_state(p, rec, tt * tr)
                             scale = 1.0 + max(abs(x) for x in p["target_position"] + p["current_position"])
-                            if any(abs(ks[i][0] - rs[0][i]) > 1e-7 * scale for i in range(len(ks))):
+                            if any(abs(ks[i][0] - rs[0][i]) > 1e-7 * scale for i in own):
                                 st["motion_differs"] += 1
                                 reasons.append(f"state differs at {tt}·T")
                                 break
