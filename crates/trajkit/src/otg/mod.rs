@@ -25,17 +25,22 @@
 //! ```
 //!
 //! # Precision contract
-//! Every profile is verified by integrating it before it is accepted: the final state is within
-//! 1e-8 (position) and 1e-10 (velocity, acceleration) of the target, and velocity and
-//! acceleration stay within their limits to 1e-12 relative, checked at every segment boundary
-//! and at every interior velocity extremum, not at samples. The brake pre-profile, which brings
-//! a state that starts outside the limits back inside, is exempt from the limits it repairs.
+//! Every profile is verified by integrating it before it is accepted: the final position is
+//! within 1e-8 of the target for motions of at least 1e-3, and within 1e-5 of the motion's
+//! scale (plus 16 rounding units of the positions) below that, so that a motion of 1e-11
+//! arrives; velocity and acceleration within 1e-10. Velocity and acceleration stay within
+//! their limits to 1e-12 relative, checked at every segment boundary and at every interior
+//! velocity extremum, not at samples. The brake pre-profile, which brings a state that starts
+//! outside the limits back inside, is exempt from the limits it repairs. A start state equal to
+//! the target state (exactly) gives a trajectory of duration 0.
 //!
 //! # Files (one per step)
-//! [`profile`] the segment list of one DOF · [`velocity_change`] fastest velocity changes ·
-//! [`brake`] the brake pre-profile · [`step1`] time-optimal profile families · [`step2`]
-//! profiles of a given duration · [`sync`] the common duration and phase synchronization ·
-//! [`roots`] polynomial and scalar root finding · [`input`], [`result`], [`trajectory`], [`generator`].
+//! [`json`] the Ruckig-style JSON reader · [`input`] validation · [`profile`] the segment list
+//! of one DOF · [`velocity_change`] fastest velocity changes · [`brake`] the brake
+//! pre-profile · [`zero`] zero limits · [`step1`] time-optimal profile families · [`step2`]
+//! profiles of a given duration · [`sync`] the common duration · `phase` Ruckig's phase
+//! synchronization and the straight-line mode · [`roots`] polynomial and scalar root
+//! finding · [`result`], [`trajectory`], [`generator`].
 
 pub mod brake;
 mod families;
