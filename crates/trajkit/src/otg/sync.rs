@@ -20,7 +20,7 @@
 //! one). A duration found by bisection is the edge of the feasible range to 64 halvings (or to
 //! adjacent floating-point numbers, or to one control period for discrete durations).
 //!
-//! Phase synchronization (Ruckig's) and trajkit's straight-line mode live in [`super::phase`].
+//! Phase synchronization (Ruckig's) and trajkit's straight-line mode live in `phase.rs`.
 
 use super::input::{DurationDiscretization, InputView, Synchronization};
 use super::phase::{phase, straight_line, PhaseCtx};
@@ -558,7 +558,7 @@ fn calculate_profiles(
 
 /// The synchronized profiles at duration `t` are in `out`: Ruckig's phase synchronization
 /// replaces them by scaled copies of the limiting DOF's profile where it applies
-/// ([`super::phase`]); returns the trajectory's duration.
+/// (`phase.rs`); returns the trajectory's duration.
 #[inline]
 fn finish(
     view: &InputView<'_>,
