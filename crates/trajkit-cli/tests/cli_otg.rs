@@ -3,7 +3,7 @@
 mod common;
 use common::{entries, scratch, trajkit_stdin};
 
-const SEED: &str = r#"{"current_position":[0],"target_position":[1],"max_velocity":[0.6],"max_acceleration":[1],"max_jerk":[4],"comment":"ignored"}"#;
+const SEED: &str = r#"{"current_position":[0],"target_position":[1],"max_velocity":[0.6],"max_acceleration":[1],"max_jerk":[4]}"#;
 
 #[test]
 fn seed_example_json_csv_and_plot() {
@@ -15,8 +15,8 @@ fn seed_example_json_csv_and_plot() {
     assert!((t - (1.0 / 0.6 + 0.6 + 0.25)).abs() < 1e-12, "{t}");
     assert!(v["final_error"]["position"].as_f64().unwrap() < 1e-8);
     assert!(v["worst_limit_ratio"].as_f64().unwrap() <= 1.0 + 1e-12);
-    // Trapezoid: a null jerk limit is unlimited; CSV by extension, and a plot.
-    std::fs::write(d.join("p.json"), SEED.replace("[4]", "[null]")).unwrap();
+    // Trapezoid: an "inf" jerk limit is unlimited; CSV by extension, and a plot.
+    std::fs::write(d.join("p.json"), SEED.replace("[4]", r#"["inf"]"#)).unwrap();
     let o = trajkit_stdin(
         &["otg", "p.json", "--out", "s.csv", "--plot", "p.svg"],
         &d,
@@ -38,11 +38,13 @@ fn batch_one_line_per_problem() {
         SEED.to_string(),
         r#"{"current_position":[0,1],"current_velocity":[0.5,0],"target_position":[1,-1],"target_velocity":[0.2,0],"max_velocity":[1,1],"max_acceleration":[2,2],"max_jerk":[5,5],"synchronization":"phase"}"#.to_string(),
         "not json".to_string(),
-        r#"{"current_position":[0],"target_position":[1],"max_velocity":[-1]}"#.to_string(),
+        r#"{"current_position":[0],"target_position":[1],"max_velocity":[-1],"max_acceleration":[1],"max_jerk":[1]}"#.to_string(),
     ];
     std::fs::write(d.join("b.jsonl"), lines.join("\n")).unwrap();
     let o = trajkit_stdin(&["otg", "--batch", "b.jsonl", "--out", "r.jsonl"], &d, None);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // Two lines failed: exit 1, and the count on standard error (the results are written).
+    assert_eq!(o.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("2 of 4 problems failed"));
     let text = std::fs::read_to_string(d.join("r.jsonl")).unwrap();
     let rows: Vec<serde_json::Value> = text
         .lines()
@@ -60,6 +62,50 @@ fn batch_one_line_per_problem() {
         .as_str()
         .unwrap()
         .contains("max_velocity[0] = -1"));
+    assert_eq!(rows[3]["dof"], 0);
+    // With --profiles, every DOF's segments; all lines solved: exit 0.
+    std::fs::write(d.join("c.jsonl"), lines[..2].join("\n")).unwrap();
+    let o = trajkit_stdin(
+        &["otg", "--batch", "c.jsonl", "--profiles", "--out", "c.out"],
+        &d,
+        None,
+    );
+    assert_eq!(o.status.code(), Some(0));
+    let text = std::fs::read_to_string(d.join("c.out")).unwrap();
+    let row: serde_json::Value = serde_json::from_str(text.lines().nth(1).unwrap()).unwrap();
+    let prof = &row["profiles"][1];
+    let total: f64 = prof["segments"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s[0].as_f64().unwrap())
+        .sum();
+    assert!((total - row["duration"].as_f64().unwrap()).abs() < 1e-12);
+    assert!((prof["end"][0].as_f64().unwrap() + 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn strict_fields() {
+    let d = scratch("strict");
+    for (problem, needle) in [
+        (
+            r#"{"current_position":[0],"target_position":[1],"max_velocity":[1],"max_acceleration":[1],"max_jerk":[1],"max_jerks":[1]}"#,
+            "'max_jerks': is not a known field (did you mean 'max_jerk'?)",
+        ),
+        (
+            r#"{"current_position":[0],"target_position":[1],"max_velocity":[1],"max_acceleration":[1],"max_jerk":[1],"intermediate_positions":[[0.5]]}"#,
+            "does not support yet",
+        ),
+        (
+            r#"{"current_position":[0],"target_position":[1],"max_velocity":[1],"max_acceleration":[1],"max_jerk":[1],"per_dof_synchronization":["straight_line"]}"#,
+            "per_dof_synchronization[0]",
+        ),
+    ] {
+        let o = trajkit_stdin(&["otg", "-"], &d, Some(problem));
+        assert_eq!(o.status.code(), Some(2), "{problem}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(err.contains(needle), "{problem}: {err}");
+    }
 }
 
 #[test]
@@ -75,16 +121,20 @@ fn bad_input_exits_2_with_one_line_and_no_file() {
             "synchronization",
         ),
         (
-            r#"{"current_position":[0],"target_position":[1],"max_velocity":[1],"max_jerk":["x"]}"#,
+            r#"{"current_position":[0],"target_position":[1],"max_velocity":[1],"max_acceleration":[1],"max_jerk":["x"]}"#,
             "max_jerk[0]",
         ),
         (r#"{"target_position":[1]}"#, "current_position"),
         (
             r#"{"current_position":[0],"target_position":[1]}"#,
+            "'max_velocity': is required",
+        ),
+        (
+            r#"{"current_position":[0],"target_position":[1],"max_velocity":["inf"],"max_acceleration":["inf"],"max_jerk":["inf"]}"#,
             "max_velocity[0] = inf",
         ),
         (
-            r#"{"current_position":[0],"target_position":[1],"max_velocity":[1],"dt":0}"#,
+            r#"{"current_position":[0],"target_position":[1],"max_velocity":[1],"max_acceleration":[1],"max_jerk":[1],"dt":0}"#,
             "dt",
         ),
         ("[1, 2", "line 1"),

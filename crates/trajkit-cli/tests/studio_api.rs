@@ -777,8 +777,8 @@ fn otg_answers_exactly_what_the_cli_writes() {
     let problems = [
         json!({"current_position": [0], "target_position": [1], "max_velocity": [0.6], "max_acceleration": [1], "max_jerk": [4], "dt": 0.01}),
         json!({"current_position": [0, 1, -0.5], "current_velocity": [0.3, 0, 0.1], "target_position": [1, -0.5, 0.2],
-               "target_velocity": [0.2, 0, null], "max_velocity": [1, 1, 2], "max_acceleration": [2, 2, null],
-               "max_jerk": [10, null, 5], "synchronization": "phase", "dt": 0.02}),
+               "target_velocity": [0.2, 0, 0], "max_velocity": [1, 1, 2], "max_acceleration": [2, 2, "inf"],
+               "max_jerk": [10, "inf", 5], "synchronization": "phase", "dt": 0.02}),
         json!({"current_position": [0.5], "current_velocity": [3], "target_position": [0], "max_velocity": [1],
                "max_acceleration": [2], "max_jerk": [20], "min_velocity": [-0.5], "minimum_duration": 3, "dt": 0.05}),
     ];
@@ -797,7 +797,7 @@ fn otg_answers_exactly_what_the_cli_writes() {
         ),
         400,
         "max_velocityy",
-        "unknown field",
+        "did you mean 'max_velocity'",
     );
     refused(
         &post(
@@ -806,8 +806,8 @@ fn otg_answers_exactly_what_the_cli_writes() {
             &json!({"current_position": [0], "target_position": [1, 2]}),
         ),
         400,
-        "target_position (length)",
-        "differs",
+        "target_position",
+        "has 2 values, current_position has 1",
     );
     refused(
         &post(
@@ -822,10 +822,22 @@ fn otg_answers_exactly_what_the_cli_writes() {
     let r = post(
         s.addr,
         "/api/otg",
-        &json!({"current_position": [0], "target_position": [1], "max_velocity": [-1]}),
+        &json!({"current_position": [0], "target_position": [1], "max_velocity": [-1],
+                "max_acceleration": [1], "max_jerk": [1]}),
     );
     assert_eq!(r.status, 400);
     assert!(r.error().0.contains("max_velocity"), "{:?}", r.error());
+    // A missing limit is refused, never read as unlimited.
+    refused(
+        &post(
+            s.addr,
+            "/api/otg",
+            &json!({"current_position": [0], "target_position": [1], "max_velocity": [1]}),
+        ),
+        400,
+        "max_acceleration",
+        "is required",
+    );
     refused(
         &post(
             s.addr,

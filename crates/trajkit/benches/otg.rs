@@ -8,6 +8,9 @@
 //! Criterion reports the mean time per `calculate`; after it, a per-call timing pass over the
 //! same problem sets prints mean and p99 (`OTG_P99=0` skips it).
 //!
+//! `OTG_DUMP=<dir>` writes the six problem sets as text (for timing another implementation on
+//! the same problems) and exits.
+//!
 //! `OTG_MINREP=1` runs only a min-of-repetitions pass instead (each repetition times all
 //! problems of one library, the libraries alternate, the minimum per library is kept: robust to
 //! load spikes on a shared machine). `OTG_PROFILE=<dof><g|r>` (e.g. `7g`; `R7g` for rsruckig)
@@ -230,6 +233,35 @@ fn profile_loop<const N: usize>(general: bool, peer: bool, secs: f64) {
     }
 }
 
+/// Writes the problem set (one problem per line: current p, v, a, target p, v, a, max v, a,
+/// j, each N numbers) to `dir/otg_<N><g|r>.txt`, so that another implementation (Ruckig's
+/// C++, built outside this repository) can be timed on exactly the same problems.
+fn dump<const N: usize>(dir: &str, general: bool) {
+    let pair = Pair::<N>::new(general);
+    let mut text = String::new();
+    for p in &pair.ours {
+        let fields = [
+            &p.current_position,
+            &p.current_velocity,
+            &p.current_acceleration,
+            &p.target_position,
+            &p.target_velocity,
+            &p.target_acceleration,
+            &p.max_velocity,
+            &p.max_acceleration,
+            &p.max_jerk,
+        ];
+        let line: Vec<String> = fields
+            .iter()
+            .flat_map(|f| f.iter().map(|x| format!("{x:?}")))
+            .collect();
+        text.push_str(&line.join(" "));
+        text.push('\n');
+    }
+    let name = format!("{dir}/otg_{N}{}.txt", if general { 'g' } else { 'r' });
+    std::fs::write(&name, text).expect("cannot write the problem set");
+}
+
 criterion_group!(benches, bench);
 
 fn main() {
@@ -246,6 +278,14 @@ fn main() {
             "3r" => profile_loop::<3>(false, peer, secs),
             "7g" => profile_loop::<7>(true, peer, secs),
             _ => profile_loop::<7>(false, peer, secs),
+        }
+        return;
+    }
+    if let Ok(dir) = std::env::var("OTG_DUMP") {
+        for general in [true, false] {
+            dump::<1>(&dir, general);
+            dump::<3>(&dir, general);
+            dump::<7>(&dir, general);
         }
         return;
     }

@@ -3,10 +3,10 @@
 //!
 //! Run: `cargo run -p trajkit --example 06_otg_profiles`
 
-use trajkit::otg::{InputParameter, Otg, OtgResult};
+use trajkit::otg::{InputParameter, Otg, OtgError};
 use trajkit::{Order, Trajectory};
 
-fn main() -> Result<(), OtgResult> {
+fn main() -> Result<(), OtgError> {
     let otg = Otg::<1>::new(0.001);
     // D = 1, v_max = 0.6, a_max = 1, j_max = 4 (the seed's acceptance numbers).
     let mut input = InputParameter::<1>::new();

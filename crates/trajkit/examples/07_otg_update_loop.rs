@@ -25,7 +25,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut out = OutputParameter::<7>::default();
     let mut cycle = 0;
     loop {
-        let r = otg.update(&input, &mut out);
+        let r = otg.update(&input, &mut out)?;
         if out.new_calculation {
             println!(
                 "cycle {cycle}: new trajectory, duration {:.4} s, computed in {:.1} µs",
@@ -35,7 +35,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         match r {
             OtgResult::Working => {}
             OtgResult::Finished => break,
-            e => return Err(Box::new(e)),
         }
         out.pass_to_input(&mut input);
         cycle += 1;

@@ -218,6 +218,9 @@ pub enum Error {
         /// When, in seconds.
         time: f64,
     },
+    /// Online generation failed (see [`crate::otg::OtgError`]: the DOF, field and value).
+    #[error("otg: {0}")]
+    Otg(#[from] crate::otg::OtgError),
 }
 
 /// `joint 3 (elbow)`, or `joint 3` when unnamed (`joint` is 0-based).

@@ -7,8 +7,8 @@
 mod otg_common;
 use otg_common::*;
 use trajkit::otg::{
-    ControlInterface, DurationDiscretization, InputParameter, Otg, OtgResult, OutputParameter,
-    Synchronization,
+    ControlInterface, DurationDiscretization, InputParameter, Otg, OtgError, OtgResult,
+    OutputParameter, Synchronization,
 };
 use trajkit::rng::SplitMix64;
 use trajkit::{Order, Trajectory};
@@ -112,7 +112,7 @@ fn update_loop_reaches_target_and_recalculates_only_on_change() {
     loop {
         let r = otg.update(&inp, &mut out);
         calcs += out.new_calculation as usize;
-        assert!(r.is_ok(), "{r}");
+        let r = r.unwrap();
         out.pass_to_input(&mut inp);
         steps += 1;
         if r == OtgResult::Finished {
@@ -125,7 +125,7 @@ fn update_loop_reaches_target_and_recalculates_only_on_change() {
     assert!((steps as f64 * 0.004 - d) < 0.004 + 1e-12);
     // Changing the target triggers one new calculation.
     inp.target_position = [0.0, 0.0];
-    otg.update(&inp, &mut out);
+    otg.update(&inp, &mut out).unwrap();
     assert!(out.new_calculation && out.calculation_duration_us >= 0.0);
 }
 
@@ -140,8 +140,8 @@ fn invalid_input_names_field_dof_and_value() {
     let e = otg.calculate(&inp).unwrap_err();
     assert!(matches!(
         e,
-        OtgResult::InvalidInput {
-            dof: 2,
+        OtgError::InvalidInput {
+            dof: Some(2),
             field: "target_position",
             ..
         }
@@ -227,7 +227,9 @@ fn suite<const N: usize>(n: usize, seed: u64) -> (usize, usize) {
                         let end = tr.dofs()[i].profile.duration();
                         if matches!(
                             inp.options.synchronization,
-                            Synchronization::Time | Synchronization::Phase
+                            Synchronization::Time
+                                | Synchronization::Phase
+                                | Synchronization::StraightLine
                         ) {
                             assert!(
                                 (end - tr.duration()).abs() <= 1e-9 * tr.duration().max(1.0),
@@ -244,7 +246,7 @@ fn suite<const N: usize>(n: usize, seed: u64) -> (usize, usize) {
                 }
                 Err(e) => {
                     assert!(
-                        !matches!(e, OtgResult::InvalidInput { .. }),
+                        !matches!(e, OtgError::InvalidInput { .. }),
                         "{cat:?} {k}: {e}\n{inp:?}"
                     );
                     failed += 1;
@@ -354,12 +356,14 @@ fn velocity_interface_and_phase() {
     inp.max_acceleration = [1.0, 2.0];
     inp.max_jerk = [5.0, 3.0];
     inp.target_position = [1.0, 2.0];
-    inp.options.synchronization = Synchronization::Phase;
-    let tr = otg.calculate(&inp).unwrap();
-    for k in 0..=50 {
-        let t = tr.duration() * k as f64 / 50.0;
-        tr.at_time(t, &mut p, &mut v, &mut a);
-        assert!((p[1] - 2.0 * p[0]).abs() < 1e-12, "{t}: {p:?}");
+    for mode in [Synchronization::Phase, Synchronization::StraightLine] {
+        inp.options.synchronization = mode;
+        let tr = otg.calculate(&inp).unwrap();
+        for k in 0..=50 {
+            let t = tr.duration() * k as f64 / 50.0;
+            tr.at_time(t, &mut p, &mut v, &mut a);
+            assert!((p[1] - 2.0 * p[0]).abs() < 1e-12, "{mode:?} {t}: {p:?}");
+        }
     }
 }
 
@@ -439,4 +443,61 @@ fn synchronization_none_and_time_if_necessary() {
         assert!((tr.dofs()[i].profile.duration() - mins[2]).abs() < 1e-12);
     }
     assert!(within_contract(&check(&inp, &tr)));
+}
+
+/// Tiny motions arrive, and rest-to-rest durations equal the closed form
+/// 4·∛(D/(2j)) (no acceleration plateau, no cruise) to a few ulps, D = p_f − p_0 as given.
+#[test]
+fn tiny_rest_to_rest_moves_arrive_with_the_closed_form_duration() {
+    let otg = Otg::<1>::new(0.001);
+    for &p0 in &[0.0, 0.7, -3.3, 1234.5] {
+        for &d in &[2e-12, 6.4e-11, 1e-9, 3e-7, 1e-4] {
+            for &j in &[0.5, 7.0, 3000.0] {
+                let mut inp = one(p0 + d, 1.0, 100.0, j);
+                inp.current_position = [p0];
+                let dist = inp.target_position[0] - p0;
+                let tr = otg.calculate(&inp).unwrap();
+                let closed = 4.0 * (dist / (2.0 * j)).cbrt();
+                assert!(
+                    (tr.duration() - closed).abs() <= 8.0 * f64::EPSILON * closed,
+                    "p0 {p0} d {d} j {j}: {} vs {closed}",
+                    tr.duration()
+                );
+                let end = tr.dofs()[0].profile.end().p;
+                // It arrives: the error is a small part of the motion (or a few ulps of p).
+                let tol = 1e-5 * dist + 16.0 * f64::EPSILON * (p0.abs() + dist);
+                assert!(
+                    (end - inp.target_position[0]).abs() <= tol,
+                    "{p0} {d} {j}: {end}"
+                );
+            }
+        }
+    }
+    // A motion of 6.4e-11 with noise of 1e-14 on the start velocity: it moves.
+    let mut inp = one(0.25 + 6.4e-11, 1.0, 1.0, 10.0);
+    inp.current_position = [0.25];
+    inp.current_velocity = [1e-14];
+    let tr = otg.calculate(&inp).unwrap();
+    let end = tr.dofs()[0].profile.end().p;
+    assert!((end - inp.target_position[0]).abs() <= 1e-15, "{end}");
+}
+
+/// Start state equal to the target state: 0 s, whatever the velocity and acceleration.
+#[test]
+fn identical_start_and_target_take_no_time() {
+    let otg = Otg::<2>::new(0.001);
+    let mut inp = InputParameter::<2>::new();
+    inp.max_velocity = [1.0, 2.0];
+    inp.max_acceleration = [1.0, 3.0];
+    inp.max_jerk = [5.0, 7.0];
+    inp.current_position = [0.3, -1.0];
+    inp.target_position = inp.current_position;
+    for (v, a) in [(0.0, 0.0), (0.0, 0.5), (0.4, 0.0), (-0.3, -0.6)] {
+        inp.current_velocity = [v, -v];
+        inp.target_velocity = [v, -v];
+        inp.current_acceleration = [a, 0.0];
+        inp.target_acceleration = [a, 0.0];
+        let tr = otg.calculate(&inp).unwrap();
+        assert_eq!(tr.duration(), 0.0, "{v} {a}");
+    }
 }

@@ -7,7 +7,7 @@
 //! the state there. With a compile-time number of degrees of freedom neither call allocates.
 
 use super::input::{DynInputParameter, InputParameter};
-use super::result::OtgResult;
+use super::result::{OtgError, OtgResult};
 use super::sync::{calculate, Scratch, Spare};
 use super::trajectory::{DofTrajectory, DynTrajectory, FixedTrajectory, OtgTrajectory};
 use std::time::Instant;
@@ -69,12 +69,13 @@ impl<const DOF: usize> OutputParameter<DOF> {
 /// input.max_jerk = [10.0, 10.0];
 /// let mut out = OutputParameter::<2>::default();
 /// let mut cycles = 0;
-/// while otg.update(&input, &mut out) == OtgResult::Working {
+/// while otg.update(&input, &mut out)? == OtgResult::Working {
 ///     out.pass_to_input(&mut input);
 ///     cycles += 1;
 /// }
 /// assert!((out.new_position[0] - 1.0).abs() < 1e-8);
 /// assert!(cycles > 100 && cycles < 300);
+/// # Ok::<(), trajkit::otg::OtgError>(())
 /// ```
 #[derive(Debug, Clone)]
 pub struct Otg<const DOF: usize> {
@@ -102,10 +103,7 @@ impl<const DOF: usize> Otg<DOF> {
 
     /// Calculates the trajectory for `input` (no allocation). Returns it by value; a caller
     /// that calculates repeatedly can reuse one trajectory with [`Otg::calculate_into`].
-    pub fn calculate(
-        &self,
-        input: &InputParameter<DOF>,
-    ) -> Result<FixedTrajectory<DOF>, OtgResult> {
+    pub fn calculate(&self, input: &InputParameter<DOF>) -> Result<FixedTrajectory<DOF>, OtgError> {
         let mut traj = FixedTrajectory::<DOF>::default();
         self.calculate_into(input, &mut traj)?;
         Ok(traj)
@@ -118,7 +116,7 @@ impl<const DOF: usize> Otg<DOF> {
     /// query).
     ///
     /// ```
-    /// use trajkit::otg::{FixedTrajectory, InputParameter, Otg, OtgResult};
+    /// use trajkit::otg::{FixedTrajectory, InputParameter, Otg, OtgError};
     /// let otg = Otg::<1>::new(0.001);
     /// let mut input = InputParameter::<1>::new();
     /// input.max_velocity = [0.6];
@@ -136,15 +134,15 @@ impl<const DOF: usize> Otg<DOF> {
     /// input.max_jerk = [-1.0];
     /// assert!(matches!(
     ///     otg.calculate_into(&input, &mut traj),
-    ///     Err(OtgResult::InvalidInput { field: "max_jerk", .. })
+    ///     Err(OtgError::InvalidInput { field: "max_jerk", .. })
     /// ));
-    /// # Ok::<(), OtgResult>(())
+    /// # Ok::<(), OtgError>(())
     /// ```
     pub fn calculate_into(
         &self,
         input: &InputParameter<DOF>,
         traj: &mut FixedTrajectory<DOF>,
-    ) -> Result<(), OtgResult> {
+    ) -> Result<(), OtgError> {
         let mut scratch = [Scratch::default(); DOF];
         let mut spare: [Spare; DOF] = [None; DOF];
         traj.duration = calculate(
@@ -158,12 +156,14 @@ impl<const DOF: usize> Otg<DOF> {
     }
 
     /// One control cycle: re-plan if the input changed, advance by `delta_time`, write the new
-    /// state. Returns `Working`, `Finished` (the new time is at or past the end) or an error.
+    /// state. Returns `Working`, `Finished` (the new time is at or past the end) or the error
+    /// of the calculation (then `out` keeps its previous state and the next update calculates
+    /// again).
     pub fn update(
         &mut self,
         input: &InputParameter<DOF>,
         out: &mut OutputParameter<DOF>,
-    ) -> OtgResult {
+    ) -> Result<OtgResult, OtgError> {
         out.new_calculation = false;
         out.calculation_duration_us = 0.0;
         if self.last.as_ref() != Some(input) {
@@ -180,7 +180,7 @@ impl<const DOF: usize> Otg<DOF> {
                 Ok(d) => self.traj.duration = d,
                 Err(e) => {
                     self.last = None;
-                    return e;
+                    return Err(e);
                 }
             }
             self.last = Some(*input);
@@ -200,11 +200,11 @@ impl<const DOF: usize> Otg<DOF> {
         if let Some(last) = self.last.as_mut() {
             out.pass_to_input(last);
         }
-        if self.time >= self.traj.duration {
+        Ok(if self.time >= self.traj.duration {
             OtgResult::Finished
         } else {
             OtgResult::Working
-        }
+        })
     }
 
     /// The trajectory of the last `update`.
@@ -217,7 +217,7 @@ impl<const DOF: usize> Otg<DOF> {
 pub fn calculate_dyn(
     input: &DynInputParameter,
     delta_time: f64,
-) -> Result<DynTrajectory, OtgResult> {
+) -> Result<DynTrajectory, OtgError> {
     let n = input.dof();
     let mut dofs = vec![DofTrajectory::default(); n];
     let mut scratch = vec![Scratch::default(); n];

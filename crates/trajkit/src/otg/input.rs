@@ -5,13 +5,33 @@
 //! allocation); [`DynInputParameter`] has a run-time number (vectors, e.g. for the CLI). An
 //! infinite limit means unlimited: `max_jerk = ∞` gives second-order (trapezoidal) profiles,
 //! `max_acceleration = ∞` first-order (velocity-limited) ones. Minima default to the negated
-//! maxima.
+//! maxima. A zero limit is accepted as in Ruckig: a third-order degree of freedom with a zero
+//! jerk or acceleration limit (or a second-order one with zero velocity limits) cannot change
+//! its acceleration and coasts ([`super::zero`]).
+//!
+//! The input types are `#[non_exhaustive]` (build them with `new` and set the fields): Ruckig
+//! Pro's fields (position limits, intermediate waypoints, per-section limits, a calculation
+//! budget) are not supported yet and will be added as new fields; the JSON reader
+//! ([`super::json`]) refuses them by name.
 
 pub use super::problem::ControlInterface;
 use super::problem::Dof1;
-use super::result::OtgResult;
+use super::result::OtgError;
 
 /// How the degrees of freedom are coordinated in time.
+///
+/// `Time`, `TimeIfNecessary`, `Phase` and `None` are Ruckig's modes, with Ruckig's meaning.
+/// `StraightLine` is trajkit's own: the fastest motion along the straight line in joint
+/// space. Side by side, for boundary states that are collinear (start and target velocity and
+/// acceleration parallel to the displacement):
+///
+/// | mode | duration | path in joint space |
+/// |---|---|---|
+/// | `Time` | the time-synchronized optimum | any |
+/// | `Phase` | the time-synchronized optimum (the same as `Time`) | straight when scaling the limiting DOF's profile onto the others keeps every limit; otherwise `Time`'s motion |
+/// | `StraightLine` | the fastest straight-line motion (may be longer than `Time`'s) | always straight |
+///
+/// For boundary states that are not collinear all three give `Time`'s motion.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Synchronization {
     /// All degrees of freedom finish at the same time (the default).
@@ -20,9 +40,15 @@ pub enum Synchronization {
     /// Only degrees of freedom with a non-zero target velocity or acceleration are synchronized
     /// (with the slowest of all); the others finish as fast as they can.
     TimeIfNecessary,
-    /// Straight-line motion in joint space when the boundary states are collinear; otherwise
-    /// like `Time`.
+    /// Ruckig's phase synchronization: the time-synchronized duration, and a straight line in
+    /// joint space (every phase-synchronized DOF's profile a scaled copy of the limiting DOF's)
+    /// when the boundary states are collinear and the scaled profiles keep every limit;
+    /// otherwise the time-synchronized motion.
     Phase,
+    /// trajkit's fastest straight-line motion (when the boundary states are collinear): one
+    /// path-coordinate problem under every joint's limits. Never shorter than `Time`, and
+    /// longer when a straight line costs time. Only as the global mode (not per DOF).
+    StraightLine,
     /// Every degree of freedom finishes as fast as it can.
     None,
 }
@@ -37,8 +63,10 @@ pub enum DurationDiscretization {
     Discrete,
 }
 
-/// The options shared by both input types.
+/// The options shared by both input types (the global ones; per-DOF overrides are fields of
+/// the input).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[non_exhaustive]
 pub struct Options {
     /// Time coordination.
     pub synchronization: Synchronization,
@@ -53,7 +81,7 @@ pub struct Options {
 /// The input with a compile-time number of degrees of freedom.
 ///
 /// ```
-/// use trajkit::otg::{InputParameter, Otg, OtgResult};
+/// use trajkit::otg::{InputParameter, Otg};
 /// let mut input = InputParameter::<1>::new();
 /// input.target_position = [1.0];
 /// input.max_velocity = [0.6];
@@ -64,6 +92,7 @@ pub struct Options {
 /// assert!((traj.duration() - 2.516_666_666_666_667).abs() < 1e-12);
 /// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct InputParameter<const DOF: usize> {
     /// Current position.
     pub current_position: [f64; DOF],
@@ -89,6 +118,12 @@ pub struct InputParameter<const DOF: usize> {
     pub min_acceleration: Option<[f64; DOF]>,
     /// Degrees of freedom to plan; a disabled one keeps its current acceleration.
     pub enabled: [bool; DOF],
+    /// Per-DOF synchronization, overriding `options.synchronization` (Ruckig's
+    /// `per_dof_synchronization`; `StraightLine` is not accepted per DOF).
+    pub per_dof_synchronization: Option<[Synchronization; DOF]>,
+    /// Per-DOF control interface, overriding `options.control_interface` (Ruckig's
+    /// `per_dof_control_interface`).
+    pub per_dof_control_interface: Option<[ControlInterface; DOF]>,
     /// Options.
     pub options: Options,
 }
@@ -116,6 +151,8 @@ impl<const DOF: usize> InputParameter<DOF> {
             min_velocity: None,
             min_acceleration: None,
             enabled: [true; DOF],
+            per_dof_synchronization: None,
+            per_dof_control_interface: None,
             options: Options::default(),
         }
     }
@@ -134,6 +171,8 @@ impl<const DOF: usize> InputParameter<DOF> {
             vmin: self.min_velocity.as_ref().map(|v| &v[..]),
             amin: self.min_acceleration.as_ref().map(|v| &v[..]),
             enabled: &self.enabled,
+            sync: self.per_dof_synchronization.as_ref().map(|v| &v[..]),
+            iface: self.per_dof_control_interface.as_ref().map(|v| &v[..]),
             options: self.options,
             same_lengths: true,
         }
@@ -143,6 +182,7 @@ impl<const DOF: usize> InputParameter<DOF> {
 /// The input with a run-time number of degrees of freedom; same fields as
 /// [`InputParameter`]. Vectors shorter or longer than `current_position` are invalid input.
 #[derive(Debug, Clone, PartialEq, Default)]
+#[non_exhaustive]
 pub struct DynInputParameter {
     /// Current position; its length is the number of degrees of freedom.
     pub current_position: Vec<f64>,
@@ -168,6 +208,10 @@ pub struct DynInputParameter {
     pub min_acceleration: Option<Vec<f64>>,
     /// Degrees of freedom to plan.
     pub enabled: Vec<bool>,
+    /// Per-DOF synchronization (see [`InputParameter::per_dof_synchronization`]).
+    pub per_dof_synchronization: Option<Vec<Synchronization>>,
+    /// Per-DOF control interface (see [`InputParameter::per_dof_control_interface`]).
+    pub per_dof_control_interface: Option<Vec<ControlInterface>>,
     /// Options.
     pub options: Options,
 }
@@ -190,6 +234,8 @@ impl DynInputParameter {
             min_velocity: None,
             min_acceleration: None,
             enabled: vec![true; dof],
+            per_dof_synchronization: None,
+            per_dof_control_interface: None,
             options: Options::default(),
         }
     }
@@ -213,6 +259,8 @@ impl DynInputParameter {
             vmin: self.min_velocity.as_deref(),
             amin: self.min_acceleration.as_deref(),
             enabled: &self.enabled,
+            sync: self.per_dof_synchronization.as_deref(),
+            iface: self.per_dof_control_interface.as_deref(),
             options: self.options,
             same_lengths: false,
         }
@@ -233,6 +281,8 @@ pub(crate) struct InputView<'a> {
     pub vmin: Option<&'a [f64]>,
     pub amin: Option<&'a [f64]>,
     pub enabled: &'a [bool],
+    pub sync: Option<&'a [Synchronization]>,
+    pub iface: Option<&'a [ControlInterface]>,
     pub options: Options,
     /// Whether all vectors have the same length by construction (arrays of one compile-time
     /// size): then [`InputView::check_shape`] need not compare them.
@@ -240,13 +290,22 @@ pub(crate) struct InputView<'a> {
 }
 
 const NOT_FINITE: &str = "is not a finite number";
-const NOT_POSITIVE: &str = "is not a positive number (or infinity)";
-const NOT_NEGATIVE: &str = "is not a negative number (or -infinity)";
+const NOT_POSITIVE: &str = "is not a number ≥ 0 (or infinity)";
+const NOT_NEGATIVE: &str = "is not a number ≤ 0 (or -infinity)";
 const WRONG_LEN: &str = "is the length of this vector, which differs from the number of DOFs";
 
-fn bad(dof: usize, field: &'static str, value: f64, reason: &'static str) -> OtgResult {
-    OtgResult::InvalidInput {
-        dof,
+fn bad(dof: usize, field: &'static str, value: f64, reason: &'static str) -> OtgError {
+    OtgError::InvalidInput {
+        dof: Some(dof),
+        field,
+        value,
+        reason,
+    }
+}
+
+fn bad_global(field: &'static str, value: f64, reason: &'static str) -> OtgError {
+    OtgError::InvalidInput {
+        dof: None,
         field,
         value,
         reason,
@@ -259,9 +318,23 @@ impl InputView<'_> {
         self.cp.len()
     }
 
+    /// The synchronization of degree of freedom `i` (per DOF, else the global one).
+    #[inline]
+    pub fn sync_of(&self, i: usize) -> Synchronization {
+        self.sync.map_or(self.options.synchronization, |s| s[i])
+    }
+
+    /// Whether any degree of freedom uses `mode`.
+    pub fn any_sync(&self, mode: Synchronization) -> bool {
+        match self.sync {
+            None => self.options.synchronization == mode,
+            Some(s) => s.contains(&mode),
+        }
+    }
+
     /// Checks the lengths and the options.
     #[inline]
-    pub fn check_shape(&self, delta_time: f64) -> Result<(), OtgResult> {
+    pub fn check_shape(&self, delta_time: f64) -> Result<(), OtgError> {
         let n = self.dof();
         // The common case in plain comparisons; a mismatch is named by `length_error`.
         let same = self.same_lengths
@@ -275,14 +348,25 @@ impl InputView<'_> {
                 && self.jmax.len() == n
                 && self.enabled.len() == n
                 && self.vmin.is_none_or(|v| v.len() == n)
-                && self.amin.is_none_or(|a| a.len() == n);
+                && self.amin.is_none_or(|a| a.len() == n)
+                && self.sync.is_none_or(|s| s.len() == n)
+                && self.iface.is_none_or(|c| c.len() == n);
         if !same {
             self.length_error()?;
         }
+        if let Some(s) = self.sync {
+            if let Some(i) = s.iter().position(|&m| m == Synchronization::StraightLine) {
+                return Err(bad(
+                    i,
+                    "per_dof_synchronization",
+                    f64::NAN,
+                    "is straight_line, which applies to all DOFs only (options.synchronization)",
+                ));
+            }
+        }
         if let Some(m) = self.options.minimum_duration {
             if !(m.is_finite() && m >= 0.0) {
-                return Err(bad(
-                    usize::MAX,
+                return Err(bad_global(
                     "minimum_duration",
                     m,
                     "is not a finite number ≥ 0",
@@ -292,8 +376,7 @@ impl InputView<'_> {
         if self.options.duration_discretization == DurationDiscretization::Discrete
             && !(delta_time.is_finite() && delta_time > 0.0)
         {
-            return Err(bad(
-                usize::MAX,
+            return Err(bad_global(
                 "delta_time",
                 delta_time,
                 "is not a positive finite number",
@@ -305,9 +388,9 @@ impl InputView<'_> {
     /// The first vector whose length differs from the number of degrees of freedom, as an
     /// error (in field order).
     #[cold]
-    fn length_error(&self) -> Result<(), OtgResult> {
+    fn length_error(&self) -> Result<(), OtgError> {
         let n = self.dof();
-        let lens: [(&'static str, usize); 10] = [
+        let lens: [(&'static str, usize); 13] = [
             ("current_velocity", self.cv.len()),
             ("current_acceleration", self.ca.len()),
             ("target_position", self.tp.len()),
@@ -318,20 +401,16 @@ impl InputView<'_> {
             ("max_jerk", self.jmax.len()),
             ("enabled", self.enabled.len()),
             ("min_velocity", self.vmin.map_or(n, |v| v.len())),
+            ("min_acceleration", self.amin.map_or(n, |v| v.len())),
+            ("per_dof_synchronization", self.sync.map_or(n, |v| v.len())),
+            (
+                "per_dof_control_interface",
+                self.iface.map_or(n, |v| v.len()),
+            ),
         ];
         for (f, l) in lens {
             if l != n {
-                return Err(bad(usize::MAX, f, l as f64, WRONG_LEN));
-            }
-        }
-        if let Some(a) = self.amin {
-            if a.len() != n {
-                return Err(bad(
-                    usize::MAX,
-                    "min_acceleration",
-                    a.len() as f64,
-                    WRONG_LEN,
-                ));
+                return Err(bad_global(f, l as f64, WRONG_LEN));
             }
         }
         Ok(())
@@ -339,7 +418,7 @@ impl InputView<'_> {
 
     /// The validated problem of degree of freedom `i`.
     #[inline]
-    pub fn dof_problem(&self, i: usize) -> Result<Dof1, OtgResult> {
+    pub fn dof_problem(&self, i: usize) -> Result<Dof1, OtgError> {
         let (vmax, amax, jmax) = (self.vmax[i], self.amax[i], self.jmax[i]);
         let vmin = self.vmin.map_or(-vmax, |v| v[i]);
         let amin = self.amin.map_or(-amax, |v| v[i]);
@@ -353,11 +432,11 @@ impl InputView<'_> {
             & (self.tp[i].abs() <= m)
             & (self.tv[i].abs() <= m)
             & (self.ta[i].abs() <= m)
-            & (vmax > 0.0)
-            & (amax > 0.0)
-            & (jmax > 0.0)
-            & (vmin < 0.0)
-            & (amin < 0.0);
+            & (vmax >= 0.0)
+            & (amax >= 0.0)
+            & (jmax >= 0.0)
+            & (vmin <= 0.0)
+            & (amin <= 0.0);
         if !plain {
             self.value_error(i, vmin, amin)?;
         }
@@ -381,7 +460,7 @@ impl InputView<'_> {
             amax: self.amax[i],
             amin,
             jmax: self.jmax[i],
-            interface: self.options.control_interface,
+            interface: self.iface.map_or(self.options.control_interface, |c| c[i]),
         };
         use super::problem::ProfileOrder;
         let order = d.order();
@@ -432,7 +511,7 @@ impl InputView<'_> {
     /// The first state that is not finite, maximum that is not positive or minimum that is
     /// not negative of degree of freedom `i`, as an error.
     #[cold]
-    fn value_error(&self, i: usize, vmin: f64, amin: f64) -> Result<(), OtgResult> {
+    fn value_error(&self, i: usize, vmin: f64, amin: f64) -> Result<(), OtgError> {
         for (f, v) in [
             ("current_position", self.cp[i]),
             ("current_velocity", self.cv[i]),
@@ -450,14 +529,14 @@ impl InputView<'_> {
             ("max_acceleration", self.amax[i]),
             ("max_jerk", self.jmax[i]),
         ] {
-            if v.is_nan() || v <= 0.0 {
+            if v.is_nan() || v < 0.0 {
                 return Err(bad(i, f, v, NOT_POSITIVE));
             }
         }
-        if vmin.is_nan() || vmin >= 0.0 {
+        if vmin.is_nan() || vmin > 0.0 {
             return Err(bad(i, "min_velocity", vmin, NOT_NEGATIVE));
         }
-        if amin.is_nan() || amin >= 0.0 {
+        if amin.is_nan() || amin > 0.0 {
             return Err(bad(i, "min_acceleration", amin, NOT_NEGATIVE));
         }
         Ok(())
@@ -487,7 +566,7 @@ mod tests {
             Ok(())
         }) {
             Ok(()) => None,
-            Err(OtgResult::InvalidInput { dof, field, .. }) => Some((dof, field)),
+            Err(OtgError::InvalidInput { dof, field, .. }) => Some((dof.unwrap(), field)),
             Err(e) => panic!("{e}"),
         }
     }
@@ -509,7 +588,7 @@ mod tests {
     /// Makes field `k` (of `FIELDS`) of DOF `i` invalid.
     fn spoil(p: &mut InputParameter<2>, k: usize, i: usize) {
         let not_finite = [f64::NAN, f64::INFINITY, f64::NEG_INFINITY][k % 3];
-        let not_signed = [f64::NAN, 0.0, -1.0][k % 3];
+        let not_signed = [f64::NAN, -1e-300, -1.0][k % 3];
         match k {
             0 => p.current_position[i] = not_finite,
             1 => p.current_velocity[i] = not_finite,
@@ -566,15 +645,22 @@ mod tests {
         p.min_acceleration = Some(vec![-1.0; 4]);
         p.max_jerk.push(1.0);
         let field = |p: &DynInputParameter| match p.view().check_shape(0.001) {
-            Err(OtgResult::InvalidInput { dof, field, .. }) => Some((dof, field)),
+            Err(OtgError::InvalidInput { dof, field, .. }) => Some((dof, field)),
             _ => None,
         };
-        assert_eq!(field(&p), Some((usize::MAX, "max_jerk")));
+        assert_eq!(field(&p), Some((None, "max_jerk")));
         p.max_jerk.pop();
-        assert_eq!(field(&p), Some((usize::MAX, "enabled")));
+        assert_eq!(field(&p), Some((None, "enabled")));
         p.enabled.push(true);
-        assert_eq!(field(&p), Some((usize::MAX, "min_acceleration")));
+        assert_eq!(field(&p), Some((None, "min_acceleration")));
         p.min_acceleration = Some(vec![-1.0; 3]);
         assert_eq!(field(&p), None);
+        p.per_dof_synchronization = Some(vec![Synchronization::Phase; 2]);
+        assert_eq!(field(&p), Some((None, "per_dof_synchronization")));
+        p.per_dof_synchronization = Some(vec![Synchronization::StraightLine; 3]);
+        assert_eq!(field(&p), Some((Some(0), "per_dof_synchronization")));
+        p.per_dof_synchronization = None;
+        p.per_dof_control_interface = Some(vec![ControlInterface::Velocity; 4]);
+        assert_eq!(field(&p), Some((None, "per_dof_control_interface")));
     }
 }

@@ -4,10 +4,10 @@
 //! Data in, data out: an [`InputParameter`] (current state, target state, limits, options)
 //! goes through [`Otg::calculate`] (or [`Otg::calculate_into`], into a trajectory the caller
 //! reuses) or, once per control cycle, [`Otg::update`], and comes out
-//! as an [`OtgTrajectory`] or an [`OutputParameter`], with an [`OtgResult`] status. Nothing on
-//! that path allocates when the number of degrees of freedom is a compile-time constant, and no
-//! input makes it panic: non-finite numbers are an `InvalidInput` result naming the field, the
-//! degree of freedom and the value.
+//! as an [`OtgTrajectory`] or an [`OutputParameter`], with an [`OtgResult`] status (`Working`,
+//! `Finished`) or an [`OtgError`]. Nothing on that path allocates when the number of degrees
+//! of freedom is a compile-time constant, and no input makes it panic: non-finite numbers are
+//! an `InvalidInput` error naming the field, the degree of freedom and the value.
 //!
 //! ```
 //! use trajkit::otg::{InputParameter, Otg};
@@ -21,27 +21,35 @@
 //! assert!((otg.calculate(&input)?.duration() - 2.5166666666666667).abs() < 1e-12);
 //! input.max_jerk = [f64::INFINITY]; // trapezoidal
 //! assert!((otg.calculate(&input)?.duration() - 2.2666666666666667).abs() < 1e-12);
-//! # Ok::<(), trajkit::otg::OtgResult>(())
+//! # Ok::<(), trajkit::otg::OtgError>(())
 //! ```
 //!
 //! # Precision contract
-//! Every profile is verified by integrating it before it is accepted: the final state is within
-//! 1e-8 (position) and 1e-10 (velocity, acceleration) of the target, and velocity and
-//! acceleration stay within their limits to 1e-12 relative, checked at every segment boundary
-//! and at every interior velocity extremum, not at samples. The brake pre-profile, which brings
-//! a state that starts outside the limits back inside, is exempt from the limits it repairs.
+//! Every profile is verified by integrating it before it is accepted: the final position is
+//! within 1e-8 of the target for motions of at least 1e-3, and within 1e-5 of the motion's
+//! scale (plus 16 rounding units of the positions) below that, so that a motion of 1e-11
+//! arrives; velocity and acceleration within 1e-10. Velocity and acceleration stay within
+//! their limits to 1e-12 relative, checked at every segment boundary and at every interior
+//! velocity extremum, not at samples. The brake pre-profile, which brings a state that starts
+//! outside the limits back inside, is exempt from the limits it repairs. A start state equal to
+//! the target state (exactly) gives a trajectory of duration 0.
 //!
 //! # Files (one per step)
-//! [`profile`] the segment list of one DOF · [`velocity_change`] fastest velocity changes ·
-//! [`brake`] the brake pre-profile · [`step1`] time-optimal profile families · [`step2`]
-//! profiles of a given duration · [`sync`] the common duration and phase synchronization ·
-//! [`roots`] polynomial and scalar root finding · [`input`], [`result`], [`trajectory`], [`generator`].
+//! [`json`] the Ruckig-style JSON reader · [`input`] validation · [`profile`] the segment list
+//! of one DOF · [`velocity_change`] fastest velocity changes · [`brake`] the brake
+//! pre-profile · [`zero`] zero limits · [`step1`] time-optimal profile families · [`step2`]
+//! profiles of a given duration · [`sync`] the common duration · `phase` Ruckig's phase
+//! synchronization and the straight-line mode · [`roots`] polynomial and scalar root
+//! finding · [`result`], [`trajectory`], [`generator`].
 
 pub mod brake;
+pub mod check;
 mod families;
 mod families_gen;
 pub mod generator;
 pub mod input;
+pub mod json;
+mod phase;
 pub mod problem;
 pub mod profile;
 pub mod result;
@@ -53,6 +61,7 @@ pub mod step2;
 pub mod sync;
 pub mod trajectory;
 pub mod velocity_change;
+pub mod zero;
 
 pub use generator::{calculate_dyn, Otg, OutputParameter};
 pub use input::{
@@ -61,7 +70,7 @@ pub use input::{
 };
 pub use problem::{Dof1, ProfileOrder};
 pub use profile::{Profile, State1};
-pub use result::OtgResult;
+pub use result::{OtgError, OtgResult};
 pub use trajectory::{DofTrajectory, DynTrajectory, FixedTrajectory, OtgTrajectory};
 
 /// Time-optimal profile of one degree of freedom (brake pre-profile included), or `None` when

@@ -358,6 +358,30 @@ impl Profile {
         q
     }
 
+    /// The profile with every segment's input (jerk; for `order` 2 the acceleration, for
+    /// `order` 1 the velocity) multiplied by `s`, integrated from `start` (Ruckig's phase
+    /// synchronization: another DOF follows the same timing from its own state).
+    pub(crate) fn scaled_onto(&self, s: f64, start: State1, order: u8) -> Profile {
+        let mut q = Profile::new(start);
+        for k in 0..self.n {
+            let e = q.end();
+            let v = if order == 1 { s * self.v[k] } else { e.v };
+            let a = match order {
+                3 => e.a,
+                2 => s * self.a[k],
+                _ => 0.0,
+            };
+            q.push_with(self.d[k], v, a, s * self.j[k]);
+            if k + 1 == self.brake {
+                q.mark_brake();
+            }
+        }
+        if order < 3 {
+            q.set_final(s * self.v[self.n], s * self.a[self.n]);
+        }
+        q
+    }
+
     /// Smallest and largest position over `[0, duration]` with the times at which they occur:
     /// `(min, t_min, max, t_max)`. Checks segment ends and interior velocity zeros.
     pub fn position_extrema(&self) -> (f64, f64, f64, f64) {

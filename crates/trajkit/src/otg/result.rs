@@ -1,28 +1,56 @@
-//! The status of a calculation or an update: a plain enum, no allocation.
+//! The status of an update and the error of a calculation: plain `Copy` enums, no allocation.
+//!
+//! [`OtgResult`] is what [`super::Otg::update`] reports when it succeeds (`Working` or
+//! `Finished`, as Ruckig's `Result`); every failure is an [`OtgError`], which names the degree
+//! of freedom (`Some(i)`, or `None` for fields that are not per DOF), the field and the value.
+//! An `OtgError` converts into [`crate::Error`] (`Error::Otg`), so `?` works in functions that
+//! return trajkit's error. Neither type allocates: building, copying and returning one is safe
+//! on a real-time path.
 
 use std::fmt;
 
-/// Which input field a [`OtgResult::InvalidInput`] refers to.
+/// Which input field an [`OtgError::InvalidInput`] refers to.
 pub type FieldName = &'static str;
 
-/// Outcome of [`super::Otg::calculate`] and [`super::Otg::update`].
-///
-/// Errors carry the degree of freedom and the value involved; `Display` turns them into a
-/// one-line message such as `invalid input: max_velocity[2] = -1 is not a positive number`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[non_exhaustive]
+/// Outcome of a successful [`super::Otg::update`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum OtgResult {
     /// The trajectory is being followed; the target is not reached yet.
     Working,
     /// The target state has been reached (the time after this update is past the duration).
     Finished,
+}
+
+impl OtgResult {
+    /// A short machine-readable name: `working`, `finished`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            OtgResult::Working => "working",
+            OtgResult::Finished => "finished",
+        }
+    }
+}
+
+impl fmt::Display for OtgResult {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Why a calculation failed.
+///
+/// `Display` gives one line such as `invalid input: max_velocity[2] = -1 is not a number ≥ 0
+/// (or infinity)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub enum OtgError {
     /// An input value is not acceptable.
     InvalidInput {
-        /// The degree of freedom (0-based); `usize::MAX` for fields that are not per DOF.
-        dof: usize,
+        /// The degree of freedom (0-based); `None` for fields that are not per DOF.
+        dof: Option<usize>,
         /// The field (Ruckig's input field name).
         field: FieldName,
-        /// The value given.
+        /// The value given (a length for vectors of the wrong size).
         value: f64,
         /// Why it is refused.
         reason: &'static str,
@@ -32,63 +60,114 @@ pub enum OtgResult {
         /// The degree of freedom.
         dof: usize,
     },
+    /// A degree of freedom with a zero limit cannot reach its target (it can only coast at its
+    /// current acceleration), or cannot do so at the duration the others need.
+    ZeroLimits {
+        /// The degree of freedom.
+        dof: usize,
+    },
     /// No common duration could be found for the synchronized degrees of freedom.
     SynchronizationFailed {
-        /// The degree of freedom that could not be re-planned last.
-        dof: usize,
+        /// The degree of freedom that could not be re-planned last (`None` when none was
+        /// tried).
+        dof: Option<usize>,
         /// The last duration tried, in seconds.
         duration: f64,
     },
 }
 
-impl OtgResult {
-    /// True for `Working` and `Finished`.
-    pub fn is_ok(&self) -> bool {
-        matches!(self, OtgResult::Working | OtgResult::Finished)
-    }
-
-    /// A short machine-readable name: `working`, `finished`, `invalid_input`,
-    /// `calculation_failed`, `synchronization_failed`.
+impl OtgError {
+    /// A short machine-readable name: `invalid_input`, `calculation_failed`, `zero_limits`,
+    /// `synchronization_failed`.
     pub fn name(&self) -> &'static str {
         match self {
-            OtgResult::Working => "working",
-            OtgResult::Finished => "finished",
-            OtgResult::InvalidInput { .. } => "invalid_input",
-            OtgResult::CalculationFailed { .. } => "calculation_failed",
-            OtgResult::SynchronizationFailed { .. } => "synchronization_failed",
+            OtgError::InvalidInput { .. } => "invalid_input",
+            OtgError::CalculationFailed { .. } => "calculation_failed",
+            OtgError::ZeroLimits { .. } => "zero_limits",
+            OtgError::SynchronizationFailed { .. } => "synchronization_failed",
+        }
+    }
+
+    /// The degree of freedom the error is about, if any.
+    pub fn dof(&self) -> Option<usize> {
+        match *self {
+            OtgError::InvalidInput { dof, .. } | OtgError::SynchronizationFailed { dof, .. } => dof,
+            OtgError::CalculationFailed { dof } | OtgError::ZeroLimits { dof } => Some(dof),
         }
     }
 }
 
-impl fmt::Display for OtgResult {
+impl fmt::Display for OtgError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match *self {
-            OtgResult::Working => write!(f, "working"),
-            OtgResult::Finished => write!(f, "finished"),
-            OtgResult::InvalidInput {
+            OtgError::InvalidInput {
                 dof,
                 field,
                 value,
                 reason,
-            } => {
-                if dof == usize::MAX {
-                    write!(f, "invalid input: {field} = {value} {reason}")
-                } else {
-                    write!(f, "invalid input: {field}[{dof}] = {value} {reason}")
-                }
-            }
-            OtgResult::CalculationFailed { dof } => {
+            } => match dof {
+                None => write!(f, "invalid input: {field} = {value} {reason}"),
+                Some(i) => write!(f, "invalid input: {field}[{i}] = {value} {reason}"),
+            },
+            OtgError::CalculationFailed { dof } => {
                 write!(
                     f,
                     "calculation failed: no valid time-optimal profile for DOF {dof}"
                 )
             }
-            OtgResult::SynchronizationFailed { dof, duration } => write!(
+            OtgError::ZeroLimits { dof } => write!(
                 f,
-                "synchronization failed: DOF {dof} has no profile of duration {duration} s"
+                "zero limits: DOF {dof} has a zero limit and cannot reach its target at the \
+                 duration the motion needs"
             ),
+            OtgError::SynchronizationFailed { dof, duration } => match dof {
+                Some(i) => write!(
+                    f,
+                    "synchronization failed: DOF {i} has no profile of duration {duration} s"
+                ),
+                None => write!(
+                    f,
+                    "synchronization failed: no common duration found (last tried {duration} s)"
+                ),
+            },
         }
     }
 }
 
-impl std::error::Error for OtgResult {}
+impl std::error::Error for OtgError {}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn messages_name_dof_field_and_value() {
+        let e = OtgError::InvalidInput {
+            dof: Some(2),
+            field: "max_velocity",
+            value: -1.0,
+            reason: "is negative",
+        };
+        assert_eq!(
+            e.to_string(),
+            "invalid input: max_velocity[2] = -1 is negative"
+        );
+        assert_eq!(e.dof(), Some(2));
+        let e = OtgError::InvalidInput {
+            dof: None,
+            field: "minimum_duration",
+            value: f64::NAN,
+            reason: "is not a number",
+        };
+        assert_eq!(
+            e.to_string(),
+            "invalid input: minimum_duration = NaN is not a number"
+        );
+        assert_eq!(e.dof(), None);
+        let t: crate::Error = OtgError::CalculationFailed { dof: 1 }.into();
+        assert_eq!(
+            t.to_string(),
+            "otg: calculation failed: no valid time-optimal profile for DOF 1"
+        );
+    }
+}

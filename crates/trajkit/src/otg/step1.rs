@@ -71,12 +71,39 @@ use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
 use super::roots::{find_roots_coarse, MAX_POLY, MAX_ROOTS};
 use super::velocity_change::{fastest, VelChange};
+use super::zero::{coast_into, coasts};
 
 /// Largest number of candidate durations kept per degree of freedom.
 pub(crate) const MAX_CANDIDATES: usize = 24;
 
-/// Position tolerance of the target (absolute).
+/// Position tolerance of the target (absolute) for motions of at least 1e-3; smaller motions
+/// have a tolerance relative to their scale (1e-5 of it).
 pub const TOL_POSITION: f64 = 1e-8;
+/// Motions shorter than this have a position tolerance relative to their scale (see
+/// [`position_tolerance`]).
+const SMALL_MOTION: f64 = 1e-3;
+
+/// The position tolerance of the target for profile `pr` of `dof`: [`TOL_POSITION`] for
+/// motions of at least [`SMALL_MOTION`]; below, 1e-5 of the motion's scale S (the larger of
+/// the displacement and the largest distance from the start at a segment boundary), plus 16
+/// rounding units of the positions involved, so that a motion of 1e-11 arrives (to 1e-5 of
+/// itself) instead of ending where it started.
+pub(crate) fn position_tolerance(dof: &Dof1, pr: &Profile) -> f64 {
+    let d = (dof.pf - dof.p0).abs();
+    if d >= SMALL_MOTION {
+        return TOL_POSITION;
+    }
+    let mut s = d;
+    for k in 0..pr.segments() {
+        if let Some((_, _, st, _)) = pr.segment(k) {
+            s = s.max((st.p - dof.p0).abs());
+        }
+    }
+    s = s.max((pr.end().p - dof.p0).abs());
+    let ulps = 16.0 * f64::EPSILON * dof.p0.abs().max(dof.pf.abs()).max(s);
+    TOL_POSITION.min(1e-5 * s) + ulps
+}
+
 /// Velocity and acceleration tolerance of the target (absolute).
 pub const TOL_VELOCITY: f64 = 1e-10;
 /// Relative tolerance of the limits.
@@ -284,7 +311,9 @@ pub(crate) fn verify(dof: &Dof1, pr: &Profile) -> bool {
     let e = pr.end();
     let order = dof.order();
     let within = |x: f64, tol: f64| x.abs() <= tol;
-    if dof.interface == ControlInterface::Position && !within(e.p - dof.pf, TOL_POSITION) {
+    if dof.interface == ControlInterface::Position
+        && !within(e.p - dof.pf, position_tolerance(dof, pr))
+    {
         return false;
     }
     if order != ProfileOrder::First && !within(e.v - dof.vf, TOL_VELOCITY) {
@@ -459,15 +488,33 @@ pub(crate) fn step1_fastest_into(
 /// candidate durations (brake included) go there and their number is returned (the full
 /// mode), without it only the fastest profile is wanted (fastest-only mode; returns 0).
 /// Inlined into both callers, so that each mode's code is specialised.
+///
+/// Two cases come first: a degree of freedom that coasts ([`super::zero`]) has one profile,
+/// and one whose state already is its target state (exactly) needs no time: duration 0, the
+/// fastest of its candidates (the others, in the full mode, still bound its blocked
+/// intervals: a moving state cannot stay on its target for a short while).
 #[inline(always)]
 fn step1_run(
     dof: &Dof1,
     profile: &mut Profile,
     spare: &mut Option<Profile>,
-    cand: Option<&mut [f64; MAX_CANDIDATES]>,
+    mut cand: Option<&mut [f64; MAX_CANDIDATES]>,
 ) -> Option<usize> {
+    // The common rest-to-rest case first (it never applies to the two cases below: it needs a
+    // displacement, and a coasting DOF's closed form does not pass verification).
     if rest_to_rest(dof, profile).is_some() {
-        // Its duration is the only candidate.
+        return Some(match cand.as_deref_mut() {
+            Some(c) => {
+                c[0] = profile.duration();
+                1
+            }
+            None => 0,
+        });
+    }
+    if coasts(dof) {
+        if !coast_into(dof, None, profile) {
+            return None;
+        }
         return Some(match cand {
             Some(c) => {
                 c[0] = profile.duration();
@@ -476,6 +523,51 @@ fn step1_run(
             None => 0,
         });
     }
+    if is_on_target(dof) {
+        let n = match cand {
+            None => 0,
+            Some(c) => {
+                // The other candidates (durations of loops back to the target state), for the
+                // blocked intervals.
+                let n = step1_enumerate(dof, profile, spare, Some(c)).unwrap_or(0);
+                let n = n.min(MAX_CANDIDATES - 1);
+                c.copy_within(0..n, 1);
+                c[0] = 0.0;
+                n + 1
+            }
+        };
+        profile.reset(State1 {
+            p: dof.p0,
+            v: dof.v0,
+            a: dof.a0,
+        });
+        if dof.order() == ProfileOrder::Second {
+            profile.set_final(dof.vf, 0.0);
+        }
+        return Some(n);
+    }
+    step1_enumerate(dof, profile, spare, cand)
+}
+
+/// Whether the start state is the target state, exactly (position only for the position
+/// interface; acceleration only for third order).
+#[inline]
+pub(crate) fn is_on_target(dof: &Dof1) -> bool {
+    let order = dof.order();
+    (dof.interface == ControlInterface::Velocity || dof.p0 == dof.pf)
+        && (order == ProfileOrder::First || dof.v0 == dof.vf)
+        && (order != ProfileOrder::Third || dof.a0 == dof.af)
+}
+
+/// [`step1_run`] for the ordinary case (after the rest-to-rest closed form): the brake and
+/// the enumeration of the families.
+#[inline(always)]
+fn step1_enumerate(
+    dof: &Dof1,
+    profile: &mut Profile,
+    spare: &mut Option<Profile>,
+    cand: Option<&mut [f64; MAX_CANDIDATES]>,
+) -> Option<usize> {
     let fastest_only = cand.is_none();
     profile.reset(State1 {
         p: dof.p0,

@@ -38,6 +38,9 @@ pub(crate) fn step2_into(dof: &Dof1, t: f64, out: &mut Profile) -> bool {
     if !t.is_finite() || t < 0.0 {
         return false;
     }
+    if super::zero::coasts(dof) {
+        return super::zero::coast_into(dof, Some(t), out);
+    }
     let ok = |pr: &Profile| verify(dof, pr) && (pr.duration() - t).abs() <= 1e-12 * t.max(1.0);
     if dof.interface == ControlInterface::Position
         && dof.order() != ProfileOrder::First
@@ -87,7 +90,12 @@ fn other_families(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<
             pr.set_final(dof.vf, 0.0);
             ok(&pr).then_some(pr)
         }
-        (ProfileOrder::Third, ControlInterface::Velocity) => velocity3(dof, t, ok),
+        (ProfileOrder::Third, ControlInterface::Velocity) => {
+            if let r @ Some(_) = velocity3_closed(dof, t, ok) {
+                return r;
+            }
+            velocity3(dof, t, ok)
+        }
         (ProfileOrder::Second, ControlInterface::Position) => cruise(dof, t, ok),
         (ProfileOrder::Third, ControlInterface::Position) => {
             // Early returns rather than an `or_else` chain, which moves the profile through
@@ -101,7 +109,25 @@ fn other_families(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<
                     return r;
                 }
             }
-            cruise(dof, t, ok)
+            if let r @ Some(_) = cruise(dof, t, ok) {
+                return r;
+            }
+            for mirror in [false, true] {
+                if let r @ Some(_) = four_ramps(dof, t, mirror, ok) {
+                    return r;
+                }
+                for plateau in [true, false] {
+                    if let r @ Some(_) = split_ramp(dof, t, mirror, plateau, ok) {
+                        return r;
+                    }
+                }
+                for plateau in [false, true] {
+                    if let r @ Some(_) = peak_then_hold(dof, t, mirror, plateau, ok) {
+                        return r;
+                    }
+                }
+            }
+            None
         }
     }
 }
@@ -359,16 +385,27 @@ fn hold(
     };
     let d = dof.pf - dof.p0;
     let sgn = if mirror { -1.0 } else { 1.0 };
-    let mut f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf) + 0.0 * d);
+    let f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf) + 0.0 * d);
     let (lo, hi) = if at_valley { (-a2, af) } else { (a0, amax) };
+    let cuts = [lo, hi, 0.0, if at_valley { a0.min(af) } else { af.max(a0) }];
+    first_root(cuts, f, &build, ok)
+}
+
+/// The first profile, built by `build` at a root of `f` (bracketed on the pieces between
+/// `cuts`, in increasing order), that `ok` accepts.
+fn first_root<const N: usize>(
+    mut cuts: [f64; N],
+    mut f: impl FnMut(f64) -> Option<f64>,
+    build: &impl Fn(f64) -> Option<Profile>,
+    ok: &impl Fn(&Profile) -> bool,
+) -> Option<Profile> {
     let mut roots = [0.0; MAX_ROOTS];
-    let mut cuts = [lo, hi, 0.0, if at_valley { a0.min(af) } else { af.max(a0) }];
     let mut best = None;
-    for_each_piece(&mut cuts, |a, b| {
+    for_each_piece(&mut cuts, |lo, hi| {
         if best.is_some() {
             return;
         }
-        let n = find_roots(&mut f, a, b, &mut roots);
+        let n = find_roots(&mut f, lo, hi, &mut roots);
         for &x in &roots[..n] {
             if let Some(pr) = build(x) {
                 if ok(&pr) {
@@ -379,6 +416,260 @@ fn hold(
         }
     });
     best
+}
+
+/// Four ramps without a hold (third order): a₀ ↘ α₁ ↗ α₂ ↘ α₃ ↗ a_f under full jerk (the
+/// negative direction by mirroring), the shape of a synchronized profile that swings twice
+/// and has neither a cruise nor a plateau. With the middle level α₂ as free parameter the
+/// duration gives α₁ + α₃ = (a₀ + a_f + 2α₂ − jT)/2 and the velocity change
+/// α₁² + α₃² = (a₀² + a_f² + 2α₂² − 2jΔv)/2, so α₁ and α₃ are the two roots of a quadratic
+/// (either order); the position residual is then bracketed in α₂.
+fn four_ramps(dof: &Dof1, t: f64, mirror: bool, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
+    let q = if mirror { dof.mirrored() } else { *dof };
+    let (j, a0, af) = (q.jmax, q.a0, q.af);
+    let dv = q.vf - q.v0;
+    let tol = 1e-12 * (q.amax - q.amin);
+    let levels = |a2: f64, first_low: bool| -> Option<(f64, f64)> {
+        let sum = (a0 + af + 2.0 * a2 - j * t) / 2.0;
+        let sq = (a0 * a0 + af * af + 2.0 * a2 * a2 - 2.0 * j * dv) / 2.0;
+        let rad = 2.0 * sq - sum * sum;
+        if rad < 0.0 {
+            return None;
+        }
+        let r = rad.sqrt();
+        let (lo, hi) = ((sum - r) / 2.0, (sum + r) / 2.0);
+        let (a1, a3) = if first_low { (lo, hi) } else { (hi, lo) };
+        let valid = a1 <= a0 + tol
+            && a1 <= a2 + tol
+            && a3 <= a2 + tol
+            && a3 <= af + tol
+            && a1 >= q.amin - tol
+            && a3 >= q.amin - tol
+            && a2 <= q.amax + tol;
+        valid.then_some((a1, a3))
+    };
+    let build = |a2: f64, first_low: bool| -> Option<Profile> {
+        let (a1, a3) = levels(a2, first_low)?;
+        let mut pr = Profile::new(State1 {
+            p: q.p0,
+            v: q.v0,
+            a: a0,
+        });
+        pr.push(((a0 - a1) / j).max(0.0), -j);
+        pr.push(((a2 - a1) / j).max(0.0), j);
+        pr.push(((a2 - a3) / j).max(0.0), -j);
+        pr.push(((af - a3) / j).max(0.0), j);
+        if mirror {
+            pr.mirror();
+        }
+        Some(pr)
+    };
+    let sgn = if mirror { -1.0 } else { 1.0 };
+    for first_low in [true, false] {
+        let b = |x: f64| build(x, first_low);
+        let f = |x: f64| b(x).map(|pr| sgn * (pr.end().p - dof.pf));
+        if let r @ Some(_) = first_root([q.amin, q.amax, 0.0, a0, af], f, &b, ok) {
+            return r;
+        }
+    }
+    None
+}
+
+/// A ramp split by a hold (third order): a₀ ↘ α (hold τ) ↘ β (hold h) ↗ a_f under full jerk,
+/// the negative direction by mirroring; the hold at α is at a level that is not a limit and
+/// not an extremum. `plateau`: β is the acceleration limit and h ≥ 0 (then τ + h is fixed by
+/// the duration and τ follows from the velocity change); otherwise h = 0 and β follows from
+/// the duration and the velocity change (a quadratic). Free parameter α ∈ [β, a₀], the
+/// position residual bracketed.
+fn split_ramp(
+    dof: &Dof1,
+    t: f64,
+    mirror: bool,
+    plateau: bool,
+    ok: &impl Fn(&Profile) -> bool,
+) -> Option<Profile> {
+    let q = if mirror { dof.mirrored() } else { *dof };
+    let (j, a0, af, m) = (q.jmax, q.a0, q.af, q.amin);
+    let dv = q.vf - q.v0;
+    // Returns (τ, β, h).
+    let levels = |al: f64| -> Option<(f64, f64, f64)> {
+        let (tau, beta, h) = if plateau {
+            let rest = t - (a0 - m) / j - (af - m) / j;
+            let k = (a0 * a0 - 2.0 * m * m + af * af) / (2.0 * j);
+            let tau = (dv - k - m * rest) / (al - m);
+            (tau, m, rest - tau)
+        } else {
+            let c = al * t * j - al * (a0 + af) - j * dv + (a0 * a0 + af * af) / 2.0;
+            let rad = al * al + c;
+            if rad < 0.0 {
+                return None;
+            }
+            let beta = al - rad.sqrt();
+            (t - (a0 + af - 2.0 * beta) / j, beta, 0.0)
+        };
+        let valid = tau >= 0.0
+            && h >= 0.0
+            && beta >= m * (1.0 + 1e-12)
+            && beta <= al
+            && al <= a0
+            && beta <= af
+            && al <= q.amax;
+        valid.then_some((tau, beta, h))
+    };
+    let build = |al: f64| -> Option<Profile> {
+        let (tau, beta, h) = levels(al)?;
+        let mut pr = Profile::new(State1 {
+            p: q.p0,
+            v: q.v0,
+            a: a0,
+        });
+        pr.push(((a0 - al) / j).max(0.0), -j);
+        pr.push(tau, 0.0);
+        pr.push(((al - beta) / j).max(0.0), -j);
+        pr.push(h, 0.0);
+        pr.push(((af - beta) / j).max(0.0), j);
+        if mirror {
+            pr.mirror();
+        }
+        Some(pr)
+    };
+    let sgn = if mirror { -1.0 } else { 1.0 };
+    let f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf));
+    first_root(
+        [m, a0, 0.0, af.max(m.min(a0)).min(a0.max(m))],
+        f,
+        &build,
+        ok,
+    )
+}
+
+/// A peak, then a hold on the way down (third order): a₀ ↗ α₁ ↘ α₂ (hold τ) ↘ a_f under full
+/// jerk, the negative direction by mirroring (the time reversal of [`split_ramp`]). Without a
+/// plateau the duration gives τ = T − (2α₁ − a₀ − a_f)/j and the velocity change
+/// α₂ = (Δv − (2α₁² − a₀² − a_f²)/(2j))/τ, free parameter α₁ ∈ [max(a₀, a_f), a_max]; with a
+/// plateau at α₁ = a_max (lasting h) the duration fixes h + τ and the velocity change gives
+/// τ, free parameter α₂ ∈ [a_f, a_max]. The position residual is bracketed. (Ruckig plans a
+/// DOF this way, for example, when its target is at the velocity limit or it must pass a
+/// plateau first, and it is synchronized to a slightly longer duration.)
+fn peak_then_hold(
+    dof: &Dof1,
+    t: f64,
+    mirror: bool,
+    plateau: bool,
+    ok: &impl Fn(&Profile) -> bool,
+) -> Option<Profile> {
+    let q = if mirror { dof.mirrored() } else { *dof };
+    let (j, a0, af, amax) = (q.jmax, q.a0, q.af, q.amax);
+    let dv = q.vf - q.v0;
+    // Returns (α₁, h, α₂, τ) from the free parameter.
+    let levels = |x: f64| -> Option<(f64, f64, f64, f64)> {
+        let (a1, h, a2, tau) = if plateau {
+            let (a1, a2) = (amax, x);
+            let rest = t - (2.0 * a1 - a0 - af) / j;
+            let k = (2.0 * a1 * a1 - a0 * a0 - af * af) / (2.0 * j);
+            let tau = (dv - k - a1 * rest) / (a2 - a1);
+            (a1, rest - tau, a2, tau)
+        } else {
+            let a1 = x;
+            let tau = t - (2.0 * a1 - a0 - af) / j;
+            let a2 = (dv - (2.0 * a1 * a1 - a0 * a0 - af * af) / (2.0 * j)) / tau;
+            (a1, 0.0, a2, tau)
+        };
+        let valid = tau >= 0.0 && h >= 0.0 && a1 >= a0 && a1 >= a2 && a2 >= af && a1 <= amax;
+        valid.then_some((a1, h, a2, tau))
+    };
+    let build = |x: f64| -> Option<Profile> {
+        let (a1, h, a2, tau) = levels(x)?;
+        let mut pr = Profile::new(State1 {
+            p: q.p0,
+            v: q.v0,
+            a: a0,
+        });
+        pr.push(((a1 - a0) / j).max(0.0), j);
+        pr.push(h, 0.0);
+        pr.push(((a1 - a2) / j).max(0.0), -j);
+        pr.push(tau, 0.0);
+        pr.push(((a2 - af) / j).max(0.0), -j);
+        if mirror {
+            pr.mirror();
+        }
+        Some(pr)
+    };
+    let sgn = if mirror { -1.0 } else { 1.0 };
+    let f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf));
+    let lo = if plateau { af } else { a0.max(af) };
+    let hi = amax.max(lo);
+    first_root([lo, hi, 0.0f64.max(lo).min(hi)], f, &build, ok)
+}
+
+/// Velocity interface, third order, in closed form and in Ruckig's order of preference (so
+/// that a DOF synchronized to a longer duration makes Ruckig's motion, not just one of the
+/// same duration): in the direction of the velocity change first, the shapes
+/// a₀ ↗ α (hold) ↘ a_f, a₀ ↗ α (hold) ↗ a_f, a₀ (hold) ↗ a_f, then a₀ → a_f with a reduced
+/// jerk followed by a hold at a_f (or a plain hold when nothing changes). The first valid
+/// profile wins; `None` leaves the bracketing family ([`velocity3`]) to try.
+fn velocity3_closed(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
+    let (a0, af) = (dof.a0, dof.af);
+    let vd = dof.vf - dof.v0;
+    let ad = af - a0;
+    let start = State1 {
+        p: dof.p0,
+        v: dof.v0,
+        a: a0,
+    };
+    // Segments (duration, jerk); None when a duration is negative or not finite.
+    let build = |segs: &[(f64, f64)]| -> Option<Profile> {
+        let mut pr = Profile::new(start);
+        for &(d, j) in segs {
+            if d.is_nan() || d < 0.0 || !pr.push(d, if d > 0.0 { j } else { 0.0 }) {
+                return None;
+            }
+        }
+        ok(&pr).then_some(pr)
+    };
+    let dirs = if vd > 0.0 {
+        [dof.jmax, -dof.jmax]
+    } else {
+        [-dof.jmax, dof.jmax]
+    };
+    for j in dirs {
+        // Up, hold, down.
+        let h1 = ((-ad * ad + 2.0 * j * ((a0 + af) * t - 2.0 * vd)) / (j * j) + t * t).sqrt();
+        let t0 = ad / (2.0 * j) + (t - h1) / 2.0;
+        if h1 >= f64::EPSILON {
+            if let r @ Some(_) = build(&[(t0, j), (h1, 0.0), (t - (t0 + h1), -j)]) {
+                return r;
+            }
+        }
+        // Up, hold, up.
+        let h = -ad + j * t;
+        let t0 = -ad * ad / (2.0 * j * h) + (vd - a0 * t) / h;
+        let t1 = -ad / j + t;
+        if t1 >= f64::EPSILON {
+            if let r @ Some(_) = build(&[(t0, j), (t1, 0.0), (t - (t0 + t1), j)]) {
+                return r;
+            }
+            // Hold, up.
+            if let r @ Some(_) = build(&[(t1, 0.0), (ad / j, j)]) {
+                return r;
+            }
+        }
+        // Nothing to change: hold.
+        if a0.abs() < f64::EPSILON && af.abs() < f64::EPSILON && vd.abs() < f64::EPSILON {
+            if let r @ Some(_) = build(&[(t, 0.0)]) {
+                return r;
+            }
+        }
+        // A ramp with a reduced jerk to a_f, then a hold there.
+        let h = 2.0 * (af * t - vd);
+        let (t0, jf) = (h / ad, ad * ad / h);
+        if jf.abs() < j.abs() + 1e-12 {
+            if let r @ Some(_) = build(&[(t0, jf), (t - t0, 0.0)]) {
+                return r;
+            }
+        }
+    }
+    None
 }
 
 /// Velocity interface, third order: a₀ → α (hold) → a_f in exactly t.
@@ -402,28 +693,11 @@ fn velocity3(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profi
         pr.push(t3, if dof.af >= al { j } else { -j });
         Some(pr)
     };
-    let mut f = |al: f64| build(al).map(|pr| pr.end().v - dof.vf);
-    let mut roots = [0.0; MAX_ROOTS];
+    let f = |al: f64| build(al).map(|pr| pr.end().v - dof.vf);
     // τ ≥ 0 ⇔ |α − a₀| + |a_f − α| ≤ j·t: an explicit window around [a₀, a_f].
     let w_lo = ((dof.a0 + dof.af - j * t) / 2.0).max(dof.amin);
     let w_hi = ((dof.a0 + dof.af + j * t) / 2.0).min(dof.amax);
-    let mut cuts = [w_lo, w_hi, dof.a0, dof.af, 0.0];
-    let mut best = None;
-    for_each_piece(&mut cuts, |a, b| {
-        if best.is_some() {
-            return;
-        }
-        let n = find_roots(&mut f, a, b, &mut roots);
-        for &al in &roots[..n] {
-            if let Some(pr) = build(al) {
-                if ok(&pr) {
-                    best = Some(pr);
-                    return;
-                }
-            }
-        }
-    });
-    best
+    first_root([w_lo, w_hi, dof.a0, dof.af, 0.0], f, &build, ok)
 }
 
 #[cfg(test)]

@@ -20,20 +20,18 @@
 //! one). A duration found by bisection is the edge of the feasible range to 64 halvings (or to
 //! adjacent floating-point numbers, or to one control period for discrete durations).
 //!
-//! Phase synchronization solves one path-coordinate problem s: 0 → 1 whose limits are the
-//! tightest of the joints' limits divided by the joints' displacements, and scales it onto
-//! every joint: the motion is a straight line in joint space. It applies when the start and
-//! target velocities and accelerations are parallel to the displacement; otherwise time
-//! synchronization is used.
+//! Phase synchronization (Ruckig's) and trajkit's straight-line mode live in `phase.rs`.
 
 use super::input::{DurationDiscretization, InputView, Synchronization};
+use super::phase::{phase, straight_line, PhaseCtx};
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
-use super::result::OtgResult;
-use super::step1::{step1, step1_fastest_into, step1_into, verify, MAX_CANDIDATES};
+use super::result::OtgError;
+use super::step1::{step1_fastest_into, step1_into, MAX_CANDIDATES};
 use super::step2::{step2, step2_into};
 use super::trajectory::DofTrajectory;
 use super::velocity_change::fastest3;
+use super::zero::{at_rest, coasts, has_zero_limit};
 
 /// Per-DOF spare profile of the calculation: step 1's second working buffer, then the slot
 /// the time-optimal profile is copied to before step 2 overwrites the output (see
@@ -213,19 +211,22 @@ fn bound_third(d: &Dof1) -> f64 {
             v / a + a / j
         }
     };
-    // Peak velocity without a cruise: x = v·t1(v).
-    let tri = (x * x * j / 4.0).cbrt();
-    let vp = if tri <= knee {
-        tri
+    // A cruise at the limit when the two changes to it and back cover at most x (t1 grows
+    // with v, so this is "peak velocity ≥ v_l"); otherwise the peak velocity v_p without a
+    // cruise: x = v_p·t1(v_p). (Decided first: the cube root is needed only without a
+    // cruise.)
+    let tl = t1(vl);
+    let tm = if x >= vl * tl {
+        2.0 * tl + (x - vl * tl) / vl
     } else {
-        let k = a / j;
-        (-k + (k * k + 4.0 * x / a).sqrt()) * a / 2.0
-    };
-    let tm = if vp <= vl {
+        let tri = (x * x * j / 4.0).cbrt();
+        let vp = if tri <= knee {
+            tri
+        } else {
+            let k = a / j;
+            (-k + (k * k + 4.0 * x / a).sqrt()) * a / 2.0
+        };
         2.0 * t1(vp)
-    } else {
-        let t = t1(vl);
-        2.0 * t + (x - vl * t) / vl
     };
     ts + tm + te
 }
@@ -268,9 +269,10 @@ pub(crate) fn calculate(
     out: &mut [DofTrajectory],
     scratch: &mut [Scratch],
     spare: &mut [Spare],
-) -> Result<f64, OtgResult> {
-    let d = calculate_profiles(view, delta_time, out, scratch, spare)?;
+) -> Result<f64, OtgError> {
     let n = view.dof();
+    let d = calculate_profiles(view, delta_time, out, scratch, spare)
+        .map_err(|e| zero_limits_error(e, &scratch[..n.min(scratch.len())], view))?;
     for i in 0..n {
         if !view.enabled[i] {
             continue;
@@ -286,18 +288,33 @@ pub(crate) fn calculate(
     Ok(d)
 }
 
+/// A failure caused by a degree of freedom with a zero limit is reported as such (Ruckig's
+/// `ErrorZeroLimits`): step 1 of that DOF, or synchronization when any synchronized DOF has
+/// one.
+#[cold]
+fn zero_limits_error(e: OtgError, scratch: &[Scratch], view: &InputView<'_>) -> OtgError {
+    let zero = |i: usize| view.enabled[i] && has_zero_limit(&scratch[i].dof);
+    match e {
+        OtgError::CalculationFailed { dof } if zero(dof) => OtgError::ZeroLimits { dof },
+        OtgError::SynchronizationFailed { .. } => (0..scratch.len())
+            .find(|&i| zero(i))
+            .map_or(e, |dof| OtgError::ZeroLimits { dof }),
+        e => e,
+    }
+}
+
 fn calculate_profiles(
     view: &InputView<'_>,
     delta_time: f64,
     out: &mut [DofTrajectory],
     scratch: &mut [Scratch],
     spare: &mut [Spare],
-) -> Result<f64, OtgResult> {
+) -> Result<f64, OtgError> {
     view.check_shape(delta_time)?;
     let n = view.dof();
     if out.len() < n || scratch.len() < n || spare.len() < n {
-        return Err(OtgResult::InvalidInput {
-            dof: usize::MAX,
+        return Err(OtgError::InvalidInput {
+            dof: None,
             field: "current_position",
             value: n as f64,
             reason: "is the length of this vector, larger than the output storage",
@@ -307,6 +324,19 @@ fn calculate_profiles(
         scratch[i].dof = view.dof_problem(i)?;
     }
     let opts = view.options;
+    // One DOF, nothing to synchronize with: its time-optimal profile (as in Ruckig).
+    if n == 1
+        && view.enabled[0]
+        && opts.minimum_duration.is_none()
+        && opts.duration_discretization == DurationDiscretization::Continuous
+    {
+        let sc = &mut scratch[0];
+        sc.sync = false;
+        if !solve(sc, &mut spare[0], &mut out[0].profile, false) {
+            return Err(OtgError::CalculationFailed { dof: 0 });
+        }
+        return Ok(sc.t_min);
+    }
     let discrete = opts.duration_discretization == DurationDiscretization::Discrete;
     let disc = |t: f64| {
         if discrete {
@@ -339,12 +369,14 @@ fn calculate_profiles(
             continue;
         }
         let sc = &mut scratch[i];
-        sc.sync = match opts.synchronization {
-            Synchronization::Time | Synchronization::Phase => true,
+        let mode = view.sync_of(i);
+        sc.sync = match mode {
+            Synchronization::Time | Synchronization::Phase | Synchronization::StraightLine => true,
             Synchronization::TimeIfNecessary => d.vf != 0.0 || d.af != 0.0,
             Synchronization::None => false,
         };
-        if sc.sync && starts_safe(&d) {
+        // Phase synchronization needs every minimum duration (the limiting DOF).
+        if sc.sync && mode != Synchronization::Phase && starts_safe(&d) && !has_zero_limit(&d) {
             sc.solved = Solved::No;
             sc.ncand = 0;
             sc.step1_in_out = false;
@@ -354,12 +386,14 @@ fn calculate_profiles(
             continue;
         }
         if !solve(sc, &mut spare[i], &mut out[i].profile, false) {
-            return Err(OtgResult::CalculationFailed { dof: i });
+            return Err(OtgError::CalculationFailed { dof: i });
         }
         t_lead = t_lead.max(sc.t_min);
     }
 
-    if opts.synchronization == Synchronization::Phase && phase(view, delta_time, out, scratch)? {
+    if opts.synchronization == Synchronization::StraightLine
+        && straight_line(view, delta_time, out, scratch)?
+    {
         return Ok(duration_of(&out[..n]));
     }
 
@@ -371,8 +405,8 @@ fn calculate_profiles(
             if t > scratch[i].t_min
                 && !replan_into(&mut scratch[i], &mut spare[i], t, &mut out[i].profile)
             {
-                return Err(OtgResult::SynchronizationFailed {
-                    dof: i,
+                return Err(OtgError::SynchronizationFailed {
+                    dof: Some(i),
                     duration: t,
                 });
             }
@@ -405,12 +439,35 @@ fn calculate_profiles(
                     &mut out[lead].profile,
                     false,
                 ) {
-                    return Err(OtgResult::CalculationFailed { dof: lead });
+                    return Err(OtgError::CalculationFailed { dof: lead });
                 }
                 t_lead = t_lead.max(scratch[lead].t_min);
             }
         }
         let mut t = disc(t_lead.max(min_dur));
+        // A synchronized DOF that coasts (zero limits) and moves reaches its target at one
+        // duration only: that is the duration, or there is none.
+        if let Some(i) = (0..n).find(|&i| {
+            let sc = &scratch[i];
+            sc.sync && coasts(&sc.dof) && !at_rest(&sc.dof)
+        }) {
+            let tc = scratch[i].t_min;
+            if t > tc * (1.0 + 1e-12) || disc(tc) != tc {
+                return Err(OtgError::ZeroLimits { dof: i });
+            }
+            return match try_all(scratch, spare, out, n, tc) {
+                Ok(()) => finish(view, delta_time, out, scratch, tc),
+                Err(Miss::At(k) | Miss::Below(k) | Miss::Unsolvable(k)) => {
+                    Err(OtgError::ZeroLimits {
+                        dof: if has_zero_limit(&scratch[k].dof) {
+                            k
+                        } else {
+                            i
+                        },
+                    })
+                }
+            };
+        }
         let mut failed = 0;
         let mut grow = 0;
         let mut last_fail: Option<f64> = None;
@@ -439,15 +496,16 @@ fn calculate_profiles(
                         }
                         // A failed attempt leaves `out` partly written: redo the last success.
                         if !last_ok && try_all(scratch, spare, out, n, hi).is_err() {
-                            return Err(OtgResult::SynchronizationFailed {
-                                dof: failed,
+                            return Err(OtgError::SynchronizationFailed {
+                                dof: Some(failed),
                                 duration: hi,
                             });
                         }
+                        t = hi;
                     }
-                    return Ok(duration_of(&out[..n]));
+                    return finish(view, delta_time, out, scratch, t);
                 }
-                Err(Miss::Unsolvable(i)) => return Err(OtgResult::CalculationFailed { dof: i }),
+                Err(Miss::Unsolvable(i)) => return Err(OtgError::CalculationFailed { dof: i }),
                 Err(Miss::Below(i)) => {
                     // A DOF solved just now needs longer than t: no duration up to its minimum
                     // is feasible.
@@ -463,7 +521,7 @@ fn calculate_profiles(
                     if scratch[i].solved != Solved::Full
                         && !solve(&mut scratch[i], &mut spare[i], &mut out[i].profile, true)
                     {
-                        return Err(OtgResult::CalculationFailed { dof: i });
+                        return Err(OtgError::CalculationFailed { dof: i });
                     }
                 }
             }
@@ -490,10 +548,39 @@ fn calculate_profiles(
             }
             t = next;
         }
-        return Err(OtgResult::SynchronizationFailed {
-            dof: failed,
+        return Err(OtgError::SynchronizationFailed {
+            dof: Some(failed),
             duration: t,
         });
+    }
+    Ok(duration_of(&out[..n]))
+}
+
+/// The synchronized profiles at duration `t` are in `out`: Ruckig's phase synchronization
+/// replaces them by scaled copies of the limiting DOF's profile where it applies
+/// (`phase.rs`); returns the trajectory's duration.
+#[inline]
+fn finish(
+    view: &InputView<'_>,
+    delta_time: f64,
+    out: &mut [DofTrajectory],
+    scratch: &[Scratch],
+    t: f64,
+) -> Result<f64, OtgError> {
+    let n = view.dof();
+    let phase_any = match view.sync {
+        None => view.options.synchronization == Synchronization::Phase,
+        Some(_) => view.any_sync(Synchronization::Phase),
+    };
+    if phase_any {
+        let ctx = PhaseCtx {
+            view,
+            delta_time,
+            scratch,
+        };
+        if let Some(d) = phase(&ctx, out, t) {
+            return Ok(d.max(duration_of(&out[..n])));
+        }
     }
     Ok(duration_of(&out[..n]))
 }
@@ -505,7 +592,7 @@ fn duration_of(out: &[DofTrajectory]) -> f64 {
 /// Re-plans one DOF for total duration `t` (brake kept) into `out`, its output profile; the
 /// step-1 profile when `t` is its minimum. False (and `out` unspecified) when no profile was
 /// found.
-fn replan_into(s: &mut Scratch, spare: &mut Spare, t: f64, out: &mut Profile) -> bool {
+pub(crate) fn replan_into(s: &mut Scratch, spare: &mut Spare, t: f64, out: &mut Profile) -> bool {
     // At (numerically) the minimum duration the step-1 profile is the answer; the residual of
     // step 2 is at round-off level there.
     if (t - s.t_min).abs() <= 1e-13 * t.max(1.0) {
@@ -600,7 +687,7 @@ fn try_all(
                 // Step 2 has already failed at t.
                 return Err(Miss::At(i));
             }
-        } else if t < sc.t_min {
+        } else if t < sc.t_min && (t - sc.t_min).abs() > 1e-13 * t.max(1.0) {
             return Err(Miss::At(i));
         }
         if !replan_into(sc, &mut spare[i], t, &mut out[i].profile) {
@@ -610,148 +697,10 @@ fn try_all(
     Ok(())
 }
 
-/// Phase synchronization; `Ok(false)` when it does not apply (the caller falls back to time
-/// synchronization).
-fn phase(
-    view: &InputView<'_>,
-    delta_time: f64,
-    out: &mut [DofTrajectory],
-    scratch: &[Scratch],
-) -> Result<bool, OtgResult> {
-    let n = view.dof();
-    if view.options.control_interface != ControlInterface::Position {
-        return Ok(false);
-    }
-    // Reference direction: the displacement.
-    let mut norm = 0.0f64;
-    for i in 0..n {
-        if view.enabled[i] {
-            let d = &scratch[i].dof;
-            norm = norm.max((d.pf - d.p0).abs());
-        }
-    }
-    if norm == 0.0 {
-        return Ok(false);
-    }
-    // Collinearity: each boundary vector must be λ·u with one λ for all DOFs.
-    let mut lam = [0.0f64; 4];
-    let mut lam_set = [false; 4];
-    let mut lead = usize::MAX;
-    for i in 0..n {
-        if !view.enabled[i] {
-            continue;
-        }
-        let d = &scratch[i].dof;
-        let u = d.pf - d.p0;
-        if lead == usize::MAX || u.abs() > (scratch[lead].dof.pf - scratch[lead].dof.p0).abs() {
-            lead = i;
-        }
-        for (k, x) in [d.v0, d.a0, d.vf, d.af].into_iter().enumerate() {
-            if u == 0.0 {
-                if x != 0.0 {
-                    return Ok(false);
-                }
-                continue;
-            }
-            let l = x / u;
-            if lam_set[k] {
-                if (l - lam[k]).abs() > 1e-12 * (l.abs().max(lam[k].abs())).max(1e-300) {
-                    return Ok(false);
-                }
-            } else {
-                lam[k] = l;
-                lam_set[k] = true;
-            }
-        }
-    }
-    // The path-coordinate problem s: 0 → 1 (displacement u_i = pf_i − p0_i).
-    let (mut vmax, mut vmin, mut amax, mut amin, mut jmax) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-    );
-    for i in 0..n {
-        let d = &scratch[i].dof;
-        let u = d.pf - d.p0;
-        if !view.enabled[i] || u == 0.0 {
-            continue;
-        }
-        let (vp, vn, ap, an) = if u > 0.0 {
-            (d.vmax / u, d.vmin / u, d.amax / u, d.amin / u)
-        } else {
-            (d.vmin / u, d.vmax / u, d.amin / u, d.amax / u)
-        };
-        vmax = vmax.min(vp);
-        vmin = vmin.max(vn);
-        amax = amax.min(ap);
-        amin = amin.max(an);
-        jmax = jmax.min(d.jmax / u.abs());
-    }
-    let s = Dof1 {
-        p0: 0.0,
-        v0: lam[0],
-        a0: lam[1],
-        pf: 1.0,
-        vf: lam[2],
-        af: lam[3],
-        vmax,
-        vmin,
-        amax,
-        amin,
-        jmax,
-        interface: ControlInterface::Position,
-    };
-    let Some(s1) = step1(&s) else {
-        return Ok(false);
-    };
-    let discrete = view.options.duration_discretization == DurationDiscretization::Discrete;
-    let mut t = s1.t_min().max(view.options.minimum_duration.unwrap_or(0.0));
-    if discrete {
-        t = (t / delta_time - 1e-9).ceil().max(0.0) * delta_time;
-    }
-    let mut sc = Scratch {
-        dof: s,
-        cand: s1.cand,
-        ncand: s1.ncand,
-        t_min: s1.t_min(),
-        sync: true,
-        solved: Solved::Full,
-        step1_in_out: false,
-        step1_kept: true,
-        brake: s1.profile.brake_duration() != 0.0,
-        bound: f64::INFINITY,
-    };
-    let mut sp = Profile::default();
-    if !replan_into(&mut sc, &mut Some(s1.profile), t, &mut sp) {
-        return Ok(false);
-    }
-    if sp.brake_duration() > 0.0 {
-        return Ok(false);
-    }
-    // Scale onto every DOF and verify each.
-    for i in 0..n {
-        if !view.enabled[i] {
-            continue;
-        }
-        let d = &scratch[i].dof;
-        if !verify(d, &sp.scaled_from(d.pf - d.p0, d.p0)) {
-            return Ok(false);
-        }
-    }
-    for i in 0..n {
-        if view.enabled[i] {
-            let d = &scratch[i].dof;
-            out[i].profile = sp.scaled_from(d.pf - d.p0, d.p0);
-        }
-    }
-    Ok(true)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::otg::step1::step1;
 
     /// Step 1 into an output profile, as `calculate` does; returns the scratch, the spare and
     /// a copy of the step-1 profile.

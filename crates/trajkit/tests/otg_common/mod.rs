@@ -267,6 +267,35 @@ pub fn within_contract(w: &Violation) -> bool {
 
 /// rsruckig's duration for the same input; `None` when it fails.
 pub fn ruckig_duration<const N: usize>(inp: &InputParameter<N>, dt: f64) -> Option<f64> {
+    ruckig_states(inp, dt, &[]).map(|(t, _)| t)
+}
+
+fn sync_of(s: Synchronization) -> rsruckig::prelude::Synchronization {
+    match s {
+        Synchronization::Time => rsruckig::prelude::Synchronization::Time,
+        Synchronization::TimeIfNecessary => rsruckig::prelude::Synchronization::TimeIfNecessary,
+        // (Ruckig has no straight-line mode: its phase mode is the nearest.)
+        Synchronization::Phase | Synchronization::StraightLine => {
+            rsruckig::prelude::Synchronization::Phase
+        }
+        Synchronization::None => rsruckig::prelude::Synchronization::None,
+    }
+}
+
+fn iface_of(c: ControlInterface) -> rsruckig::prelude::ControlInterface {
+    match c {
+        ControlInterface::Position => rsruckig::prelude::ControlInterface::Position,
+        ControlInterface::Velocity => rsruckig::prelude::ControlInterface::Velocity,
+    }
+}
+
+/// rsruckig's duration and its positions at the fractions `at` of the duration; `None`
+/// when it fails.
+pub fn ruckig_states<const N: usize>(
+    inp: &InputParameter<N>,
+    dt: f64,
+    at: &[f64],
+) -> Option<(f64, Vec<[f64; N]>)> {
     use rsruckig::prelude::{IgnoreErrorHandler, Ruckig, RuckigResult};
     let mut otg = Ruckig::<N, IgnoreErrorHandler>::new(None, dt);
     let mut ri = rsruckig::prelude::InputParameter::<N>::new(None);
@@ -296,18 +325,22 @@ pub fn ruckig_duration<const N: usize>(inp: &InputParameter<N>, dt: f64) -> Opti
         }
         ri.min_acceleration = Some(x);
     }
-    ri.synchronization = match inp.options.synchronization {
-        trajkit::otg::Synchronization::Time => rsruckig::prelude::Synchronization::Time,
-        trajkit::otg::Synchronization::TimeIfNecessary => {
-            rsruckig::prelude::Synchronization::TimeIfNecessary
+    ri.synchronization = sync_of(inp.options.synchronization);
+    ri.control_interface = iface_of(inp.options.control_interface);
+    if let Some(s) = inp.per_dof_synchronization {
+        let mut x = rsruckig::prelude::DataArrayOrVec::new(None, sync_of(s[0]));
+        for i in 0..N {
+            x[i] = sync_of(s[i]);
         }
-        trajkit::otg::Synchronization::Phase => rsruckig::prelude::Synchronization::Phase,
-        trajkit::otg::Synchronization::None => rsruckig::prelude::Synchronization::None,
-    };
-    ri.control_interface = match inp.options.control_interface {
-        trajkit::otg::ControlInterface::Position => rsruckig::prelude::ControlInterface::Position,
-        trajkit::otg::ControlInterface::Velocity => rsruckig::prelude::ControlInterface::Velocity,
-    };
+        ri.per_dof_synchronization = Some(x);
+    }
+    if let Some(c) = inp.per_dof_control_interface {
+        let mut x = rsruckig::prelude::DataArrayOrVec::new(None, iface_of(c[0]));
+        for i in 0..N {
+            x[i] = iface_of(c[i]);
+        }
+        ri.per_dof_control_interface = Some(x);
+    }
     ri.duration_discretization = match inp.options.duration_discretization {
         trajkit::otg::DurationDiscretization::Continuous => {
             rsruckig::prelude::DurationDiscretization::Continuous
@@ -319,7 +352,28 @@ pub fn ruckig_duration<const N: usize>(inp: &InputParameter<N>, dt: f64) -> Opti
     ri.minimum_duration = inp.options.minimum_duration;
     let mut tr = rsruckig::prelude::Trajectory::<N>::new(None);
     match otg.calculate(&ri, &mut tr) {
-        Ok(RuckigResult::Working) | Ok(RuckigResult::Finished) => Some(tr.get_duration()),
-        _ => None,
+        Ok(RuckigResult::Working) | Ok(RuckigResult::Finished) => {}
+        _ => return None,
     }
+    let d = tr.get_duration();
+    let states = at
+        .iter()
+        .map(|f| {
+            let mut p = rsruckig::prelude::DataArrayOrVec::<f64, N>::new(None, 0.0);
+            tr.at_time(
+                f * d,
+                &mut Some(&mut p),
+                &mut None,
+                &mut None,
+                &mut None,
+                &mut None,
+            );
+            let mut q = [0.0; N];
+            for i in 0..N {
+                q[i] = p[i];
+            }
+            q
+        })
+        .collect();
+    Some((d, states))
 }
