@@ -16,9 +16,9 @@ use trajkit::topp::messy::plan_waypoints as plan_pieces;
 use trajkit::topp::{plan_totg, TotgOptions};
 
 use crate::convert::{bad, table, Floats, TrajkitError};
-use crate::limits::limits_of;
+use crate::limits::complete_of;
 use crate::otg::{PyInput, PyOtgTrajectory};
-use crate::topp::piece_options;
+use crate::topp::{piece_options, PIECES_NEEDS, TOTG_NEEDS};
 use crate::traj::{PyTrajectory, SharedTrajectory};
 
 /// Applies `f` to `0..n` on `threads` threads (work taken from a shared counter); results in
@@ -127,7 +127,7 @@ fn plan_waypoints<'py>(
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyList>> {
     let sets = self::waypoint_sets(&waypoint_sets)?;
-    let l = limits_of(&limits)?;
+    let l = complete_of(&limits, PIECES_NEEDS)?;
     let opts = piece_options(path, solver, gridpoints)?;
     let th = threads_of(threads)?;
     let results = py.detach(|| {
@@ -152,7 +152,7 @@ fn totg<'py>(
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyList>> {
     let sets = self::waypoint_sets(&waypoint_sets)?;
-    let l = limits_of(&limits)?;
+    let l = complete_of(&limits, TOTG_NEEDS)?;
     let opts = TotgOptions {
         max_deviation,
         ..TotgOptions::default()

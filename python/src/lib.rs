@@ -9,6 +9,7 @@ mod batch;
 mod convert;
 mod limits;
 mod otg;
+mod plan;
 mod poly;
 mod primitives;
 mod spline;
@@ -36,6 +37,7 @@ fn _trajkit(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("TrajkitError", py.get_type::<convert::TrajkitError>())?;
     m.add_class::<traj::PyTrajectory>()?;
     limits::register(m)?;
+    plan::register(m)?;
     submodule(m, "spline", spline::register)?;
     submodule(m, "otg", otg::register)?;
     submodule(m, "poly", poly::register)?;

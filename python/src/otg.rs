@@ -70,6 +70,8 @@ pub enum PySync {
     Phase = 2,
     /// Every DOF as fast as it can.
     No = 3,
+    /// trajkit's fastest straight line in joint space (all DOFs; not in Ruckig).
+    StraightLine = 4,
 }
 
 /// Ruckig's `ControlInterface`.
@@ -112,6 +114,7 @@ fn sync_to(s: PySync) -> Sync_ {
         PySync::TimeIfNecessary => Sync_::TimeIfNecessary,
         PySync::Phase => Sync_::Phase,
         PySync::No => Sync_::None,
+        PySync::StraightLine => Sync_::StraightLine,
     }
 }
 
@@ -121,6 +124,7 @@ fn sync_from(s: Sync_) -> PySync {
         Sync_::TimeIfNecessary => PySync::TimeIfNecessary,
         Sync_::Phase => PySync::Phase,
         Sync_::None => PySync::No,
+        Sync_::StraightLine => PySync::StraightLine,
     }
 }
 
@@ -411,6 +415,7 @@ impl PyInput {
             1 => PySync::TimeIfNecessary,
             2 => PySync::Phase,
             3 => PySync::No,
+            4 => PySync::StraightLine,
             _ => PySync::Time,
         });
         i.options.control_interface = if o.2 { CI::Velocity } else { CI::Position };

@@ -11,7 +11,7 @@ use trajkit::poly::{
 };
 
 use crate::convert::{bad, obj, table, vector, Floats, IntoPy};
-use crate::limits::limits_of;
+use crate::limits::complete_of;
 use crate::traj::{with_recipe, PyTrajectory};
 
 fn degree(name: &str) -> PyResult<Degree> {
@@ -103,8 +103,20 @@ fn min_duration(
 ) -> PyResult<f64> {
     let a = vector(&q0, "q0", None)?;
     let b = vector(&q1, "q1", None)?;
-    let l = limits_of(limits)?;
-    min_duration_rest_to_rest(self::degree(degree)?, &a, &b, &l).py()
+    let d = self::degree(degree)?;
+    let l = complete_of(limits, timing_needs(d))?;
+    min_duration_rest_to_rest(d, &a, &b, &l).py()
+}
+
+/// The limits that timing a polynomial move reads: velocity, acceleration, and jerk unless
+/// the move is cubic (whose jerk the limits do not bound); a missing one is an error.
+fn timing_needs(d: Degree) -> trajkit::limits::Needs {
+    trajkit::limits::Needs {
+        position: false,
+        velocity: true,
+        acceleration: true,
+        jerk: d != Degree::Cubic,
+    }
 }
 
 /// Peak |velocity|·T/D, |acceleration|·T²/D, |jerk|·T³/D of the unit rest-to-rest profile.
@@ -142,13 +154,17 @@ fn via<'py>(
             Err(_) => ViaVelocities::Given(crate::convert::floats(v, "velocities", None)?),
         },
     };
-    let lim = limits.as_ref().map(limits_of).transpose()?;
+    let d = self::degree(degree)?;
+    let lim = limits
+        .as_ref()
+        .map(|l| complete_of(l, timing_needs(d)))
+        .transpose()?;
     let timing = match (&lim, &durations) {
         (Some(l), None) => ViaTiming::Limits(l),
         (None, Some(d)) => ViaTiming::Durations(vector(d, "durations", None)?),
         _ => return Err(bad("give exactly one of limits= and durations=")),
     };
-    let t = ViaTrajectory::new(&w.data, w.dim, self::degree(degree)?, vel, timing).py()?;
+    let t = ViaTrajectory::new(&w.data, w.dim, d, vel, timing).py()?;
     let args = PyTuple::new(
         py,
         [

@@ -12,6 +12,7 @@ use std::sync::Arc;
 
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
+use trajkit::limits::Needs;
 use trajkit::topp::messy::{plan_waypoints as plan_pieces, PathKind, PieceSolver, PlanOptions};
 use trajkit::topp::{
     ni, plan_totg, Discretization, Gridpoints, JointAcceleration, JointVelocity, LinearPath,
@@ -19,7 +20,7 @@ use trajkit::topp::{
 };
 
 use crate::convert::{bad, obj, table, values, vector, Floats, IntoPy};
-use crate::limits::limits_of;
+use crate::limits::complete_of;
 use crate::spline::{Curve, PathRef};
 use crate::traj::{with_recipe, PyTrajectory, SharedTrajectory};
 
@@ -349,7 +350,7 @@ fn totg<'py>(
     sd_end: f64,
 ) -> PyResult<Bound<'py, PyTrajectory>> {
     let w = table(&waypoints, "waypoints")?;
-    let l = limits_of(&limits)?;
+    let l = complete_of(&limits, TOTG_NEEDS)?;
     let opts = TotgOptions {
         max_deviation,
         start_velocity: sd_start,
@@ -363,6 +364,24 @@ fn totg<'py>(
     let args = (obj(&waypoints), limits, max_deviation, sd_start, sd_end).into_pyobject(py)?;
     with_recipe(py, t, "trajkit.topp", "totg", args)
 }
+
+/// What [`totg`] reads from its limits: velocity and acceleration (a missing one is an
+/// error; the position range and jerk are not used).
+pub const TOTG_NEEDS: Needs = Needs {
+    position: false,
+    velocity: true,
+    acceleration: true,
+    jerk: false,
+};
+
+/// What [`plan_waypoints`] reads: position range (its paths stay inside), velocity and
+/// acceleration (no jerk stage).
+pub const PIECES_NEEDS: Needs = Needs {
+    position: true,
+    velocity: true,
+    acceleration: true,
+    jerk: false,
+};
 
 /// The options of [`plan_waypoints`] from Python arguments.
 pub fn piece_options(path: &str, solver: &str, gridpoints_: usize) -> PyResult<PlanOptions> {
@@ -396,7 +415,7 @@ fn plan_waypoints<'py>(
     gridpoints: usize,
 ) -> PyResult<Bound<'py, PyTrajectory>> {
     let w = table(&waypoints, "waypoints")?;
-    let l = limits_of(&limits)?;
+    let l = complete_of(&limits, PIECES_NEEDS)?;
     let opts = piece_options(path, solver, gridpoints)?;
     let (data, dim) = (w.data.into_owned(), w.dim);
     let t = py

@@ -20,7 +20,7 @@ use crate::convert::{array, eval_times, order, Floats, IntoPy};
 pub type SharedTrajectory = Arc<dyn Trajectory + Send + Sync>;
 
 /// A trajectory ξ(t) over `[0, duration]` with `dof` components.
-#[pyclass(module = "trajkit", name = "Trajectory", frozen)]
+#[pyclass(module = "trajkit", name = "Trajectory", frozen, subclass)]
 pub struct PyTrajectory {
     /// The library's trajectory.
     pub inner: SharedTrajectory,
@@ -97,14 +97,7 @@ impl PyTrajectory {
         let table = py
             .detach(|| trajkit::sample::sample(inner.as_ref(), rate))
             .py()?;
-        let n = table.len();
-        let dof = table.dof();
-        let mut items = vec![array(py, table.times().to_vec(), &[n])?];
-        for o in Order::ALL {
-            let m = table.matrix(o).map(|m| m.to_vec()).unwrap_or_default();
-            items.push(array(py, m, &[n, dof])?);
-        }
-        PyTuple::new(py, items)
+        table_tuple(py, &table)
     }
 
     /// Sets how this trajectory is rebuilt when unpickled (`callable(*args)`); used by the
@@ -129,6 +122,21 @@ impl PyTrajectory {
             self.inner.duration()
         )
     }
+}
+
+/// A sample table as `(t, q, qd, qdd, qddd)`: `t` of shape `(n,)`, the others `(n, dof)`.
+pub fn table_tuple<'py>(
+    py: Python<'py>,
+    table: &trajkit::sample::SampleTable,
+) -> PyResult<Bound<'py, PyTuple>> {
+    let n = table.len();
+    let dof = table.dof();
+    let mut items = vec![array(py, table.times().to_vec(), &[n])?];
+    for o in Order::ALL {
+        let m = table.matrix(o).map(|m| m.to_vec()).unwrap_or_default();
+        items.push(array(py, m, &[n, dof])?);
+    }
+    PyTuple::new(py, items)
 }
 
 /// A trajectory object whose pickling recipe is `module.func(*args)`.

@@ -1,6 +1,12 @@
 """trajkit: robot paths to trajectories, from Python.
 
-A thin layer over the trajkit Rust library. Families live in submodules:
+A thin layer over the trajkit Rust library. The main job is one call::
+
+    import trajkit
+    p = trajkit.plan(waypoints, limits="panda")      # TOPP-RA, jerk bounded, every limit kept
+    p.duration, p(t), p(t, order=1), p.sample(1000), p.report, p.notes
+
+Families live in submodules:
 
 - ``trajkit.spline``: scipy-like interpolators (``CubicSpline``, ``PchipInterpolator``,
   ``Akima1DInterpolator``, ``BSpline``, ``make_interp_spline``) plus Catmull-Rom, Bézier,
@@ -17,15 +23,23 @@ without a copy); arrays out are numpy arrays. Every error is a ``trajkit.Trajkit
 (a ``ValueError``) carrying the Rust library's message.
 """
 
-from ._trajkit import TrajkitError, Trajectory
+from ._trajkit import TrajkitError, Trajectory, Plan, plan
 from .limits import Limits
 from . import spline, poly, otg, topp, primitives, batch
+
+
+def _replan(waypoints, limits, kwargs):
+    """Rebuilds a plan (pickling): the same call."""
+    return plan(waypoints, limits, **kwargs)
+
 
 __version__ = "0.1.0"
 
 __all__ = [
     "TrajkitError",
     "Trajectory",
+    "Plan",
+    "plan",
     "Limits",
     "spline",
     "poly",
