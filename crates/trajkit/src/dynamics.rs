@@ -33,8 +33,8 @@
 //! a mass ≥ 0). [`InverseDynamics::torque`] does not allocate.
 
 use crate::error::{Error, Location, Result};
+pub use crate::inverse_dynamics::InverseDynamics;
 use crate::limits::load::line_of;
-use crate::topp::constraint::InverseDynamics;
 
 /// The largest number of movable joints a [`SerialChain`] holds.
 pub const MAX_JOINTS: usize = 32;
@@ -229,7 +229,7 @@ struct Body {
 ///
 /// ```
 /// use trajkit::dynamics::SerialChain;
-/// use trajkit::topp::constraint::InverseDynamics;
+/// use trajkit::dynamics::InverseDynamics;
 /// let urdf = r#"<robot name="pendulum">
 ///   <link name="base"/>
 ///   <link name="arm"><inertial><origin xyz="0.5 0 0"/><mass value="2"/>

@@ -52,6 +52,7 @@ extern crate self as trajkit;
 pub mod check;
 pub mod dynamics;
 pub mod error;
+mod inverse_dynamics;
 pub mod io;
 pub mod limits;
 pub mod linalg;
@@ -69,6 +70,7 @@ pub mod topp;
 pub mod traj;
 
 pub use error::{Error, Result};
+pub use inverse_dynamics::InverseDynamics;
 pub use limits::{JointLimits, Limits};
 pub use path::{Path, PathAsTrajectory};
 pub use plan::{plan, Plan, PlanOptions};
