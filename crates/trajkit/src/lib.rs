@@ -68,6 +68,7 @@ pub mod size;
 pub mod spline;
 pub mod topp;
 pub mod traj;
+pub mod urdf;
 
 pub use error::{Error, Result};
 pub use inverse_dynamics::InverseDynamics;

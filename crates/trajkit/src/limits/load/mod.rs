@@ -73,8 +73,7 @@ mod value;
 
 pub use moveit::{apply_moveit_joint_limits, moveit_joint_limits_from_str};
 pub use trajkit_format::{from_json_str, from_yaml_str};
-pub use urdf::from_urdf_str;
-pub(crate) use urdf::line_of;
+pub use urdf::{from_urdf, from_urdf_str};
 
 use super::{presets, PartialLimits};
 use crate::error::{Error, Result};
