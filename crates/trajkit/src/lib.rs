@@ -50,6 +50,7 @@
 extern crate self as trajkit;
 
 pub mod check;
+#[cfg(feature = "urdf")]
 pub mod dynamics;
 pub mod error;
 mod inverse_dynamics;
@@ -68,6 +69,7 @@ pub mod size;
 pub mod spline;
 pub mod topp;
 pub mod traj;
+#[cfg(feature = "urdf")]
 pub mod urdf;
 
 pub use error::{Error, Result};

@@ -402,8 +402,11 @@ impl Link {
     /// The link's name. Errors: the attribute is missing.
     pub fn name(&self) -> Result<&str> {
         self.tag.text("name").ok_or_else(|| {
-            self.src
-                .error(self.tag.line, "<link name>", "the link has no name attribute")
+            self.src.error(
+                self.tag.line,
+                "<link name>",
+                "the link has no name attribute",
+            )
         })
     }
 

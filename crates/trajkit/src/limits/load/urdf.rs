@@ -1,6 +1,6 @@
 //! URDF `<limit>` tags, see the [parent module](super); the file is read by [`crate::urdf`].
 
-use super::value::in_file;
+use super::in_file;
 use crate::error::Result;
 use crate::limits::{Given, JointLimits, PartialLimits};
 use crate::urdf::{Joint, JointType, Robot};
