@@ -50,8 +50,10 @@
 extern crate self as trajkit;
 
 pub mod check;
+#[cfg(feature = "urdf")]
 pub mod dynamics;
 pub mod error;
+mod inverse_dynamics;
 pub mod io;
 pub mod limits;
 pub mod linalg;
@@ -67,8 +69,11 @@ pub mod size;
 pub mod spline;
 pub mod topp;
 pub mod traj;
+#[cfg(feature = "urdf")]
+pub mod urdf;
 
 pub use error::{Error, Result};
+pub use inverse_dynamics::InverseDynamics;
 pub use limits::{JointLimits, Limits};
 pub use path::{Path, PathAsTrajectory};
 pub use plan::{plan, Plan, PlanOptions};

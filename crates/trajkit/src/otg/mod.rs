@@ -48,6 +48,7 @@ mod families;
 mod families_gen;
 pub mod generator;
 pub mod input;
+#[cfg(feature = "serde")]
 pub mod json;
 mod phase;
 pub mod problem;
