@@ -11,7 +11,7 @@
 //! - [`toppra`]: the backward (controllable sets) and forward (greedy) passes; its private
 //!   `between` module holds the limits between gridpoints (Bernstein rows and exact checks on
 //!   piecewise-cubic paths, sampled checks elsewhere);
-//! - [`parametrized`]: the solved [`Profile`] and the exact output trajectory;
+//! - [`parametrized`]: the solved [`PhaseProfile`] and the exact output trajectory;
 //! - [`rescale`]: any path composed with any timing law, uniform time scaling;
 //! - [`paths`]: piecewise-linear paths;
 //! - [`blend`]: TOTG's path, straight segments joined by circular blends;
@@ -64,8 +64,8 @@ pub use constraint::{
     JointAcceleration, JointTorque, JointVelocity, PathPoint,
 };
 pub use grid::Gridpoints;
-pub use parametrized::{Parametrized, Profile};
+pub use parametrized::{Parametrized, PhaseProfile};
 pub use paths::LinearPath;
 pub use rescale::{min_time_scale, LinearLaw, QuinticLaw, Retimed, Scaled, TimeLaw};
-pub use toppra::{Discretization, Options, Toppra};
+pub use toppra::{Discretization, Toppra, ToppraOptions};
 pub use totg::{plan_totg, Totg, TotgOptions};

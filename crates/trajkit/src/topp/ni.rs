@@ -56,7 +56,7 @@
 //!    above it cut: one more round, estimated again, at most twice; if such a round cannot
 //!    finish within the caps, the last converged solution is returned.
 //!
-//! The result is a [`Profile`] (x at knots, constant u between), evaluated exactly by
+//! The result is a [`PhaseProfile`] (x at knots, constant u between), evaluated exactly by
 //! [`crate::topp::Retimed`].
 //!
 //! Path breakpoints where σ″ jumps are handled by evaluating the step that ends there on its
@@ -80,7 +80,7 @@
 
 use super::constraint::{Constraint, ConstraintRows, PathPoint};
 use super::lp::{self, BOX};
-use super::parametrized::{Parametrized, Profile};
+use super::parametrized::{Parametrized, PhaseProfile};
 use super::rescale::Retimed;
 use super::toppra::{
     check_path_values, largest_step, CleanSteps, Stage, MAX_REFINED_INTERVALS as MAX_KNOTS,
@@ -184,7 +184,7 @@ pub struct SwitchingPoint {
 #[derive(Debug, Clone, PartialEq)]
 pub struct PhaseSolution {
     /// The timing: x at knots (including located crossings), constant u between.
-    pub profile: Profile,
+    pub profile: PhaseProfile,
     /// Switching points met by the optimal curve, in path order.
     pub switching_points: Vec<SwitchingPoint>,
     /// Event-check rounds that cut steps.
@@ -800,9 +800,9 @@ fn parts_for(e: f64) -> usize {
     }
 }
 
-fn profile_of(s: &[f64], x: &[f64]) -> Result<Profile> {
+fn profile_of(s: &[f64], x: &[f64]) -> Result<PhaseProfile> {
     let sd: Vec<f64> = x.iter().map(|v| v.max(0.0).sqrt()).collect();
-    Profile::new(s, &sd)
+    PhaseProfile::new(s, &sd)
 }
 
 /// The forward curve over a step whose constraints do not vary along it (a straight segment):
