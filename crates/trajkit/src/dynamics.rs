@@ -3,7 +3,7 @@
 //! [`SerialChain`] reads the kinematic chain and the inertial parameters of a robot from a URDF
 //! and computes joint torques τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton–Euler
 //! algorithm. It implements [`InverseDynamics`], so it plugs into
-//! [`JointTorque`](crate::topp::constraint::JointTorque) for torque-limited TOPP-RA.
+//! [`JointTorque`](crate::topp::JointTorque) for torque-limited TOPP-RA.
 //!
 //! # What is read
 //! - The chain: starting at the root link (the one link that is no joint's child), each link
@@ -34,7 +34,7 @@
 
 use crate::error::{Error, Location, Result};
 use crate::limits::load::line_of;
-use crate::topp::constraint::InverseDynamics;
+use crate::topp::InverseDynamics;
 
 /// The largest number of movable joints a [`SerialChain`] holds.
 pub const MAX_JOINTS: usize = 32;
@@ -229,7 +229,7 @@ struct Body {
 ///
 /// ```
 /// use trajkit::dynamics::SerialChain;
-/// use trajkit::topp::constraint::InverseDynamics;
+/// use trajkit::topp::InverseDynamics;
 /// let urdf = r#"<robot name="pendulum">
 ///   <link name="base"/>
 ///   <link name="arm"><inertial><origin xyz="0.5 0 0"/><mass value="2"/>

@@ -12,10 +12,10 @@ use serde_json::Value;
 use trajkit::dynamics::SerialChain;
 use trajkit::rng::SplitMix64;
 use trajkit::spline::CubicSpline;
-use trajkit::topp::constraint::InverseDynamics;
 use trajkit::topp::jerk::{limit_jerk, JerkOptions as FilterOptions};
 use trajkit::topp::jerk_optimal::{plan_sequence, JerkOptimal, JerkOptions};
 use trajkit::topp::messy::{stop_indices, TorqueModel};
+use trajkit::topp::InverseDynamics;
 use trajkit::topp::{Gridpoints, LinearPath, Toppra, ToppraOptions};
 use trajkit::{Limits, Order, Path, Trajectory};
 

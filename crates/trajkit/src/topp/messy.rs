@@ -34,7 +34,7 @@
 //! the position s and the constraint.
 //!
 //! # Precision contract
-//! Each piece carries the precision contract of [`crate::topp::toppra`]; at piece boundaries
+//! Each piece carries the precision contract of [`crate::topp::Toppra`]; at piece boundaries
 //! the robot is at rest (velocity exactly zero) and the position is the shared waypoint.
 
 use super::constraint::{InverseDynamics, JointTorque};

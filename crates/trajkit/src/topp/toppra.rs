@@ -2,11 +2,11 @@
 //!
 //! With state x = ṡ² and control u = s̈, the path velocity evolves between gridpoints as
 //! x_{i+1} = x_i + 2Δ_i·u_i (constant s̈ on each interval). Each constraint gives half-planes in
-//! (u, x) at every gridpoint ([`crate::topp::constraint`]). The solver
+//! (u, x) at every gridpoint ([`crate::topp::Constraint`]). The solver
 //! 1. evaluates the path and all constraints at every gridpoint;
 //! 2. **backward pass**: from the end set K_N = {ṡ_end²}, computes the controllable sets
 //!    K_i = [min, max] of the x from which some admissible u reaches K_{i+1} — two exact
-//!    two-variable linear programs per stage ([`crate::topp::lp`]);
+//!    two-variable linear programs per stage (`topp/lp.rs`);
 //! 3. **forward pass**: from x_0 = ṡ_start², takes the largest admissible u that stays in
 //!    K_{i+1} (a one-variable program: the smallest upper bound);
 //! 4. with [`ToppraOptions::refine`] (the default) the limits hold between gridpoints too
@@ -19,7 +19,7 @@
 //!
 //! Gridpoints ([`Gridpoints`]): by default chosen from a duration tolerance of 1e-4 relative
 //! ([`Gridpoints::Auto`]: equal intervals per path piece, doubled until the duration settles;
-//! see [`crate::topp::grid`]), or a uniform count, a chord tolerance, or a given list.
+//! see [`crate::topp::Gridpoints`]), or a uniform count, a chord tolerance, or a given list.
 //!
 //! Discretization ([`Discretization`]): *interpolation* (default) enforces the constraints of
 //! interval i at both s_i and s_{i+1} with the same u_i (x_{i+1} = x_i + 2Δu_i), so the limits

@@ -37,7 +37,7 @@
 //! `max_deviation`) cannot be blended: [`plan_totg`] splits the waypoints there into
 //! rest-to-rest pieces played as a [`Sequence`] (the robot stops at that waypoint);
 //! [`BlendedPath::new`] refuses them with [`Error::Infeasible`]. The work is bounded for every input
-//! (refinement rounds and knots are capped, see [`crate::topp::toppra::MAX_REFINE_ROUNDS`]).
+//! (refinement rounds and knots are capped, see [`crate::topp::MAX_REFINE_ROUNDS`]).
 //!
 //! # Precision contract
 //! The result is a [`PhaseProfile`] (ṡ² linear in s between knots) composed exactly with the path:
@@ -330,7 +330,7 @@ impl Totg {
 
 /// TOTG through raw waypoints (row-major `count × dim`): repeated waypoints removed, the
 /// waypoints split at exact reversals and at corners too sharp to blend
-/// ([`super::blend::stop_indices`]) into pieces (each blended with
+/// (`stop_indices` in blend.rs) into pieces (each blended with
 /// `options.max_deviation`, timed from rest to rest except `options.start_velocity` on the
 /// first piece and `options.end_velocity` on the last) and the pieces played one after the
 /// other.
