@@ -11,7 +11,7 @@ use std::hint::black_box;
 use trajkit::dynamics::SerialChain;
 use trajkit::io::Waypoints;
 use trajkit::limits::load;
-use trajkit::topp::constraint::InverseDynamics;
+use trajkit::InverseDynamics;
 use trajkit::{Limits, SampleTable};
 
 const UR5E_URDF: &str = include_str!("../../../examples/robots/ur5e/ur5e.urdf");

@@ -3,7 +3,7 @@
 //! [`SerialChain`] takes the kinematic chain and the inertial parameters of a robot from a URDF
 //! (read by [`crate::urdf`]) and computes joint torques τ = M(q)q̈ + C(q, q̇)q̇ + g(q) by the recursive Newton–Euler
 //! algorithm. It implements [`InverseDynamics`], so it plugs into
-//! [`JointTorque`](crate::topp::constraint::JointTorque) for torque-limited TOPP-RA.
+//! [`JointTorque`](crate::topp::JointTorque) for torque-limited TOPP-RA.
 //!
 //! # What is read
 //! - The chain: starting at the root link (the one link that is no joint's child), each link
