@@ -7,7 +7,7 @@
 //! `tools/otg_coefficients.py` (A + w·B, and P = A² − W·B² with the square root eliminated;
 //! degree ≤ 4 for every step-1 family, ≤ 6 for two velocity changes in opposite directions
 //! with a prescribed duration). [`Resid::roots`] solves P on the family's parameter window with
-//! [`super::roots::poly_roots`] and [`Resid::w_at`] recovers w with its sign.
+//! [`crate::roots::poly_roots`] and [`Resid::w_at`] recovers w with its sign.
 //!
 //! Precision: a root is a root of P to a few ulp of its parameter; every candidate profile
 //! built from it is still checked against the target and the limits, and the bracketing
@@ -16,7 +16,7 @@
 use super::families_gen::{two_nn, two_nn_t, two_np, two_np_t, two_pn, two_pn_t, two_pp, two_pp_t};
 use super::problem::Dof1;
 use super::profile::{Profile, State1};
-use super::roots::{poly_roots, MAX_POLY};
+use crate::roots::{poly_roots, MAX_POLY};
 
 /// A family's position residual r(s) = A(s) + w·B(s) with w² = W(s), and P(s) = A² − W·B²
 /// (P = A when the family has no w).
@@ -43,8 +43,8 @@ impl Resid {
     pub fn w_at(&self, s: f64) -> f64 {
         let ww = self.w[0] + s * (self.w[1] + s * self.w[2]);
         let m = ww.max(0.0).sqrt();
-        let a = super::roots::horner_d(&self.a[..self.na], s).0;
-        let b = super::roots::horner_d(&self.b[..self.nb], s).0;
+        let a = crate::roots::horner_d(&self.a[..self.na], s).0;
+        let b = crate::roots::horner_d(&self.b[..self.nb], s).0;
         if (a + m * b).abs() <= (a - m * b).abs() {
             m
         } else {
@@ -264,7 +264,7 @@ mod tests {
             &[((s - a0) / j, j), ((s - w) / j, -j), ((af - w) / j, j)],
         );
         assert!((v - vf).abs() < 1e-14 && (a - af).abs() < 1e-14);
-        let h = |c: &[f64]| crate::otg::roots::horner_d(c, s).0;
+        let h = |c: &[f64]| crate::roots::horner_d(c, s).0;
         let res = h(&r.a[..r.na]) + w * h(&r.b[..r.nb]);
         assert!((res - (p - d)).abs() < 1e-13, "{res} vs {}", p - d);
         let pp = h(&r.p[..r.np]);
@@ -291,7 +291,7 @@ mod tests {
         all[3] = (tau, 0.0);
         let (p, v, a) = displacement(v0, a0, &all);
         assert!((v - vf).abs() < 1e-12 && (a - af).abs() < 1e-12);
-        let res = crate::otg::roots::horner_d(&r.a[..r.na], vc).0;
+        let res = crate::roots::horner_d(&r.a[..r.na], vc).0;
         assert!((res - (p - d)).abs() < 1e-11, "{res} vs {}", p - d);
     }
 }

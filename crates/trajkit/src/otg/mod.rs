@@ -53,7 +53,6 @@ mod phase;
 pub mod problem;
 pub mod profile;
 pub mod result;
-pub mod roots;
 pub mod step1;
 #[cfg(test)]
 mod step1_modes_tests;

@@ -499,8 +499,8 @@ fn quad_roots(a: f64, b: f64, c: f64, lo: f64, hi: f64, out: &mut [f64; 2]) -> u
 
 /// Real roots of the cubic `c0 + c1 x + c2 x² + c3 x³` in `[lo, hi]`, increasing.
 fn cubic_roots_in(c: [f64; 4], lo: f64, hi: f64, out: &mut [f64; 3]) -> usize {
-    let mut buf = [0.0; crate::poly::roots::MAX_DEGREE];
-    let m = crate::poly::roots::roots_in(&c, lo, hi, &mut buf).min(3);
+    let mut buf = [0.0; crate::roots::MAX_DEGREE];
+    let m = crate::roots::roots_in(&c, lo, hi, &mut buf).min(3);
     out[..m].copy_from_slice(&buf[..m]);
     m
 }

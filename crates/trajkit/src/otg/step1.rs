@@ -15,11 +15,11 @@
 //!
 //! In each family the velocity equation gives the second unknown in closed form; the position
 //! equation is then a polynomial of degree ≤ 4 in a suitable parameter (see
-//! [`super::families`]), solved by [`super::roots::poly_roots`]. The up-down-up-down shapes
+//! [`super::families`]), solved by [`crate::roots::poly_roots`]. The up-down-up-down shapes
 //! (two velocity changes in the same direction through a velocity extremum with zero
 //! acceleration) come from the same polynomials, tried only in the one direction where the
 //! extremum can lie between the two kinks. When the closed forms give no valid profile, the
-//! families are solved again by bracketing ([`super::roots::find_roots`]) together with the
+//! families are solved again by bracketing ([`crate::roots::find_roots`]) together with the
 //! "peak" family over the whole velocity range (fallback for degenerate cases). Every root becomes a candidate profile that is **verified by
 //! integration** (target within 1e-8 in position and 1e-10 in velocity and acceleration; limits
 //! within 1e-12 relative at segment ends and interior velocity extrema); the fastest valid
@@ -69,9 +69,9 @@ use super::families::two_changes;
 use super::families_gen::{s1_acc0, s1_acc01, s1_acc1, s1_none};
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
-use super::roots::{find_roots_coarse, MAX_POLY, MAX_ROOTS};
 use super::velocity_change::{fastest, VelChange};
 use super::zero::{coast_into, coasts};
+use crate::roots::{find_roots_coarse, MAX_POLY, MAX_ROOTS};
 
 /// Largest number of candidate durations kept per degree of freedom.
 pub(crate) const MAX_CANDIDATES: usize = 24;
