@@ -18,10 +18,9 @@
 use super::families::two_changes;
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
-use super::step1::{
-    for_each_piece, kink, push_change, velocity_cap, velocity_window, verify, RestShape,
-};
-use super::velocity_change::{fastest, VelChange};
+use super::step1::{velocity_cap, velocity_window, verify, RestShape};
+use super::velocity_change::{fastest, kink, push_change, VelChange};
+use crate::roots::for_each_piece;
 use crate::roots::{find_roots, find_roots_coarse, MAX_ROOTS};
 
 /// A verified profile for `dof` (whose start state is safe) lasting `t` seconds, if one of the

@@ -223,6 +223,23 @@ fn refine(
     }
 }
 
+/// Sorts the cut points, clips them to [cuts[0], cuts[1]] and calls `f` on each piece.
+pub(crate) fn for_each_piece<const N: usize>(cuts: &mut [f64; N], mut f: impl FnMut(f64, f64)) {
+    let (lo, hi) = (cuts[0], cuts[1]);
+    if lo.is_nan() || hi.is_nan() || lo > hi {
+        return;
+    }
+    for c in cuts.iter_mut() {
+        *c = c.clamp(lo, hi);
+    }
+    cuts.sort_by(|a, b| a.total_cmp(b));
+    for k in 0..N - 1 {
+        if cuts[k + 1] > cuts[k] || (k == 0 && lo == hi) {
+            f(cuts[k], cuts[k + 1]);
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -12,7 +12,7 @@
 //! The general solver brackets every root by bisection (robust, about 60 evaluations per
 //! root); the fast one isolates the roots first and converges quadratically, at the price of a
 //! round-off guard that may hand a hard case to the recursion. Both evaluate by Horner's rule
-//! ([`horner`]; [`horner_d`] with the derivative) and share the derivative and the quadratic
+//! ([`horner`]; `horner_d` with the derivative) and share the derivative and the quadratic
 //! formula.
 //!
 //! Every interval is closed; coefficients are lowest order first. Nothing here allocates.
@@ -21,7 +21,7 @@ mod bracket;
 mod isolate;
 mod recursion;
 
-pub(crate) use bracket::{find_roots, find_roots_coarse, MAX_ROOTS};
+pub(crate) use bracket::{find_roots, find_roots_coarse, for_each_piece, MAX_ROOTS};
 pub(crate) use isolate::{poly_roots, MAX_POLY};
 pub use recursion::{max_abs_in, roots_in, MAX_DEGREE};
 
