@@ -30,6 +30,7 @@
 //!   multi-waypoint piecewise polynomials.
 //! - [`otg`]: online jerk-limited generation, any state to any state, synchronized DOFs.
 //! - [`linalg`]: small dense solvers (Cholesky, LU) on row-major slices.
+//! - [`roots`]: real roots of polynomials on an interval (extrema of polynomials).
 //! - [`sample`], [`check`], [`plot`], [`io`]: sampling into tables, limit checking, SVG plots,
 //!   CSV/JSON reading and writing.
 //!
@@ -64,6 +65,7 @@ pub mod plot;
 pub mod poly;
 pub mod primitives;
 pub mod rng;
+pub mod roots;
 pub mod sample;
 pub mod size;
 pub mod spline;
