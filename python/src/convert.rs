@@ -5,15 +5,19 @@
 //!   `trajkit.TrajkitError`, a `ValueError`, carrying the Rust error's message unchanged.
 //! - Arrays in: anything numpy can turn into float64 ([`Floats`]). A C-contiguous float64
 //!   array is read in place (no copy); anything else is converted once.
-//! - Arrays out: results are computed into a `Vec<f64>` with the GIL released and handed to
-//!   numpy without a copy (`PyArray::from_vec`), then reshaped.
-//! - Evaluation over many times ([`eval_times`]) splits large arrays across all cores
-//!   (`std::thread::scope`), each thread calling the library's allocation-free `eval` into its
-//!   slice of the output.
+//! - Arrays out: evaluation over arrays writes into a numpy-allocated array with the GIL
+//!   released; other results are computed into a `Vec<f64>` and handed to numpy without a
+//!   copy (`PyArray::from_vec`), then reshaped.
+//! - Evaluation over many times ([`eval_times_many`], [`eval_times`]) releases the GIL and
+//!   splits large arrays across all cores (`std::thread::scope`), each thread calling the
+//!   library's allocation-free many-point evaluation (`Path::eval_many`: each point's piece
+//!   found from the previous one) or `eval` into its slice of the output.
 
 use std::borrow::Cow;
 
-use numpy::{AllowTypeChange, PyArray, PyArrayLikeDyn, PyArrayMethods, PyUntypedArrayMethods};
+use numpy::{
+    AllowTypeChange, PyArray, PyArrayDyn, PyArrayLikeDyn, PyArrayMethods, PyUntypedArrayMethods,
+};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 
@@ -142,34 +146,67 @@ pub fn array<'py>(py: Python<'py>, data: Vec<f64>, shape: &[usize]) -> PyResult<
 /// Below this many values, evaluation runs on the calling thread only.
 const PARALLEL_MIN: usize = 1 << 15;
 
-/// Calls `f(t, out_row)` for every time in `t`, writing `dim` values per time into `out`;
-/// large arrays are split into one chunk per core. `f` is the library's `eval`.
-pub fn eval_into<F>(t: &[f64], dim: usize, out: &mut [f64], f: &F)
+/// Calls `f(times, out)` on consecutive chunks of `t` and the matching rows of `out` (`dim`
+/// values per time); large arrays are split into one chunk per core, evaluated on scoped
+/// threads. `f` is a library many-point evaluation (or a loop over one-point evaluations).
+pub fn eval_chunks<F>(t: &[f64], dim: usize, out: &mut [f64], f: &F)
 where
-    F: Fn(f64, &mut [f64]) + Sync,
+    F: Fn(&[f64], &mut [f64]) + Sync,
 {
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get());
     if threads <= 1 || t.len() * dim < PARALLEL_MIN || dim == 0 {
-        for (ti, row) in t.iter().zip(out.chunks_exact_mut(dim.max(1))) {
-            f(*ti, row);
-        }
+        f(t, out);
         return;
     }
     let per = t.len().div_ceil(threads);
     std::thread::scope(|s| {
         for (tc, oc) in t.chunks(per).zip(out.chunks_mut(per * dim)) {
-            s.spawn(move || {
-                for (ti, row) in tc.iter().zip(oc.chunks_exact_mut(dim)) {
-                    f(*ti, row);
-                }
-            });
+            s.spawn(move || f(tc, oc));
         }
     });
 }
 
-/// Evaluates `f` at every time of `times` (a scalar or an array of any shape) with the GIL
-/// released. The result has shape `times.shape + (dim,)`, or `times.shape` when `squeeze`
-/// (a curve through 1-D values); a scalar time gives shape `(dim,)` or a float.
+/// Evaluates `f` (a many-point evaluation: times in, `dim` values per time out) at every time
+/// of `times` (a scalar or an array of any shape) with the GIL released. The result has shape
+/// `times.shape + (dim,)`, or `times.shape` when `squeeze` (a curve through 1-D values); a
+/// scalar time gives shape `(dim,)` or a float.
+pub fn eval_times_many<'py, F>(
+    py: Python<'py>,
+    times: &Floats<'py>,
+    dim: usize,
+    squeeze: bool,
+    f: F,
+) -> PyResult<Bound<'py, PyAny>>
+where
+    F: Fn(&[f64], &mut [f64]) + Sync + Send,
+{
+    let shape = times.shape().to_vec();
+    let t = values(times);
+    let t: &[f64] = &t;
+    if shape.is_empty() && squeeze && dim == 1 {
+        let mut out = [0.0];
+        py.detach(|| f(t, &mut out));
+        return Ok(out[0].into_pyobject(py)?.into_any());
+    }
+    let mut full = shape;
+    if !(squeeze && dim == 1) {
+        full.push(dim);
+    }
+    // The output is numpy's own allocation (large arrays get transparent huge pages there,
+    // which makes first-touch page faults 512× rarer than with a fresh Rust vector), filled
+    // in place with the GIL released.
+    let arr = PyArrayDyn::<f64>::zeros(py, full, false);
+    {
+        let mut rw = arr.readwrite();
+        let out = rw
+            .as_slice_mut()
+            .map_err(|e| bad(format!("output array: {e}")))?;
+        py.detach(|| eval_chunks(t, dim, out, &f));
+    }
+    Ok(arr.into_any())
+}
+
+/// [`eval_times_many`] with a one-point evaluation `f(t, out_row)` (the library's `eval`).
 pub fn eval_times<'py, F>(
     py: Python<'py>,
     times: &Floats<'py>,
@@ -180,20 +217,11 @@ pub fn eval_times<'py, F>(
 where
     F: Fn(f64, &mut [f64]) + Sync + Send,
 {
-    let shape = times.shape().to_vec();
-    let t = values(times);
-    let t: &[f64] = &t;
-    let mut out = vec![0.0; t.len() * dim];
-    py.detach(|| eval_into(t, dim, &mut out, &f));
-    if squeeze && dim == 1 {
-        if shape.is_empty() {
-            return Ok(out[0].into_pyobject(py)?.into_any());
+    eval_times_many(py, times, dim, squeeze, |ts, out| {
+        for (ti, row) in ts.iter().zip(out.chunks_exact_mut(dim.max(1))) {
+            f(*ti, row);
         }
-        return array(py, out, &shape);
-    }
-    let mut full = shape;
-    full.push(dim);
-    array(py, out, &full)
+    })
 }
 
 /// The derivative order of an `order=` argument, 0..=`max`.

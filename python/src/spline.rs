@@ -20,7 +20,8 @@ use trajkit::spline::{
 use trajkit::{Path, PathAsTrajectory};
 
 use crate::convert::{
-    array, bad, eval_times, obj, order, table, values, vector, Floats, IntoPy, Table,
+    array, bad, eval_times, eval_times_many, obj, order, table, values, vector, Floats, IntoPy,
+    Table,
 };
 use crate::traj::PyTrajectory;
 
@@ -44,6 +45,12 @@ impl Path for PathRef {
     }
     fn eval_derivatives(&self, s: f64, first: &mut [f64], second: &mut [f64]) {
         self.0.eval_derivatives(s, first, second)
+    }
+    fn eval_many(&self, s: &[f64], order: usize, out: &mut [f64]) {
+        self.0.eval_many(s, order, out)
+    }
+    fn piecewise_degree(&self) -> Option<usize> {
+        self.0.piecewise_degree()
     }
     fn breakpoints(&self) -> Vec<f64> {
         self.0.breakpoints()
@@ -83,7 +90,9 @@ impl Curve {
     ) -> PyResult<Bound<'py, PyAny>> {
         let k = order(nu, 20)?;
         let p = self.path.as_ref();
-        eval_times(py, &x, p.dim(), self.squeeze, |s, out| p.eval(s, k, out))
+        eval_times_many(py, &x, p.dim(), self.squeeze, |s, out| {
+            p.eval_many(s, k, out)
+        })
     }
 
     /// The breakpoints (pieces' joints, both ends included), scipy's `x`.

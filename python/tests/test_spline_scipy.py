@@ -125,3 +125,26 @@ def test_more_curves_and_pickling():
         assert np.array_equal(c(t), c2(t)), type(c)
     traj = ts.CubicSpline(x, pts).as_trajectory()
     assert traj.duration == 3.0 and traj(1.0).shape == (2,)
+
+
+@pytest.mark.parametrize("dim", [1, 2, 7, 12, 20])
+def test_many_times_any_order(dim):
+    """Evaluation over arrays (each time's piece found from the previous one, large arrays
+    split across threads) equals scipy on sorted, reversed, random and out-of-range times,
+    and equals one-time evaluation bitwise."""
+    rng = np.random.default_rng(dim)
+    x = np.cumsum(rng.uniform(0.1, 1.0, 40))
+    y = rng.normal(size=(40, dim))
+    sorted_t = np.linspace(x[0], x[-1], 60_001)
+    random_t = rng.uniform(x[0] - 0.5, x[-1] + 0.5, 50_000)
+    for ours, ref in [(ts.CubicSpline(x, y), si.CubicSpline(x, y)),
+                      (ts.PchipInterpolator(x, y), si.PchipInterpolator(x, y)),
+                      (ts.make_interp_spline(x, y, k=5), si.make_interp_spline(x, y, k=5))]:
+        for t in [sorted_t, sorted_t[::-1], random_t]:
+            inside = np.clip(t, x[0], x[-1])  # trajkit clamps; scipy extrapolates
+            for nu in (0, 1, 3):
+                got = ours(t, nu)
+                want = ref(inside, nu)
+                close(got, want, np.max(np.abs(want)) + 1)
+                for i in rng.integers(0, len(t), 20):
+                    assert np.array_equal(np.asarray(ours(t[i], nu)), got[i])

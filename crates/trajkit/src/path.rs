@@ -30,6 +30,18 @@ pub trait Path {
         self.eval(s, 2, second);
     }
 
+    /// Writes the `order`-th derivative at every parameter of `s` into `out` (row-major,
+    /// `s.len() × dim()`), each row what [`Path::eval`] writes (to rounding: an override may
+    /// evaluate differently, as B-splines do). The default calls `eval` per point; piecewise
+    /// curves override it to find each point's piece from the previous one (fast on sorted
+    /// parameters, correct on any). No allocation.
+    fn eval_many(&self, s: &[f64], order: usize, out: &mut [f64]) {
+        let dim = self.dim();
+        for (&si, o) in s.iter().zip(out.chunks_exact_mut(dim.max(1))) {
+            self.eval(si, order, o);
+        }
+    }
+
     /// Parameters where σ or a low derivative is not smooth (segment joints of a spline,
     /// corners of a piecewise-linear path), increasing, including both ends. Time
     /// parameterization puts gridpoints there. The default is just the two ends; a path that
@@ -62,6 +74,9 @@ impl<P: Path + ?Sized> Path for &P {
     fn eval_derivatives(&self, s: f64, first: &mut [f64], second: &mut [f64]) {
         (**self).eval_derivatives(s, first, second)
     }
+    fn eval_many(&self, s: &[f64], order: usize, out: &mut [f64]) {
+        (**self).eval_many(s, order, out)
+    }
     fn breakpoints(&self) -> Vec<f64> {
         (**self).breakpoints()
     }
@@ -82,6 +97,9 @@ impl<P: Path + ?Sized> Path for Box<P> {
     }
     fn eval_derivatives(&self, s: f64, first: &mut [f64], second: &mut [f64]) {
         (**self).eval_derivatives(s, first, second)
+    }
+    fn eval_many(&self, s: &[f64], order: usize, out: &mut [f64]) {
+        (**self).eval_many(s, order, out)
     }
     fn breakpoints(&self) -> Vec<f64> {
         (**self).breakpoints()

@@ -71,6 +71,16 @@ fn spline_evaluation_does_not_allocate() {
     let mut out = vec![0.0; 2000];
     assert_eq!(allocations(|| b.eval_many(&s, 0, &mut out)), 0);
     assert_eq!(allocations(|| b.eval_many(&s, 2, &mut out)), 0);
+    // Batch evaluation of the piecewise-polynomial curves (sorted, reversed, out of range).
+    let mut rev = s.clone();
+    rev.reverse();
+    rev[7] = f64::NAN;
+    for c in curves.iter().take(7) {
+        for order in 0..=4 {
+            assert_eq!(allocations(|| c.eval_many(&s, order, &mut out)), 0);
+            assert_eq!(allocations(|| c.eval_many(&rev, order, &mut out)), 0);
+        }
+    }
     // Orientation spline.
     let keys = [
         Quat::IDENTITY,

@@ -991,6 +991,9 @@ impl crate::Path for BSpline {
         let mut span = self.k;
         self.eval_with_hint(s, order, out, &mut span)
     }
+    fn eval_many(&self, s: &[f64], order: usize, out: &mut [f64]) {
+        BSpline::eval_many(self, s, order, out)
+    }
     fn breakpoints(&self) -> Vec<f64> {
         let (a, b) = self.domain();
         let mut v: Vec<f64> = vec![a];

@@ -90,6 +90,9 @@ macro_rules! ppoly_backed {
             fn eval_derivatives(&self, s: f64, first: &mut [f64], second: &mut [f64]) {
                 self.pp.eval_derivatives(s, first, second)
             }
+            fn eval_many(&self, s: &[f64], order: usize, out: &mut [f64]) {
+                self.pp.eval_many(s, order, out)
+            }
             fn breakpoints(&self) -> Vec<f64> {
                 self.pp.breaks().to_vec()
             }

@@ -1,4 +1,10 @@
 //! Piecewise polynomials: breaks and per-piece coefficients in the local variable.
+//!
+//! Evaluation over many parameters ([`PiecewisePolynomial::eval_many`], also `Path::eval_many`
+//! of every spline built on it) finds each parameter's piece from the previous one and writes
+//! into a caller buffer without allocating; its values are bitwise those of one-point `eval`
+//! (same operations, same order), which the tests check for every degree, dimension and
+//! parameter order.
 
 use crate::error::{Error, Result};
 use crate::spline::validate;
@@ -249,6 +255,153 @@ impl PiecewisePolynomial {
         self.eval_piece(i, s, order, out);
     }
 
+    /// Writes the `order`-th derivative at every parameter of `s` into `out` (row-major,
+    /// `s.len() × dim`): for each point exactly what [`PiecewisePolynomial::eval`] writes
+    /// (the same operations in the same order, so bitwise equal), without allocating.
+    ///
+    /// Each point's piece is searched from the previous point's piece
+    /// ([`PiecewisePolynomial::piece_index_from`]): O(1) per point for increasing (or nearly
+    /// increasing) parameters, a binary search otherwise, so any order of `s` is correct and
+    /// sorted sweeps are fastest. Degrees 1, 3, 5 and 7 run with the piece width fixed at
+    /// compile time. Panics only if `out` holds fewer than `s.len() × dim` values.
+    ///
+    /// ```
+    /// use trajkit::spline::CubicSpline;
+    /// use trajkit::Path;
+    /// let sp = CubicSpline::natural(&[0.0, 1.0, 3.0], &[0.0, 1.0, 0.0, 2.0, 1.0, -1.0], 2)?;
+    /// let s = [2.5, -1.0, 0.3, 0.7, 3.0];
+    /// let mut many = [0.0; 10];
+    /// sp.as_ppoly().eval_many(&s, 1, &mut many);
+    /// let mut one = [0.0; 2];
+    /// for (i, &si) in s.iter().enumerate() {
+    ///     sp.eval(si, 1, &mut one);
+    ///     assert_eq!(&many[2 * i..2 * i + 2], &one);
+    /// }
+    /// # Ok::<(), trajkit::Error>(())
+    /// ```
+    pub fn eval_many(&self, s: &[f64], order: usize, out: &mut [f64]) {
+        let out = &mut out[..s.len() * self.dim];
+        match self.degree {
+            1 => self.eval_many_fixed::<2>(s, order, out),
+            3 => self.eval_many_fixed::<4>(s, order, out),
+            5 => self.eval_many_fixed::<6>(s, order, out),
+            7 => self.eval_many_fixed::<8>(s, order, out),
+            _ => {
+                let mut hint = 0;
+                for (&si, o) in s.iter().zip(out.chunks_exact_mut(self.dim)) {
+                    let x = self.clamp(si);
+                    let i = if x.is_nan() {
+                        0
+                    } else {
+                        self.piece_index_from(x, hint)
+                    };
+                    hint = i;
+                    self.eval_piece(i, x, order, o);
+                }
+            }
+        }
+    }
+
+    /// [`PiecewisePolynomial::eval_many`] with `K = degree + 1` fixed (the loops over a piece's
+    /// coefficients unroll). Up to 16 components, each piece's coefficients (times the
+    /// derivative factors) are transposed once per piece into a stack block, power-major, so
+    /// that every point is one Horner pass over all components at once (the loop over
+    /// components vectorizes). The arithmetic per component is `eval_piece`'s.
+    fn eval_many_fixed<const K: usize>(&self, s: &[f64], order: usize, out: &mut [f64]) {
+        let dim = self.dim;
+        if order >= K {
+            for (&x, o) in s.iter().zip(out.chunks_exact_mut(dim)) {
+                o.fill(if x.is_nan() { f64::NAN } else { 0.0 });
+            }
+            return;
+        }
+        match dim {
+            1 => self.eval_many_block::<K, 1>(s, order, out),
+            2 => self.eval_many_block::<K, 2>(s, order, out),
+            3 => self.eval_many_block::<K, 3>(s, order, out),
+            4 => self.eval_many_block::<K, 4>(s, order, out),
+            5 => self.eval_many_block::<K, 5>(s, order, out),
+            6 => self.eval_many_block::<K, 6>(s, order, out),
+            7 => self.eval_many_block::<K, 7>(s, order, out),
+            8 => self.eval_many_block::<K, 8>(s, order, out),
+            9..=16 => self.eval_many_block::<K, 16>(s, order, out),
+            _ => {
+                let mut hint = 0;
+                for (&si, o) in s.iter().zip(out.chunks_exact_mut(dim)) {
+                    let x = self.clamp(si);
+                    let i = if x.is_nan() {
+                        0
+                    } else {
+                        self.piece_index_from(x, hint)
+                    };
+                    hint = i;
+                    self.eval_piece(i, x, order, o);
+                }
+            }
+        }
+    }
+
+    /// The block form of [`PiecewisePolynomial::eval_many_fixed`] for at most `MD` components
+    /// (exactly `MD` for up to 8, so that the row copy has a fixed size):
+    /// `block[j][d]` holds piece `i`'s `c[d][j] · j!/(j − order)!` (the factor 1 for order 0).
+    fn eval_many_block<const K: usize, const MD: usize>(
+        &self,
+        s: &[f64],
+        order: usize,
+        out: &mut [f64],
+    ) {
+        let dim = self.dim;
+        let mut f = [1.0; K];
+        if order > 0 {
+            for (j, fj) in f.iter_mut().enumerate() {
+                *fj = if j >= order { falling(j, order) } else { 0.0 };
+            }
+        }
+        let mut block = [[0.0; MD]; K];
+        let mut piece = usize::MAX;
+        let mut left = 0.0;
+        for (&si, o) in s.iter().zip(out.chunks_exact_mut(dim)) {
+            if si.is_nan() {
+                o.fill(f64::NAN);
+                continue;
+            }
+            let x = self.clamp(si);
+            let i = self.piece_index_from(x, if piece == usize::MAX { 0 } else { piece });
+            if i != piece {
+                piece = i;
+                left = self.breaks[i];
+                let c = &self.coeffs[i * dim * K..(i + 1) * dim * K];
+                for (d, cd) in c.chunks_exact(K).enumerate() {
+                    for j in 0..K {
+                        block[j][d] = if order == 0 { cd[j] } else { cd[j] * f[j] };
+                    }
+                }
+            }
+            let h = x - left;
+            let mut acc = [0.0; MD];
+            if order == 0 {
+                acc = block[K - 1];
+                for row in block[..K - 1].iter().rev() {
+                    for d in 0..MD {
+                        acc[d] = acc[d] * h + row[d];
+                    }
+                }
+            } else {
+                for row in block[order..].iter().rev() {
+                    for d in 0..MD {
+                        acc[d] = acc[d] * h + row[d];
+                    }
+                }
+            }
+            if MD == dim {
+                // A copy of fixed size (no call per point).
+                o[..MD].copy_from_slice(&acc);
+            } else {
+                o.copy_from_slice(&acc[..dim]);
+            }
+        }
+    }
+
     /// Writes the first derivative at `s` (clamped) into `first[..dim]` and the second into
     /// `second[..dim]`, with one piece search and one pass over each component's coefficients;
     /// the values are those of [`PiecewisePolynomial::eval`] with orders 1 and 2.
@@ -409,6 +562,9 @@ impl crate::Path for PiecewisePolynomial {
     fn eval_derivatives(&self, s: f64, first: &mut [f64], second: &mut [f64]) {
         PiecewisePolynomial::eval_derivatives(self, s, first, second)
     }
+    fn eval_many(&self, s: &[f64], order: usize, out: &mut [f64]) {
+        PiecewisePolynomial::eval_many(self, s, order, out)
+    }
     fn breakpoints(&self) -> Vec<f64> {
         self.breaks.clone()
     }
@@ -489,6 +645,53 @@ mod tests {
             for k in 0..=1000 {
                 let s = k as f64 * 0.1 - 0.5;
                 assert_eq!(pp.piece_index_from(s, h), pp.piece_index(s), "s={s} h={h}");
+            }
+        }
+    }
+
+    /// `eval_many` writes what `eval` writes, bitwise, for every degree (the fixed-width and the
+    /// general loops), order, and order of the parameters (sorted, reversed, random, repeated,
+    /// out of range, NaN).
+    #[test]
+    fn eval_many_equals_eval_bitwise() {
+        let mut rng = crate::rng::SplitMix64::new(29);
+        for degree in 0..=8usize {
+            for dim in [1usize, 2, 3, 4, 5, 6, 7, 8, 12, 17] {
+                let mut breaks = vec![rng.uniform(-2.0, 0.0)];
+                for _ in 0..9 {
+                    let last = *breaks.last().unwrap();
+                    breaks.push(last + rng.uniform(0.05, 1.5));
+                }
+                let (a, b) = (breaks[0], breaks[9]);
+                let coeffs: Vec<f64> = (0..9 * dim * (degree + 1))
+                    .map(|_| rng.uniform(-5.0, 5.0))
+                    .collect();
+                let pp = PiecewisePolynomial::new(breaks.clone(), dim, degree, coeffs).unwrap();
+                let sorted: Vec<f64> = (0..=400)
+                    .map(|i| a - 0.3 + (b - a + 0.6) * i as f64 / 400.0)
+                    .chain(breaks.iter().copied())
+                    .collect();
+                let mut random: Vec<f64> =
+                    (0..300).map(|_| rng.uniform(a - 1.0, b + 1.0)).collect();
+                random.extend([f64::NAN, a, b, b, a, f64::INFINITY, f64::NEG_INFINITY]);
+                let reversed: Vec<f64> = sorted.iter().rev().copied().collect();
+                for s in [&sorted, &random, &reversed] {
+                    for order in 0..=degree + 1 {
+                        let mut many = vec![7.0; s.len() * dim];
+                        pp.eval_many(s, order, &mut many);
+                        let mut one = vec![0.0; dim];
+                        for (i, &si) in s.iter().enumerate() {
+                            pp.eval(si, order, &mut one);
+                            for d in 0..dim {
+                                assert_eq!(
+                                    many[i * dim + d].to_bits(),
+                                    one[d].to_bits(),
+                                    "degree {degree} dim {dim} order {order} s = {si}"
+                                );
+                            }
+                        }
+                    }
+                }
             }
         }
     }
