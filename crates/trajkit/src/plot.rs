@@ -173,6 +173,85 @@ fn decimate(t: &[f64], v: &[f64], t0: f64, t1: f64, pixels: usize) -> Vec<usize>
     out
 }
 
+/// Where things go: the panels' columns (one per order the table has), sizes and time span.
+struct Layout {
+    orders: Vec<Order>,
+    cell_w: f64,
+    plot_w: f64,
+    plot_h: f64,
+    panel_height: f64,
+    t0: f64,
+    t1: f64,
+    title_h: f64,
+    top: f64,
+    width: f64,
+    height: f64,
+}
+
+impl Layout {
+    /// The layout of `table` drawn with `opts`; errors as [`svg`] says.
+    fn new(table: &SampleTable, opts: &PlotOptions) -> Result<Layout> {
+        if table.is_empty() {
+            return Err(Error::InvalidValue {
+                field: "sample table row count".into(),
+                value: 0.0,
+                reason: "leaves nothing to plot",
+            });
+        }
+        let orders: Vec<Order> = Order::ALL.into_iter().filter(|&o| table.has(o)).collect();
+        let ncols = orders.len() as f64;
+        let cell_w = (opts.width - LABEL_W) / ncols;
+        let plot_w = cell_w - YAXIS_W - PANEL_GAP;
+        if !(opts.width.is_finite() && plot_w >= 20.0) {
+            return Err(Error::InvalidValue {
+                field: "plot width".into(),
+                value: opts.width,
+                reason: "is too small (or not finite) for the panels",
+            });
+        }
+        let plot_h = opts.panel_height - XAXIS_H - ROW_GAP;
+        if !(opts.panel_height.is_finite() && plot_h >= 20.0) {
+            return Err(Error::InvalidValue {
+                field: "plot panel height".into(),
+                value: opts.panel_height,
+                reason: "is too small (or not finite); use at least 42",
+            });
+        }
+        let times = table.times();
+        let (mut t0, mut t1) = (times[0], times[table.len() - 1]);
+        if t1 <= t0 {
+            t0 -= 0.5;
+            t1 += 0.5;
+        }
+        let title_h = if opts.title.is_empty() { 8.0 } else { 30.0 };
+        let header_h = 18.0;
+        let top = title_h + header_h;
+        Ok(Layout {
+            orders,
+            cell_w,
+            plot_w,
+            plot_h,
+            panel_height: opts.panel_height,
+            t0,
+            t1,
+            title_h,
+            top,
+            width: opts.width,
+            height: top + table.dof() as f64 * opts.panel_height + 24.0,
+        })
+    }
+
+    /// Left edge of the plot area of column `c`.
+    fn px(&self, c: usize) -> f64 {
+        LABEL_W + c as f64 * self.cell_w + YAXIS_W
+    }
+
+    /// Top edge of the plot area of joint `j`'s row.
+    fn py(&self, j: usize) -> f64 {
+        self.top + j as f64 * self.panel_height + ROW_GAP
+    }
+}
+
 /// Draws `table` as an SVG document (see the module documentation). With `limits`, their
 /// joint count must match the table's; joint names come from the table, else the limits.
 ///
@@ -182,46 +261,10 @@ pub fn svg(table: &SampleTable, limits: Option<&Limits>, opts: &PlotOptions) -> 
     if let Some(l) = limits {
         l.expect_dof(table.dof(), "the plotted table")?;
     }
-    if table.is_empty() {
-        return Err(Error::InvalidValue {
-            field: "sample table row count".into(),
-            value: 0.0,
-            reason: "leaves nothing to plot",
-        });
-    }
-    let orders: Vec<Order> = Order::ALL.into_iter().filter(|&o| table.has(o)).collect();
-    let ncols = orders.len() as f64;
-    let cell_w = (opts.width - LABEL_W) / ncols;
-    let plot_w = cell_w - YAXIS_W - PANEL_GAP;
-    if !(opts.width.is_finite() && plot_w >= 20.0) {
-        return Err(Error::InvalidValue {
-            field: "plot width".into(),
-            value: opts.width,
-            reason: "is too small (or not finite) for the panels",
-        });
-    }
-    let plot_h = opts.panel_height - XAXIS_H - ROW_GAP;
-    if !(opts.panel_height.is_finite() && plot_h >= 20.0) {
-        return Err(Error::InvalidValue {
-            field: "plot panel height".into(),
-            value: opts.panel_height,
-            reason: "is too small (or not finite); use at least 42",
-        });
-    }
-
+    let lay = Layout::new(table, opts)?;
+    let (width, height) = (lay.width, lay.height);
     let dof = table.dof();
     let rows = table.len();
-    let times = table.times();
-    let (mut t0, mut t1) = (times[0], times[rows - 1]);
-    if t1 <= t0 {
-        t0 -= 0.5;
-        t1 += 0.5;
-    }
-    let title_h = if opts.title.is_empty() { 8.0 } else { 30.0 };
-    let header_h = 18.0;
-    let top = title_h + header_h;
-    let height = top + dof as f64 * opts.panel_height + 24.0;
-    let width = opts.width;
 
     let mut s = String::new();
     // `write!` into a String cannot fail; its results are ignored below.
@@ -241,13 +284,12 @@ pub fn svg(table: &SampleTable, limits: Option<&Limits>, opts: &PlotOptions) -> 
             escape(&opts.title)
         );
     }
-    for (c, &order) in orders.iter().enumerate() {
-        let px = LABEL_W + c as f64 * cell_w + YAXIS_W;
+    for (c, &order) in lay.orders.iter().enumerate() {
         let _ = writeln!(
             s,
             r#"<text x="{:.1}" y="{:.1}" font-size="11" text-anchor="middle">{}</text>"#,
-            px + plot_w / 2.0,
-            title_h + 12.0,
+            lay.px(c) + lay.plot_w / 2.0,
+            lay.title_h + 12.0,
             escape(header(order))
         );
     }
@@ -260,21 +302,19 @@ pub fn svg(table: &SampleTable, limits: Option<&Limits>, opts: &PlotOptions) -> 
             (_, Some(l)) if !l.name.is_empty() => l.name.clone(),
             _ => format!("joint {}", j + 1),
         };
-        let py = top + j as f64 * opts.panel_height + ROW_GAP;
         let _ = writeln!(
             s,
             r#"<text class="joint" x="6" y="{:.1}" font-size="11">{}</text>"#,
-            py + plot_h / 2.0 + 4.0,
+            lay.py(j) + lay.plot_h / 2.0 + 4.0,
             escape(&name)
         );
-        for (c, &order) in orders.iter().enumerate() {
+        for (c, &order) in lay.orders.iter().enumerate() {
             let Some(m) = table.matrix(order) else {
                 continue;
             };
             for (i, x) in series.iter_mut().enumerate() {
                 *x = m[i * dof + j];
             }
-            let px = LABEL_W + c as f64 * cell_w + YAXIS_W;
             let limit_values: Vec<f64> = match jl {
                 Some(l) => {
                     let (lo, hi) = l.range(order);
@@ -282,79 +322,16 @@ pub fn svg(table: &SampleTable, limits: Option<&Limits>, opts: &PlotOptions) -> 
                 }
                 None => Vec::new(),
             };
-            let (mut lo, mut hi) = series
-                .iter()
-                .chain(limit_values.iter())
-                .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
-                    (a.min(x), b.max(x))
-                });
-            let span = hi - lo;
-            if span <= 1e-12 * lo.abs().max(hi.abs()) || span <= f64::MIN_POSITIVE {
-                let pad = (lo.abs() * 0.1).max(1.0);
-                lo -= pad;
-                hi += pad;
-            } else {
-                lo -= 0.06 * span;
-                hi += 0.06 * span;
-            }
-            let xmap = |t: f64| px + (t - t0) / (t1 - t0) * plot_w;
-            let ymap = |v: f64| py + (hi - v) / (hi - lo) * plot_h;
-
-            let _ = writeln!(
-                s,
-                r#"<g class="panel" data-joint="{j}" data-order="{}">"#,
-                order.name()
+            let at = (lay.px(c), lay.py(j));
+            panel(
+                &mut s,
+                &lay,
+                at,
+                (j, order),
+                table.times(),
+                &series,
+                &limit_values,
             );
-            // Grid and value ticks.
-            let (yt, yd) = ticks(lo, hi, (plot_h / 28.0).max(2.0));
-            for v in yt {
-                let y = ymap(v);
-                let _ = writeln!(
-                    s,
-                    r#"<line x1="{px:.2}" y1="{y:.2}" x2="{:.2}" y2="{y:.2}" stroke="{GRID}"/><text x="{:.2}" y="{:.2}" text-anchor="end">{}</text>"#,
-                    px + plot_w,
-                    px - 4.0,
-                    y + 3.5,
-                    tick_label(v, yd)
-                );
-            }
-            // Time ticks.
-            let (xt, xd) = ticks(t0, t1, (plot_w / 60.0).max(2.0));
-            for t in xt {
-                let x = xmap(t);
-                let _ = writeln!(
-                    s,
-                    r#"<line x1="{x:.2}" y1="{py:.2}" x2="{x:.2}" y2="{:.2}" stroke="{GRID}"/><text x="{x:.2}" y="{:.2}" text-anchor="middle">{}</text>"#,
-                    py + plot_h,
-                    py + plot_h + 12.0,
-                    tick_label(t, xd)
-                );
-            }
-            let _ = writeln!(
-                s,
-                r#"<rect x="{px:.2}" y="{py:.2}" width="{plot_w:.2}" height="{plot_h:.2}" fill="none" stroke="{FRAME}"/>"#
-            );
-            for v in &limit_values {
-                let y = ymap(*v);
-                let _ = writeln!(
-                    s,
-                    r#"<line class="limit" x1="{px:.2}" y1="{y:.2}" x2="{:.2}" y2="{y:.2}" stroke="{LIMIT}" stroke-width="1" stroke-dasharray="5 3"><title>limit {}</title></line>"#,
-                    px + plot_w,
-                    escape(&format!("{v}"))
-                );
-            }
-            let keep = decimate(times, &series, t0, t1, plot_w.floor() as usize);
-            let _ = write!(
-                s,
-                r#"<polyline fill="none" stroke="{CURVE}" stroke-width="1.2" stroke-linejoin="round" points=""#
-            );
-            for (k, &i) in keep.iter().enumerate() {
-                if k > 0 {
-                    s.push(' ');
-                }
-                let _ = write!(s, "{:.2},{:.2}", xmap(times[i]), ymap(series[i]));
-            }
-            s.push_str("\"/>\n</g>\n");
         }
     }
     let _ = writeln!(
@@ -365,6 +342,94 @@ pub fn svg(table: &SampleTable, limits: Option<&Limits>, opts: &PlotOptions) -> 
     );
     s.push_str("</svg>\n");
     Ok(s)
+}
+
+/// One panel at `(px, py)`: joint `j`'s `series` of `order` over `times`, the value range
+/// padded around the series and its finite `limit_values`, grid, ticks, frame, limit lines
+/// and the (decimated) curve.
+fn panel(
+    s: &mut String,
+    lay: &Layout,
+    (px, py): (f64, f64),
+    (j, order): (usize, Order),
+    times: &[f64],
+    series: &[f64],
+    limit_values: &[f64],
+) {
+    let (t0, t1, plot_w, plot_h) = (lay.t0, lay.t1, lay.plot_w, lay.plot_h);
+    let (mut lo, mut hi) = series
+        .iter()
+        .chain(limit_values.iter())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+            (a.min(x), b.max(x))
+        });
+    let span = hi - lo;
+    if span <= 1e-12 * lo.abs().max(hi.abs()) || span <= f64::MIN_POSITIVE {
+        let pad = (lo.abs() * 0.1).max(1.0);
+        lo -= pad;
+        hi += pad;
+    } else {
+        lo -= 0.06 * span;
+        hi += 0.06 * span;
+    }
+    let xmap = |t: f64| px + (t - t0) / (t1 - t0) * plot_w;
+    let ymap = |v: f64| py + (hi - v) / (hi - lo) * plot_h;
+
+    let _ = writeln!(
+        s,
+        r#"<g class="panel" data-joint="{j}" data-order="{}">"#,
+        order.name()
+    );
+    // Grid and value ticks.
+    let (yt, yd) = ticks(lo, hi, (plot_h / 28.0).max(2.0));
+    for v in yt {
+        let y = ymap(v);
+        let _ = writeln!(
+            s,
+            r#"<line x1="{px:.2}" y1="{y:.2}" x2="{:.2}" y2="{y:.2}" stroke="{GRID}"/><text x="{:.2}" y="{:.2}" text-anchor="end">{}</text>"#,
+            px + plot_w,
+            px - 4.0,
+            y + 3.5,
+            tick_label(v, yd)
+        );
+    }
+    // Time ticks.
+    let (xt, xd) = ticks(t0, t1, (plot_w / 60.0).max(2.0));
+    for t in xt {
+        let x = xmap(t);
+        let _ = writeln!(
+            s,
+            r#"<line x1="{x:.2}" y1="{py:.2}" x2="{x:.2}" y2="{:.2}" stroke="{GRID}"/><text x="{x:.2}" y="{:.2}" text-anchor="middle">{}</text>"#,
+            py + plot_h,
+            py + plot_h + 12.0,
+            tick_label(t, xd)
+        );
+    }
+    let _ = writeln!(
+        s,
+        r#"<rect x="{px:.2}" y="{py:.2}" width="{plot_w:.2}" height="{plot_h:.2}" fill="none" stroke="{FRAME}"/>"#
+    );
+    for v in limit_values {
+        let y = ymap(*v);
+        let _ = writeln!(
+            s,
+            r#"<line class="limit" x1="{px:.2}" y1="{y:.2}" x2="{:.2}" y2="{y:.2}" stroke="{LIMIT}" stroke-width="1" stroke-dasharray="5 3"><title>limit {}</title></line>"#,
+            px + plot_w,
+            escape(&format!("{v}"))
+        );
+    }
+    let keep = decimate(times, series, t0, t1, plot_w.floor() as usize);
+    let _ = write!(
+        s,
+        r#"<polyline fill="none" stroke="{CURVE}" stroke-width="1.2" stroke-linejoin="round" points=""#
+    );
+    for (k, &i) in keep.iter().enumerate() {
+        if k > 0 {
+            s.push(' ');
+        }
+        let _ = write!(s, "{:.2},{:.2}", xmap(times[i]), ymap(series[i]));
+    }
+    s.push_str("\"/>\n</g>\n");
 }
 
 #[cfg(test)]

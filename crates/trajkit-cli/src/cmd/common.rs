@@ -3,7 +3,7 @@
 use clap::{Args, ValueEnum};
 use std::fmt;
 use std::path::{Path, PathBuf};
-use trajkit::limits::{load, FillBy, Needs, PartialLimits};
+use trajkit::limits::{load, FillBy, LimitsSpec, Needs, PartialLimits, SpecStep, TextFile};
 use trajkit::{Limits, Order, SampleTable};
 
 /// A command-line error: one line, exit status 2.
@@ -126,29 +126,14 @@ fn parse_range(s: &str) -> Result<(f64, f64), String> {
     Ok((lo, hi))
 }
 
-/// What the flags of [`LimitsArgs`] resolve to for some data: the limits in the data's joint
-/// order, and the names of the limit joints the data does not use.
-pub struct ResolvedLimits {
-    /// The limits, one per data joint, with what was given.
-    pub limits: PartialLimits,
-    /// Joints of the limits source that no data column names.
-    pub unused: Vec<String>,
-}
+pub use trajkit::limits::ResolvedLimits;
 
 impl LimitsArgs {
-    /// True when some override flag gives limits.
-    fn has_overrides(&self) -> bool {
-        self.max_velocity.is_some()
-            || self.max_acceleration.is_some()
-            || self.max_jerk.is_some()
-            || self.position_range.is_some()
-    }
-
     /// Resolves the flags for data of `dof` joints named `names` (`what`: "waypoint",
-    /// "table"): the source (`--limits`, else the overrides alone, else `default` when given,
-    /// else an error asking for limits), `--joint-limits`, `--fill-from`, pairing with the data
-    /// by name or position, then the overrides (one value, or one per data column) and the
-    /// scales.
+    /// "table") with the library's recipe ([`LimitsSpec::resolve`]): the source (`--limits`,
+    /// else the overrides alone, else `default` when given, else an error asking for limits),
+    /// `--joint-limits`, `--fill-from`, pairing with the data by name or position, then the
+    /// overrides (one value, or one per data column) and the scales. Errors name the flag.
     pub fn resolve(
         &self,
         what: &'static str,
@@ -156,72 +141,69 @@ impl LimitsArgs {
         dof: usize,
         default: Option<&str>,
     ) -> CliResult<ResolvedLimits> {
-        let mut l =
+        let mut spec = LimitsSpec {
+            fill_by: match self.fill_by {
+                FillByArg::Name => FillBy::Name,
+                FillByArg::Index => FillBy::Index,
+            },
+            max_velocity: self.max_velocity.clone(),
+            max_acceleration: self.max_acceleration.clone(),
+            max_jerk: self.max_jerk.clone(),
+            position_range: self.position_range.clone(),
+            velocity_scale: self.velocity_scale,
+            acceleration_scale: self.acceleration_scale,
+            jerk_scale: self.jerk_scale,
+            ..LimitsSpec::default()
+        };
+        spec.source =
             match (&self.limits, default) {
-                (Some(spec), _) => load::from_spec(spec)?,
-                (None, _) if self.has_overrides() => PartialLimits::unnamed(dof)?,
-                (None, Some(preset)) => Limits::preset(preset)?.into(),
+                (Some(spec), _) => Some(load::from_spec(spec)?),
+                (None, _) if spec.has_overrides() => None,
+                (None, Some(preset)) => Some(Limits::preset(preset)?.into()),
                 (None, None) => return Err(CliError(
-                    "no limits given: name them with --limits PRESET|FILE (panda, ur5e, iiwa14, \
-                     a .json/.yaml limits file, a MoveIt joint_limits.yaml or a .urdf) or give \
-                     them with --max-velocity, --max-acceleration, --max-jerk and \
-                     --position-range"
+                    "no limits given: name them with --limits PRESET|FILE (panda, ur5e, iiwa14, a \
+                 .json/.yaml limits file, a MoveIt joint_limits.yaml or a .urdf) or give them \
+                 with --max-velocity, --max-acceleration, --max-jerk and --position-range"
                         .to_string(),
                 )),
             };
         if let Some(p) = &self.joint_limits {
-            let text = trajkit::io::read_text(p)?;
-            l = load::apply_moveit_joint_limits(&l, &text, &p.display().to_string())?;
+            spec.joint_limits = Some(TextFile {
+                text: trajkit::io::read_text(p)?,
+                name: p.display().to_string(),
+            });
         }
-        if let Some(spec) = &self.fill_from {
-            let from = load::from_spec(spec)?;
-            let by = match self.fill_by {
-                FillByArg::Name => FillBy::Name,
-                FillByArg::Index => FillBy::Index,
-            };
-            l = l.fill_from(&from, by).map_err(|e| match e {
-                trajkit::Error::JointNames { .. } => CliError(format!(
-                    "--fill-from {spec}: {e} (--fill-by index pairs them by position)"
-                )),
-                e => CliError(format!("--fill-from {spec}: {e}")),
-            })?;
+        if let Some(from) = &self.fill_from {
+            spec.fill_from = Some(load::from_spec(from)?);
         }
-        let (mut l, unused) = l.for_joints(what, names)?;
-        if l.dof() != dof {
-            return Err(CliError(format!(
-                "the limits have {} joints, the {what}s {dof}{}",
-                l.dof(),
-                if names.is_some() {
-                    ""
-                } else {
-                    " (unnamed columns pair with the limits by position)"
+        spec.resolve(what, names, dof).map_err(|e| {
+            let err = &e.error;
+            CliError(match e.step {
+                SpecStep::FillFrom => {
+                    let from = self.fill_from.as_deref().unwrap_or_default();
+                    match err {
+                        trajkit::Error::JointNames { .. } => format!(
+                            "--fill-from {from}: {err} (--fill-by index pairs them by position)"
+                        ),
+                        _ => format!("--fill-from {from}: {err}"),
+                    }
                 }
-            )));
-        }
-        for (order, v) in [
-            (Order::Velocity, &self.max_velocity),
-            (Order::Acceleration, &self.max_acceleration),
-            (Order::Jerk, &self.max_jerk),
-        ] {
-            if let Some(v) = v {
-                l = l
-                    .with_override(order, v)
-                    .map_err(|e| CliError(format!("--max-{}: {e}", order.name())))?;
-            }
-        }
-        if let Some(r) = &self.position_range {
-            l = l
-                .with_position_range(r)
-                .map_err(|e| CliError(format!("--position-range: {e}")))?;
-        }
-        if self.velocity_scale != 1.0 || self.acceleration_scale != 1.0 || self.jerk_scale != 1.0 {
-            l = l.scaled(
-                self.velocity_scale,
-                self.acceleration_scale,
-                self.jerk_scale,
-            )?;
-        }
-        Ok(ResolvedLimits { limits: l, unused })
+                SpecStep::JointCount => match err {
+                    trajkit::Error::DimensionMismatch { found, .. } => format!(
+                        "the limits have {found} joints, the {what}s {dof}{}",
+                        if names.is_some() {
+                            ""
+                        } else {
+                            " (unnamed columns pair with the limits by position)"
+                        }
+                    ),
+                    _ => err.to_string(),
+                },
+                SpecStep::Override(order) => format!("--max-{}: {err}", order.name()),
+                SpecStep::PositionRange => format!("--position-range: {err}"),
+                _ => err.to_string(),
+            })
+        })
     }
 }
 

@@ -119,7 +119,45 @@ pub struct MeanBandArgs {
     pub output: OutputArgs,
 }
 
+/// Demonstrations and via points of a probabilistic model (`promp`, `kmp`).
+#[derive(Args, Debug)]
+pub struct DemosArgs {
+    /// Demonstrations: CSV with columns t,q1..qn, or trajkit JSON tables (promp: at least
+    /// two).
+    #[arg(long, value_name = "FILE", required = true)]
+    pub demo: Vec<PathBuf>,
+    /// Via point: time in seconds from the start, then one position per joint. Repeatable.
+    #[arg(long, value_name = "T:Q1,Q2,..", allow_hyphen_values = true)]
+    pub via: Vec<String>,
+}
+
+impl DemosArgs {
+    /// The `--via` points for `dof` joints, each made by `make(t, q)`.
+    pub fn vias<V>(&self, dof: usize, make: impl Fn(f64, Vec<f64>) -> V) -> CliResult<Vec<V>> {
+        self.via
+            .iter()
+            .map(|s| parse_via(s, dof).map(|(t, q)| make(t, q)))
+            .collect()
+    }
+}
+
 impl MeanBandArgs {
+    /// Prints the summary: `head`, how close the model passes each via point `(t, q)`, and
+    /// the `wrote` line of [`MeanBandArgs::write`].
+    pub fn print_summary(
+        &self,
+        head: &str,
+        model: &dyn Trajectory,
+        vias: &[(f64, &[f64])],
+        wrote: &str,
+    ) {
+        let s = format!(
+            "{head}{}\n{wrote}",
+            super::common::via_point_report(model, vias)
+        );
+        super::common::print_summary(&self.out, &s);
+    }
+
     /// Samples the model's mean, queues table, plot and (with `--band`) the band, whose
     /// per-joint standard deviations `sd(t, out)` writes, and writes everything. Returns the
     /// "wrote …" line of the summary.

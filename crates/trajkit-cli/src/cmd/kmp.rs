@@ -2,9 +2,8 @@
 //! the mean trajectory and its ±kσ band.
 
 use super::common::{CliError, CliResult};
-use super::dmp::{parse_via, read_demos, MeanBandArgs};
+use super::dmp::{read_demos, DemosArgs, MeanBandArgs};
 use clap::Args;
-use std::path::PathBuf;
 use trajkit::primitives::{Demo, GmmConfig, Kmp, KmpConfig, KmpReference, KmpVia};
 use trajkit::{Order, Trajectory};
 
@@ -14,12 +13,8 @@ use trajkit::{Order, Trajectory};
     after_help = "Examples:\n  trajkit kmp --demo d1.csv --demo d2.csv --band band.csv --plot kmp.svg\n  trajkit kmp --demo d1.csv --demo d2.csv --via 0.8:0.3,-0.2 --via-variance 1e-6"
 )]
 pub struct KmpArgs {
-    /// Demonstrations: CSV with columns t,q1..qn, or trajkit JSON tables.
-    #[arg(long, value_name = "FILE", required = true)]
-    pub demo: Vec<PathBuf>,
-    /// Via point (time in seconds from the start, then one position per joint). Repeatable.
-    #[arg(long, value_name = "T:Q1,Q2,..", allow_hyphen_values = true)]
-    pub via: Vec<String>,
+    #[command(flatten)]
+    pub demos: DemosArgs,
     /// Variance of every via point.
     #[arg(
         long,
@@ -70,7 +65,7 @@ pub fn run(a: &KmpArgs) -> CliResult<u8> {
             a.via_variance
         )));
     }
-    let demos = read_demos(&a.demo)?;
+    let demos = read_demos(&a.demos.demo)?;
     let dof = demos[0].dof;
     let ds: Vec<Demo> = demos.iter().map(|d| Demo { t: &d.t, q: &d.q }).collect();
     let gmm = GmmConfig {
@@ -89,17 +84,11 @@ pub fn run(a: &KmpArgs) -> CliResult<u8> {
     for j in 0..dof {
         cov[j * dof + j] = a.via_variance;
     }
-    let via: Vec<KmpVia> = a
-        .via
-        .iter()
-        .map(|s| {
-            parse_via(s, dof).map(|(t, q)| KmpVia {
-                t,
-                mean: q,
-                cov: cov.clone(),
-            })
-        })
-        .collect::<CliResult<_>>()?;
+    let via = a.demos.vias(dof, |t, mean| KmpVia {
+        t,
+        mean,
+        cov: cov.clone(),
+    })?;
     if !via.is_empty() {
         kmp = kmp.with_via_points(&via)?;
     }
@@ -111,7 +100,7 @@ pub fn run(a: &KmpArgs) -> CliResult<u8> {
             *v = c[j * dof + j].max(0.0).sqrt();
         }
     })?;
-    let mut s = format!(
+    let head = format!(
         "demonstrations: {} ({} joints), reference {} points from a {}-component GMM, duration {:.6} s",
         demos.len(),
         dof,
@@ -120,9 +109,6 @@ pub fn run(a: &KmpArgs) -> CliResult<u8> {
         kmp.duration()
     );
     let points: Vec<(f64, &[f64])> = via.iter().map(|v| (v.t, &v.mean[..])).collect();
-    s.push_str(&super::common::via_point_report(&kmp, &points));
-    s.push('\n');
-    s.push_str(&wrote);
-    super::common::print_summary(&a.out.out, &s);
+    a.out.print_summary(&head, &kmp, &points, &wrote);
     Ok(0)
 }

@@ -2,9 +2,8 @@
 //! write the mean trajectory and its ±kσ band.
 
 use super::common::{CliError, CliResult};
-use super::dmp::{parse_via, read_demos, MeanBandArgs};
+use super::dmp::{read_demos, DemosArgs, MeanBandArgs};
 use clap::Args;
-use std::path::PathBuf;
 use trajkit::primitives::{Demo, ProMp, ProMpConfig, ViaPoint};
 use trajkit::{Order, Trajectory};
 
@@ -14,12 +13,8 @@ use trajkit::{Order, Trajectory};
     after_help = "Examples:\n  trajkit promp --demo d1.csv --demo d2.csv --demo d3.csv --band band.csv --plot promp.svg\n  trajkit promp --demo d1.csv --demo d2.csv --via 0.5:0.3,-0.2 --via 1.0:0.0,0.1"
 )]
 pub struct PrompArgs {
-    /// Demonstrations (at least two): CSV with columns t,q1..qn, or trajkit JSON tables.
-    #[arg(long, value_name = "FILE", required = true)]
-    pub demo: Vec<PathBuf>,
-    /// Via point: time in seconds, then one position per joint. Repeatable.
-    #[arg(long, value_name = "T:Q1,Q2,..", allow_hyphen_values = true)]
-    pub via: Vec<String>,
+    #[command(flatten)]
+    pub demos: DemosArgs,
     /// Variance of every via point (0 = pass exactly).
     #[arg(
         long,
@@ -48,10 +43,10 @@ pub struct PrompArgs {
 
 /// Runs `trajkit promp`.
 pub fn run(a: &PrompArgs) -> CliResult<u8> {
-    if a.demo.len() < 2 {
+    if a.demos.demo.len() < 2 {
         return Err(CliError(format!(
             "--demo: {} demonstration given, at least 2 needed",
-            a.demo.len()
+            a.demos.demo.len()
         )));
     }
     if !(a.via_variance.is_finite() && a.via_variance >= 0.0) {
@@ -60,7 +55,7 @@ pub fn run(a: &PrompArgs) -> CliResult<u8> {
             a.via_variance
         )));
     }
-    let demos = read_demos(&a.demo)?;
+    let demos = read_demos(&a.demos.demo)?;
     let dof = demos[0].dof;
     let ds: Vec<Demo> = demos.iter().map(|d| Demo { t: &d.t, q: &d.q }).collect();
     let cfg = ProMpConfig {
@@ -72,18 +67,16 @@ pub fn run(a: &PrompArgs) -> CliResult<u8> {
     if let Some(d) = a.duration {
         p = p.with_duration(d)?;
     }
-    let via: Vec<ViaPoint> = a
-        .via
-        .iter()
-        .map(|s| parse_via(s, dof).map(|(t, q)| ViaPoint::position(t, &q, a.via_variance)))
-        .collect::<CliResult<_>>()?;
+    let via = a
+        .demos
+        .vias(dof, |t, q| ViaPoint::position(t, &q, a.via_variance))?;
     let p = p.condition(&via)?;
     let title = format!("trajkit promp — mean of {} demonstrations", demos.len());
     let wrote = a.out.write(&p, &demos[0].names, title, |t, sd| {
         p.variance(t, Order::Position, sd);
         sd.iter_mut().for_each(|v| *v = v.sqrt());
     })?;
-    let mut s = format!(
+    let head = format!(
         "demonstrations: {} ({} joints), duration {:.6} s, {} basis functions per joint",
         demos.len(),
         dof,
@@ -91,9 +84,6 @@ pub fn run(a: &PrompArgs) -> CliResult<u8> {
         p.n_basis()
     );
     let points: Vec<(f64, &[f64])> = via.iter().map(|v| (v.t, &v.value[..])).collect();
-    s.push_str(&super::common::via_point_report(&p, &points));
-    s.push('\n');
-    s.push_str(&wrote);
-    super::common::print_summary(&a.out.out, &s);
+    a.out.print_summary(&head, &p, &points, &wrote);
     Ok(0)
 }

@@ -7,7 +7,7 @@ use super::error::{ApiError, ApiResult};
 use serde::Deserialize;
 use serde_json::json;
 use trajkit::limits::load;
-use trajkit::limits::{FillBy, Needs, PartialLimits};
+use trajkit::limits::{FillBy, LimitsSpec, Needs, PartialLimits, SpecStep, TextFile};
 use trajkit::{Limits, Order};
 
 /// An uploaded text file: its name (the extension tells the format) and its content.
@@ -103,7 +103,7 @@ impl LimitsIn {
     /// method needs and no source gave). Returns the limits and the limit joints left out.
     pub fn load(&self, names: Option<&[String]>) -> ApiResult<(PartialLimits, Vec<String>)> {
         let lib = |field: &'static str| move |e| ApiError::from_lib(field, e);
-        let mut l: PartialLimits = match (&self.preset, &self.file) {
+        let source: PartialLimits = match (&self.preset, &self.file) {
             (Some(p), None) => Limits::preset(p).map_err(lib("limits.preset"))?.into(),
             (None, Some(f)) => {
                 caps::count(
@@ -134,55 +134,57 @@ impl LimitsIn {
                 ))
             }
         };
-        caps::count("limits (joint count)", l.dof(), 1, caps::MAX_JOINTS)?;
-        if let Some(f) = &self.joint_limits {
-            l = load::apply_moveit_joint_limits(&l, &f.text, &f.name)
-                .map_err(lib("limits.joint_limits"))?;
-        }
-        if let Some(p) = &self.fill_from {
-            let from: PartialLimits = Limits::preset(p).map_err(lib("limits.fill_from"))?.into();
-            l = l
-                .fill_from(&from, FillBy::Name)
-                .map_err(lib("limits.fill_from"))?;
-        }
-        let (mut l, unused) = l.for_joints("waypoint", names).map_err(lib("limits"))?;
-        for (order, values, field) in [
-            (Order::Velocity, &self.max_velocity, "limits.max_velocity"),
-            (
-                Order::Acceleration,
-                &self.max_acceleration,
-                "limits.max_acceleration",
-            ),
-            (Order::Jerk, &self.max_jerk, "limits.max_jerk"),
+        caps::count("limits (joint count)", source.dof(), 1, caps::MAX_JOINTS)?;
+        for (values, field) in [
+            (&self.max_velocity, "limits.max_velocity"),
+            (&self.max_acceleration, "limits.max_acceleration"),
+            (&self.max_jerk, "limits.max_jerk"),
         ] {
-            if let Some(v) = values {
-                for (j, &x) in v.iter().enumerate() {
-                    caps::positive(&format!("{field}[{j}]"), x)?;
-                }
-                l = l.with_override(order, v).map_err(lib(field))?;
+            for (j, &x) in values.iter().flatten().enumerate() {
+                caps::positive(&format!("{field}[{j}]"), x)?;
             }
-        }
-        if let Some(r) = &self.position_range {
-            let ranges: Vec<(f64, f64)> = r
-                .iter()
-                .map(|[lo, hi]| (lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY)))
-                .collect();
-            l = l
-                .with_position_range(&ranges)
-                .map_err(lib("limits.position_range"))?;
         }
         let scale = |v: Option<f64>, field: &str| -> ApiResult<f64> {
             v.map_or(Ok(1.0), |x| caps::positive(field, x))
         };
-        let (sv, sa, sj) = (
-            scale(self.velocity_scale, "limits.velocity_scale")?,
-            scale(self.acceleration_scale, "limits.acceleration_scale")?,
-            scale(self.jerk_scale, "limits.jerk_scale")?,
-        );
-        if (sv, sa, sj) != (1.0, 1.0, 1.0) {
-            l = l.scaled(sv, sa, sj).map_err(lib("limits"))?;
-        }
-        Ok((l, unused))
+        let fill_from = match &self.fill_from {
+            Some(p) => Some(Limits::preset(p).map_err(lib("limits.fill_from"))?.into()),
+            None => None,
+        };
+        let dof = names.map_or(source.dof(), <[String]>::len);
+        let spec = LimitsSpec {
+            source: Some(source),
+            joint_limits: self.joint_limits.as_ref().map(|f| TextFile {
+                name: f.name.clone(),
+                text: f.text.clone(),
+            }),
+            fill_from,
+            fill_by: FillBy::Name,
+            max_velocity: self.max_velocity.clone(),
+            max_acceleration: self.max_acceleration.clone(),
+            max_jerk: self.max_jerk.clone(),
+            position_range: self.position_range.as_ref().map(|r| {
+                r.iter()
+                    .map(|[lo, hi]| (lo.unwrap_or(f64::NEG_INFINITY), hi.unwrap_or(f64::INFINITY)))
+                    .collect()
+            }),
+            velocity_scale: scale(self.velocity_scale, "limits.velocity_scale")?,
+            acceleration_scale: scale(self.acceleration_scale, "limits.acceleration_scale")?,
+            jerk_scale: scale(self.jerk_scale, "limits.jerk_scale")?,
+        };
+        let r = spec.resolve("waypoint", names, dof).map_err(|e| {
+            let field = match e.step {
+                SpecStep::JointLimits => "limits.joint_limits",
+                SpecStep::FillFrom => "limits.fill_from",
+                SpecStep::Override(Order::Velocity) => "limits.max_velocity",
+                SpecStep::Override(Order::Acceleration) => "limits.max_acceleration",
+                SpecStep::Override(_) => "limits.max_jerk",
+                SpecStep::PositionRange => "limits.position_range",
+                _ => "limits",
+            };
+            ApiError::from_lib(field, e.error)
+        })?;
+        Ok((r.limits, r.unused))
     }
 }
 

@@ -20,10 +20,10 @@
 //!
 //! The joint order is the order of the movable joints along the chain, which must equal their
 //! order in the file, because that is the order [`crate::limits::load::from_urdf`] gives the
-//! joints' limits (one [`Robot`] serves both). Mimic, floating and planar joints are refused, as are more than
-//! [`MAX_JOINTS`] joints.
+//! joints' limits (one [`Robot`] serves both). Mimic, floating and planar joints are refused,
+//! as are more than [`MAX_JOINTS`] joints.
 //!
-//! Bad input gives [`Error::Parse`] naming the file, the line, the field and the value.
+//! Bad input gives [`Error::Parse`](crate::Error::Parse) naming the file, the line, the field and the value.
 //!
 //! Files: `chain.rs` builds the bodies from the [`Robot`] (the walk from the root link, fixed
 //! joints merged), `spatial.rs` holds the 3-D algebra (rotations, frames, rigid-body inertia),
@@ -92,7 +92,7 @@ pub struct SerialChain {
 impl SerialChain {
     /// Reads a serial chain from URDF text; `source` names it in errors (a file name).
     ///
-    /// Errors: [`Error::Parse`](crate::Error::Parse) with file, line, field and value for
+    /// Errors: [`Error::Parse`](crate::Error::Parse)(crate::Error::Parse) with file, line, field and value for
     /// malformed XML, missing or non-finite numbers, a missing `<mass>`, unknown or unsupported
     /// joint types, a branching tree, no movable joint, more than [`MAX_JOINTS`] joints, or a
     /// chain order that differs from the file order of the movable joints.
@@ -116,7 +116,7 @@ impl SerialChain {
 
     /// The same chain with gravity `g` (m/s², in the root link's frame).
     ///
-    /// Errors: [`Error::InvalidValue`] for a non-finite component.
+    /// Errors: [`Error::InvalidValue`](crate::Error::InvalidValue) for a non-finite component.
     pub fn with_gravity(mut self, g: [f64; 3]) -> Result<Self> {
         for (k, &x) in g.iter().enumerate() {
             crate::error::finite(|| format!("gravity component {}", ["x", "y", "z"][k]), x)?;

@@ -13,13 +13,18 @@
 //! out, so the loaders return [`PartialLimits`], which records what was given; an absent
 //! limit is never read as "unlimited": [`PartialLimits::complete`] refuses it where it is
 //! needed ([`crate::Error::MissingLimit`]). Data and limits are paired by joint name where
-//! both name their joints ([`match_names`], [`Limits::for_joints`]).
+//! both name their joints ([`match_names`], [`Limits::for_joints`]). [`LimitsSpec`] is the one
+//! recipe every front end (command line, studio, Python) follows from its settings (source,
+//! MoveIt overrides, completion, per-joint overrides, position ranges, scales) to the limits
+//! of its data.
 
 pub mod load;
 mod partial;
 pub mod presets;
+mod spec;
 
 pub use partial::{match_names, FillBy, Given, Needs, PartialLimits};
+pub use spec::{LimitsSpec, ResolvedLimits, SpecError, SpecStep, TextFile};
 
 use crate::error::{Error, Result};
 

@@ -98,6 +98,7 @@ pub enum FillBy {
 /// Per-joint limits with a record of what was given (see the module documentation).
 ///
 /// ```
+/// # #[cfg(feature = "urdf")] {
 /// use trajkit::limits::{load, FillBy, Needs, PartialLimits};
 /// let urdf = r#"<robot name="r">
 ///   <joint name="shoulder_pan_joint" type="revolute">
@@ -111,6 +112,7 @@ pub enum FillBy {
 /// let ur5e = PartialLimits::from(trajkit::Limits::preset("ur5e")?);
 /// let full = l.fill_from(&ur5e, FillBy::Name)?.complete(Needs::ALL)?;
 /// assert_eq!(full.joint(0).acceleration, 10.0);
+/// # }
 /// # Ok::<(), trajkit::Error>(())
 /// ```
 #[derive(Debug, Clone, PartialEq)]

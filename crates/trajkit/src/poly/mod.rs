@@ -22,6 +22,14 @@
 //!   to within 1e-12 relative and exceeds none.
 //! - [`min_duration`] (general end states) bisects to 1e-10 relative on T; the returned move
 //!   stays within the limits (to 1e-12 relative).
+//!
+//! # Implementation notes
+//!
+//! `poly/` — `polynomial.rs`: one joint's polynomial of degree 3/5/7 solved from its boundary
+//! conditions, stored in normalized time from both ends (each end's conditions are met to
+//! rounding). `roots.rs`: real roots by derivative recursion, used for exact peaks.
+//! `mod.rs`: `Degree`, `PolyMove` (synchronized joints), `peak_coefficients`, shortest
+//! durations within limits. `via.rs`: `ViaTrajectory`, segments through waypoints.
 
 mod polynomial;
 mod via;

@@ -54,6 +54,21 @@
 //!   overshoot between waypoints.
 //! - [`BoundedSpline`] (bounded.rs): a C² spline repaired to stay inside per-component bounds
 //!   (joint position ranges), verified exactly; the planner's path.
+//!
+//! # Implementation notes
+//!
+//! `spline/` — one curve type per file, all implementing `Path`. Interpolating splines
+//! (`cubic`, `hermite`, `pchip`, `akima`, `catmull_rom`) compute slopes at the breaks and hand
+//! them to `ppoly.rs` (`PiecewisePolynomial`), which does all evaluation. Global systems go
+//! through `banded.rs` (banded LU; periodic by Sherman–Morrison), so construction is O(n).
+//! `basis.rs` (Cox–de Boor in stack buffers) serves `bspline.rs` (interpolation incl.
+//! minimum-jerk/snap, least squares, design matrix, knot insertion, elevation) and `nurbs.rs`;
+//! `bezier.rs` is de Casteljau; `arclen.rs` wraps any `Path`; `quat.rs` is SO(3) (slerp,
+//! cumulative B-spline). `validate.rs` holds the shared input checks. `bounded.rs`
+//! (`BoundedSpline`) repairs a C² spline so that each component stays inside its bounds
+//! (joint ranges), verified exactly: piece extrema from the derivative's roots, offending
+//! joints' slope and curvature at the neighbouring breaks reduced step by step (quintic Hermite,
+//! C²), ending at rest where needed (monotone pieces).
 
 /// Accessors and the [`crate::Path`] implementation of a curve that is a
 /// [`PiecewisePolynomial`] in a field `pp`.

@@ -51,6 +51,56 @@
 //! assert!((traj.duration() - 2.0 * (0.5f64 / 7.5).sqrt()).abs() < 1e-9);
 //! # Ok::<(), trajkit::Error>(())
 //! ```
+//!
+//! # Implementation notes
+//!
+//! `topp/` mirrors the algorithm. `constraint.rs` turns each constraint at a path point into
+//! half-planes `α·s̈ + β·ṡ² ≤ γ` and bounds on ṡ² (joint velocity, directional acceleration,
+//! torque through a user `InverseDynamics`, end-effector speed through a user `Jacobian`).
+//! `grid.rs` chooses gridpoints (always with the path's breakpoints; the default `Auto` doubles
+//! equal intervals per path piece until the duration settles within 1e-4); `lp.rs` is an exact
+//! two-variable Seidel LP; `toppra.rs` runs the backward (controllable sets) and forward passes,
+//! returning a `Profile` (`parametrized.rs`). `between.rs` makes the limits hold between
+//! gridpoints: on paths that are polynomials of degree ≤ 3 between breakpoints
+//! (`Path::piecewise_degree`) each stage gets the interior Bernstein coefficients of joint
+//! velocity and acceleration along its interval as extra rows (`Constraint::hold_on_cubic`), so
+//! one solve holds them everywhere; an exact check (`Constraint::excess_on_cubic`, closed-form
+//! extrema) covers breakpoints and collocation, a failing interval gets rows at its worst point
+//! and is re-solved incrementally (backward pass until the controllable sets settle, forward
+//! pass until x meets the old one); other paths and constraints are sampled and their
+//! intervals cut. `rescale.rs` composes any `Path` with any `TimeLaw` (`Retimed`: TOPP-RA's
+//! output is `Retimed<P, Profile>`, exact, never refitted) and scales time (`Scaled`,
+//! `min_time_scale`). `jerk.rs` bounds jerk: moving-average filter of the law, then the smallest
+//! exact time scaling. `jerk_optimal/` is the jerk-limited time-optimal planner (third-order
+//! reachability): `discretize.rs` (rows in (x_i, u_i, v_i) at gridpoints and cuts, conservative
+//! tangent of J/√x), `polygon.rs` (convex controllable sets), `solve.rs` (backward projection by
+//! lazy Fourier–Motzkin, greedy forward pass), `certify.rs` (exact extrema between gridpoints),
+//! `problem.rs` (rounds of re-linearization and cuts), `mesh.rs` (grid even in raw TOPP-RA time,
+//! ends refined), `law.rs` (closed-form s(t), a `TimeLaw`). `messy.rs` takes raw waypoints
+//! (dedup, range check, stops at reversals, a range-safe spline per piece via `BoundedSpline`, a
+//! `Sequence` of pieces; `piece_paths` / `time_pieces` split path construction from timing);
+//! `paths.rs` is the polyline path. `mvc.rs` evaluates the maximum velocity curve of a problem at
+//! given points (the point's rows with s̈ eliminated exactly, Fourier–Motzkin), for phase-plane
+//! pictures. `blend.rs` is TOTG's path
+//! (segments + circular blends within a max deviation, C¹, junctions as breakpoints,
+//! `eval_left` for the side that ends at a junction). `ni.rs` is phase-plane numerical
+//! integration for any path and any constraints: backward envelope (one exact LP per knot on the
+//! shared `Stage`) whose knots on the limit curve are the switching points, forward integration
+//! at the largest step (`largest_step`, shared with TOPP-RA's forward pass) with crossings
+//! located exactly, closed-form steps where the constraints are constant, event checks between
+//! knots with bounded refinement; output is the same `Profile`. Bounded steps (TOTG's arcs) are
+//! cut where their excess bound exceeds the problem's cut threshold τ (`tighten_max`: from the
+//! first sweep's share of time on varying steps), else their knots are tightened by twice the
+//! bound; refinement rounds reuse the rows of kept knots. After convergence `loss_estimate`
+//! integrates again on every third knot (rows read through `View`, no copy) and returns
+//! (T(3h) − T(h))/2 plus the tightening's cost; above 0.9·`LOSS_BUDGET` (7e-5) τ is lowered by
+//! (0.8·budget/estimate)² and the problem integrated again (at most two corrections, the last
+//! converged solution as fallback). `totg.rs` = `BlendedPath` +
+//! joint velocity/acceleration constraints + `ni` with TOTG's knots; arc knots hold limits
+//! tightened by the analytic bound of the excess between knots (initial arc step 0.04 rad); `plan_totg` splits waypoints at stops into a `Sequence`. Flow: waypoints → messy (dedup,
+//! stops) → `Path` + `Limits` → constraints → `Toppra` | `ni` | (blend → totg) → `Profile` →
+//! `Retimed` → jerk → `Trajectory`. The solver's hot loop evaluates σ′ and σ″ together
+//! (`Path::eval_derivatives`) and scans each stage's rows in place (`HalfPlanes::first_violated`).
 
 mod between;
 mod blend;

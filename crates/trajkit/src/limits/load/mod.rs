@@ -57,12 +57,14 @@
 //! file, or with explicit values.
 //!
 //! ```
+//! # #[cfg(feature = "serde")] {
 //! use trajkit::limits::load;
 //! let text = r#"{"preset": "panda", "joints": [{"name": "panda_joint2", "velocity": 1.0}]}"#;
 //! let limits = load::from_json_str(text, "limits.json")?;
 //! assert_eq!(limits.joint(1).velocity, 1.0);
 //! assert_eq!(limits.joint(0).velocity, 2.175);
 //! let limits = limits.complete(trajkit::limits::Needs::ALL)?; // the preset gives everything
+//! # }
 //! # Ok::<(), trajkit::Error>(())
 //! ```
 
