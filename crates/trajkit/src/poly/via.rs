@@ -85,105 +85,16 @@ impl ViaTrajectory {
         accelerations: Option<&[f64]>,
         timing: ViaTiming<'_>,
     ) -> Result<Self> {
-        if dof == 0 || waypoints.len() % dof != 0 {
-            return Err(Error::DimensionMismatch {
-                what: "waypoint values (a multiple of the joint count)".into(),
-                expected: dof.max(1) * (waypoints.len() / dof.max(1)).max(2),
-                found: waypoints.len(),
-            });
-        }
-        let n = waypoints.len() / dof;
-        if n < 2 {
-            return Err(Error::TooFewWaypoints {
-                needed: 2,
-                found: n,
-            });
-        }
-        for (i, &v) in waypoints.iter().enumerate() {
-            crate::error::finite(|| format!("waypoint {} joint {}", i / dof, i % dof + 1), v)?;
-        }
+        let n = check_waypoints(waypoints, dof)?;
         let wp = |i: usize| &waypoints[i * dof..(i + 1) * dof];
-        for i in 1..n {
-            if wp(i) == wp(i - 1) {
-                return Err(Error::DuplicateWaypoint { index: i });
-            }
-        }
         if let ViaTiming::Limits(l) = &timing {
             l.expect_dof(dof, "waypoints")?;
         }
         let segs = n - 1;
-        // Rest-to-rest durations: the given ones, or the minimal ones.
-        let base: Vec<f64> = match &timing {
-            ViaTiming::Durations(d) => {
-                if d.len() != segs {
-                    return Err(Error::DimensionMismatch {
-                        what: "segment durations".into(),
-                        expected: segs,
-                        found: d.len(),
-                    });
-                }
-                for (i, &x) in d.iter().enumerate() {
-                    crate::error::positive(|| format!("duration of segment {i}"), x)?;
-                }
-                d.clone()
-            }
-            ViaTiming::Limits(l) => (0..segs)
-                .map(|i| min_duration_rest_to_rest(degree, wp(i), wp(i + 1), l))
-                .collect::<Result<_>>()?,
-        };
-        // Interior velocities.
-        let vel: Vec<f64> = match velocities {
-            ViaVelocities::Zero => vec![0.0; (n - 2) * dof],
-            ViaVelocities::Given(v) => {
-                if v.len() != (n - 2) * dof {
-                    return Err(Error::DimensionMismatch {
-                        what: "interior waypoint velocities ((waypoints − 2) × joints)".into(),
-                        expected: (n - 2) * dof,
-                        found: v.len(),
-                    });
-                }
-                for (i, &x) in v.iter().enumerate() {
-                    crate::error::finite(
-                        || format!("velocity at waypoint {} joint {}", i / dof + 1, i % dof + 1),
-                        x,
-                    )?;
-                }
-                v
-            }
-            ViaVelocities::Heuristic => {
-                let mut v = vec![0.0; (n - 2) * dof];
-                for k in 1..n - 1 {
-                    for j in 0..dof {
-                        let s0 = (wp(k)[j] - wp(k - 1)[j]) / base[k - 1];
-                        let s1 = (wp(k + 1)[j] - wp(k)[j]) / base[k];
-                        if s0 * s1 > 0.0 {
-                            v[(k - 1) * dof + j] = 0.5 * (s0 + s1);
-                        }
-                    }
-                }
-                v
-            }
-        };
+        let base = rest_durations(waypoints, dof, degree, &timing)?;
+        let vel = interior_velocities(waypoints, dof, velocities, &base)?;
         if let Some(acc) = accelerations {
-            if acc.len() != (n - 2) * dof {
-                return Err(Error::DimensionMismatch {
-                    what: "interior waypoint accelerations ((waypoints − 2) × joints)".into(),
-                    expected: (n - 2) * dof,
-                    found: acc.len(),
-                });
-            }
-            for (i, &x) in acc.iter().enumerate() {
-                crate::error::finite(
-                    || {
-                        format!(
-                            "acceleration at waypoint {} joint {}",
-                            i / dof + 1,
-                            i % dof + 1
-                        )
-                    },
-                    x,
-                )?;
-            }
+            check_interior(acc, n, dof, "acceleration")?;
         }
         let end_state = |k: usize| -> EndState {
             let interior = k != 0 && k != n - 1;
@@ -391,6 +302,122 @@ impl Trajectory for ViaTrajectory {
         let local = t - self.breaks[i];
         self.tables[i].eval(local, order.index(), out);
     }
+}
+
+/// Checks row-major `waypoints` of `dof` joints (a whole number of rows, at least two, finite,
+/// no two consecutive equal) and returns their count.
+fn check_waypoints(waypoints: &[f64], dof: usize) -> Result<usize> {
+    if dof == 0 || waypoints.len() % dof != 0 {
+        return Err(Error::DimensionMismatch {
+            what: "waypoint values (a multiple of the joint count)".into(),
+            expected: dof.max(1) * (waypoints.len() / dof.max(1)).max(2),
+            found: waypoints.len(),
+        });
+    }
+    let n = waypoints.len() / dof;
+    if n < 2 {
+        return Err(Error::TooFewWaypoints {
+            needed: 2,
+            found: n,
+        });
+    }
+    for (i, &v) in waypoints.iter().enumerate() {
+        crate::error::finite(|| format!("waypoint {} joint {}", i / dof, i % dof + 1), v)?;
+    }
+    let wp = |i: usize| &waypoints[i * dof..(i + 1) * dof];
+    for i in 1..n {
+        if wp(i) == wp(i - 1) {
+            return Err(Error::DuplicateWaypoint { index: i });
+        }
+    }
+    Ok(n)
+}
+
+/// Rest-to-rest segment durations: the given ones (checked), or the minimal ones under the
+/// limits.
+fn rest_durations(
+    waypoints: &[f64],
+    dof: usize,
+    degree: Degree,
+    timing: &ViaTiming<'_>,
+) -> Result<Vec<f64>> {
+    let segs = waypoints.len() / dof - 1;
+    let wp = |i: usize| &waypoints[i * dof..(i + 1) * dof];
+    match timing {
+        ViaTiming::Durations(d) => {
+            if d.len() != segs {
+                return Err(Error::DimensionMismatch {
+                    what: "segment durations".into(),
+                    expected: segs,
+                    found: d.len(),
+                });
+            }
+            for (i, &x) in d.iter().enumerate() {
+                crate::error::positive(|| format!("duration of segment {i}"), x)?;
+            }
+            Ok(d.clone())
+        }
+        ViaTiming::Limits(l) => (0..segs)
+            .map(|i| min_duration_rest_to_rest(degree, wp(i), wp(i + 1), l))
+            .collect(),
+    }
+}
+
+/// The velocities at the interior waypoints (row-major `(n − 2) × dof`): zero, the given
+/// ones (checked), or the heuristic (the mean of the neighbouring segments' slopes over the
+/// rest-to-rest durations `base` where they agree in sign, else zero).
+fn interior_velocities(
+    waypoints: &[f64],
+    dof: usize,
+    velocities: ViaVelocities,
+    base: &[f64],
+) -> Result<Vec<f64>> {
+    let n = waypoints.len() / dof;
+    let wp = |i: usize| &waypoints[i * dof..(i + 1) * dof];
+    match velocities {
+        ViaVelocities::Zero => Ok(vec![0.0; (n - 2) * dof]),
+        ViaVelocities::Given(v) => {
+            check_interior(&v, n, dof, "velocity")?;
+            Ok(v)
+        }
+        ViaVelocities::Heuristic => {
+            let mut v = vec![0.0; (n - 2) * dof];
+            for k in 1..n - 1 {
+                for j in 0..dof {
+                    let s0 = (wp(k)[j] - wp(k - 1)[j]) / base[k - 1];
+                    let s1 = (wp(k + 1)[j] - wp(k)[j]) / base[k];
+                    if s0 * s1 > 0.0 {
+                        v[(k - 1) * dof + j] = 0.5 * (s0 + s1);
+                    }
+                }
+            }
+            Ok(v)
+        }
+    }
+}
+
+/// Checks values given at the interior waypoints (`what`: "velocity" or "acceleration"):
+/// `(n − 2) × dof` of them, all finite.
+fn check_interior(values: &[f64], n: usize, dof: usize, what: &str) -> Result<()> {
+    if values.len() != (n - 2) * dof {
+        let plural = if what == "velocity" {
+            "velocities"
+        } else {
+            "accelerations"
+        };
+        return Err(Error::DimensionMismatch {
+            what: format!("interior waypoint {plural} ((waypoints − 2) × joints)"),
+            expected: (n - 2) * dof,
+            found: values.len(),
+        });
+    }
+    for (i, &x) in values.iter().enumerate() {
+        crate::error::finite(
+            || format!("{what} at waypoint {} joint {}", i / dof + 1, i % dof + 1),
+            x,
+        )?;
+    }
+    Ok(())
 }
 
 #[cfg(test)]
