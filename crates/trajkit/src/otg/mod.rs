@@ -56,6 +56,7 @@ mod generator;
 mod input;
 pub mod json;
 mod phase;
+mod position;
 mod problem;
 mod profile;
 mod result;
