@@ -19,10 +19,10 @@ few 1e-4 of the continuous optimum (checked on the unconstrained problems, where
 minimum is Ruckig's). A problem whose constrained motion needs more than 4× the
 unconstrained duration (or none is feasible) is recorded as infeasible.
 
-Then `binding` problems: the unconstrained motion leaves the span of a witness motion (the
-fastest stop from the start, a rest-to-rest move, the time-reversed fastest stop into the
-target), and the limit cuts into that excursion but holds the span: a motion inside exists
-and is longer (rare: a few in a thousand random problems qualify).
+Then `binding` problems: the unconstrained motion goes further than the least overshoot
+before turning (from the start, and time-reversed into the target), and the limit cuts into
+that excursion but holds the least overshoots: a motion inside may exist, longer than the
+unconstrained one (the reference decides; such problems are rare among random ones).
 
 Writes crates/trajkit/tests/fixtures/otg/position_reference.json (the committed one:
 `otg_position_reference.py 20 400 8`).
@@ -146,11 +146,26 @@ def stop_extent(p, v, a, pr):
     return ext.min, ext.max
 
 
+def turn_extent(p, v, a, pr):
+    """Position extrema (min, max) of the least overshoot from (p, v, a) before the velocity
+    is zero (any acceleration then): jerk at its limit against the velocity, the acceleration
+    clamped at its limit; integrated in small steps (it only places a limit)."""
+    s = 1.0 if v > 0 or (v == 0 and a > 0) else -1.0
+    v, a = s * v, s * a
+    x, h = 0.0, 1e-5
+    while v > 0 or (v == 0 and a > 0):
+        a2 = max(a - pr["jmax"] * h, -pr["amax"])
+        x += h * v + h * h / 2 * a
+        v += h * (a + a2) / 2
+        a = a2
+    return (p, p + s * x) if s > 0 else (p + s * x, p)
+
+
 def witness_span(pr):
-    """A span some motion covers: start, target, the fastest stop from the start and the
-    time-reversed fastest stop into the target state (stop, move, reversed stop)."""
-    lo1, hi1 = stop_extent(pr["p0"], pr["v0"], pr["a0"], pr)
-    lo2, hi2 = stop_extent(pr["pf"], -pr["vf"], pr["af"], pr)
+    """A span every motion covers: start, target, the least overshoot before turning from
+    the start and (time-reversed) into the target state."""
+    lo1, hi1 = turn_extent(pr["p0"], pr["v0"], pr["a0"], pr)
+    lo2, hi2 = turn_extent(pr["pf"], -pr["vf"], pr["af"], pr)
     return min(lo1, lo2, pr["pf"]), max(hi1, hi2, pr["pf"])
 
 
@@ -251,9 +266,9 @@ def main():
 
 def add_binding(out, N, n_binding, t_start):
     """Appends the binding cases (see the module docstring) to `out` and writes it."""
-    # Binding cases: the unconstrained optimum leaves the span of a witness motion, and the
-    # limit cuts into that excursion but holds the span, so a motion inside exists and is
-    # longer (where a contact with the limit is the fastest way).
+    # Binding cases: the unconstrained optimum leaves the span every motion covers, and the
+    # limit cuts into that excursion but holds the span: a motion inside may exist (the
+    # reference decides), longer than the unconstrained one.
     rng = random.Random(20261127)
     binding = []
     tried = 0
