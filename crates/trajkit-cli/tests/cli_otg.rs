@@ -85,6 +85,28 @@ fn batch_one_line_per_problem() {
 }
 
 #[test]
+fn position_limits_and_budget() {
+    let d = scratch("position");
+    let lines = [
+        r#"{"current_position":[0],"target_position":[1],"max_velocity":[0.6],"max_acceleration":[1],"max_jerk":[4],"max_position":[1],"min_position":["-inf"],"interrupt_calculation_duration":100000}"#,
+        r#"{"current_position":[0],"current_velocity":[0.9],"target_position":[0],"max_velocity":[1],"max_acceleration":[2],"max_jerk":[10],"max_position":[0.05]}"#,
+    ];
+    std::fs::write(d.join("b.jsonl"), lines.join("\n")).unwrap();
+    let o = trajkit_stdin(&["otg", "--batch", "b.jsonl", "--out", "r.jsonl"], &d, None);
+    assert_eq!(o.status.code(), Some(1));
+    let text = std::fs::read_to_string(d.join("r.jsonl")).unwrap();
+    let rows: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(rows[0]["result"], "working");
+    assert!((rows[0]["duration"].as_f64().unwrap() - 2.5166666666666667).abs() < 1e-12);
+    assert!(rows[0]["position_excess"].as_f64().unwrap() <= 0.0);
+    assert_eq!(rows[1]["result"], "position_limits");
+    assert_eq!(rows[1]["dof"], 0);
+}
+
+#[test]
 fn strict_fields() {
     let d = scratch("strict");
     for (problem, needle) in [

@@ -11,7 +11,7 @@ use trajkit::otg::{calculate_dyn, DynInputParameter, DynTrajectory, OtgError};
 /// Arguments of `trajkit otg`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "Input: a JSON object with Ruckig's field names: current_position, current_velocity, current_acceleration, target_position, target_velocity, target_acceleration, max_velocity, max_acceleration, max_jerk, min_velocity, min_acceleration, enabled, minimum_duration, synchronization (time | time_if_necessary | phase | none | straight_line), control_interface (position | velocity), duration_discretization (continuous | discrete), per_dof_synchronization, per_dof_control_interface, dt. current_position, target_position and the limits max_velocity, max_acceleration, max_jerk are required (write \"inf\" for a DOF without a limit: infinite jerk gives trapezoidal profiles, infinite acceleration first-order ones); states default to zero. An unknown field is an error naming the closest known one; Ruckig Pro's fields (intermediate_positions, min/max_position, per_section_*) are refused as not supported yet. --batch exits 1 when any line failed.\n\nExamples:\n  echo '{\"current_position\":[0],\"target_position\":[1],\"max_velocity\":[0.6],\"max_acceleration\":[1],\"max_jerk\":[4]}' | trajkit otg -\n  trajkit otg problem.json --out samples.csv --plot otg.svg\n  trajkit otg --batch problems.jsonl --out results.jsonl"
+    after_help = "Input: a JSON object with Ruckig's field names: current_position, current_velocity, current_acceleration, target_position, target_velocity, target_acceleration, max_velocity, max_acceleration, max_jerk, min_velocity, min_acceleration, enabled, minimum_duration, max_position, min_position (position limits, \"inf\"/\"-inf\" for none), interrupt_calculation_duration (calculation budget in microseconds), synchronization (time | time_if_necessary | phase | none | straight_line), control_interface (position | velocity), duration_discretization (continuous | discrete), per_dof_synchronization, per_dof_control_interface, dt. current_position, target_position and the limits max_velocity, max_acceleration, max_jerk are required (write \"inf\" for a DOF without a limit: infinite jerk gives trapezoidal profiles, infinite acceleration first-order ones); states default to zero. An unknown field is an error naming the closest known one; Ruckig Pro's fields not supported yet (intermediate_positions, per_section_*) are refused by name. --batch exits 1 when any line failed.\n\nExamples:\n  echo '{\"current_position\":[0],\"target_position\":[1],\"max_velocity\":[0.6],\"max_acceleration\":[1],\"max_jerk\":[4]}' | trajkit otg -\n  trajkit otg problem.json --out samples.csv --plot otg.svg\n  trajkit otg --batch problems.jsonl --out results.jsonl"
 )]
 pub struct OtgArgs {
     /// The problem as a JSON file ('-' for standard input).
@@ -73,6 +73,7 @@ fn batch(path: &Path, out: &Path, profiles: bool) -> CliResult<u8> {
                         "duration": tr.duration(),
                         "final_error": {"position": e[0], "velocity": e[1], "acceleration": e[2]},
                         "worst_limit_ratio": c.worst_limit_ratio,
+                        "position_excess": c.position_excess,
                     });
                     if profiles {
                         r["profiles"] = profiles_json(&tr);

@@ -18,12 +18,17 @@ pub struct SolutionCheck {
     /// Largest share of a velocity (position interface) or acceleration limit used after the
     /// brake pre-profile; 1.0 is exactly at a limit.
     pub worst_limit_ratio: f64,
+    /// Largest distance beyond a position limit (`min_position`/`max_position`) over the
+    /// enabled position-interface DOFs, from the profiles' exact position extrema; 0.0 when
+    /// every motion stays inside.
+    pub position_excess: f64,
 }
 
 /// Checks `trajectory` against the `input` it was calculated for (see the module docs).
 pub fn check(input: &DynInputParameter, trajectory: &DynTrajectory) -> SolutionCheck {
     let mut e = [0.0f64; 3];
     let mut worst = 0.0f64;
+    let mut excess = 0.0f64;
     for (i, d) in trajectory.dofs().iter().enumerate() {
         if !input.enabled[i] {
             continue;
@@ -42,6 +47,13 @@ pub fn check(input: &DynInputParameter, trajectory: &DynTrajectory) -> SolutionC
         let vmin = input.min_velocity.as_ref().map_or(-vmax, |m| m[i]);
         let amax = input.max_acceleration[i];
         let amin = input.min_acceleration.as_ref().map_or(-amax, |m| m[i]);
+        if position {
+            if let Some((lo, _, hi, _)) = trajectory.position_extrema(i) {
+                excess = excess
+                    .max(hi - input.max_position[i])
+                    .max(input.min_position[i] - lo);
+            }
+        }
         let ratio = |x: f64, hi: f64, lo: f64| if x >= 0.0 { x / hi } else { x / lo };
         let tb = p.brake_duration();
         for k in 0..p.segments() {
@@ -71,5 +83,6 @@ pub fn check(input: &DynInputParameter, trajectory: &DynTrajectory) -> SolutionC
     SolutionCheck {
         final_error: e,
         worst_limit_ratio: worst,
+        position_excess: excess,
     }
 }

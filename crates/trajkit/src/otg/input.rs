@@ -76,6 +76,11 @@ pub struct OtgOptions {
     pub duration_discretization: DurationDiscretization,
     /// The trajectory lasts at least this long (seconds), if given.
     pub minimum_duration: Option<f64>,
+    /// A calculation budget in microseconds (Ruckig Pro's `interrupt_calculation_duration`):
+    /// the calculation returns the best valid result it has found when the budget runs out,
+    /// or [`super::OtgError::Interrupted`] when it has none yet. See the module
+    /// documentation of [`crate::otg`] for what is iterative.
+    pub interrupt_calculation_duration: Option<f64>,
 }
 
 /// The input with a compile-time number of degrees of freedom.
@@ -116,6 +121,10 @@ pub struct InputParameter<const DOF: usize> {
     pub min_velocity: Option<[f64; DOF]>,
     /// Direction-dependent minimum acceleration (< 0); `None` = −max_acceleration.
     pub min_acceleration: Option<[f64; DOF]>,
+    /// Largest position along the whole motion (Ruckig Pro's `max_position`; ∞ = none).
+    pub max_position: [f64; DOF],
+    /// Smallest position along the whole motion (Ruckig Pro's `min_position`; −∞ = none).
+    pub min_position: [f64; DOF],
     /// Degrees of freedom to plan; a disabled one keeps its current acceleration.
     pub enabled: [bool; DOF],
     /// Per-DOF synchronization, overriding `options.synchronization` (Ruckig's
@@ -150,6 +159,8 @@ impl<const DOF: usize> InputParameter<DOF> {
             max_jerk: [f64::INFINITY; DOF],
             min_velocity: None,
             min_acceleration: None,
+            max_position: [f64::INFINITY; DOF],
+            min_position: [f64::NEG_INFINITY; DOF],
             enabled: [true; DOF],
             per_dof_synchronization: None,
             per_dof_control_interface: None,
@@ -170,6 +181,8 @@ impl<const DOF: usize> InputParameter<DOF> {
             jmax: &self.max_jerk,
             vmin: self.min_velocity.as_ref().map(|v| &v[..]),
             amin: self.min_acceleration.as_ref().map(|v| &v[..]),
+            pmax: &self.max_position,
+            pmin: &self.min_position,
             enabled: &self.enabled,
             sync: self.per_dof_synchronization.as_ref().map(|v| &v[..]),
             iface: self.per_dof_control_interface.as_ref().map(|v| &v[..]),
@@ -206,6 +219,10 @@ pub struct DynInputParameter {
     pub min_velocity: Option<Vec<f64>>,
     /// Direction-dependent minimum acceleration.
     pub min_acceleration: Option<Vec<f64>>,
+    /// Largest position (see [`InputParameter::max_position`]).
+    pub max_position: Vec<f64>,
+    /// Smallest position (see [`InputParameter::min_position`]).
+    pub min_position: Vec<f64>,
     /// Degrees of freedom to plan.
     pub enabled: Vec<bool>,
     /// Per-DOF synchronization (see [`InputParameter::per_dof_synchronization`]).
@@ -233,6 +250,8 @@ impl DynInputParameter {
             max_jerk: inf,
             min_velocity: None,
             min_acceleration: None,
+            max_position: vec![f64::INFINITY; dof],
+            min_position: vec![f64::NEG_INFINITY; dof],
             enabled: vec![true; dof],
             per_dof_synchronization: None,
             per_dof_control_interface: None,
@@ -258,6 +277,8 @@ impl DynInputParameter {
             jmax: &self.max_jerk,
             vmin: self.min_velocity.as_deref(),
             amin: self.min_acceleration.as_deref(),
+            pmax: &self.max_position,
+            pmin: &self.min_position,
             enabled: &self.enabled,
             sync: self.per_dof_synchronization.as_deref(),
             iface: self.per_dof_control_interface.as_deref(),
@@ -280,6 +301,8 @@ pub(crate) struct InputView<'a> {
     pub jmax: &'a [f64],
     pub vmin: Option<&'a [f64]>,
     pub amin: Option<&'a [f64]>,
+    pub pmax: &'a [f64],
+    pub pmin: &'a [f64],
     pub enabled: &'a [bool],
     pub sync: Option<&'a [Synchronization]>,
     pub iface: Option<&'a [ControlInterface]>,
@@ -347,6 +370,8 @@ impl InputView<'_> {
                 && self.amax.len() == n
                 && self.jmax.len() == n
                 && self.enabled.len() == n
+                && self.pmax.len() == n
+                && self.pmin.len() == n
                 && self.vmin.is_none_or(|v| v.len() == n)
                 && self.amin.is_none_or(|a| a.len() == n)
                 && self.sync.is_none_or(|s| s.len() == n)
@@ -373,6 +398,15 @@ impl InputView<'_> {
                 ));
             }
         }
+        if let Some(b) = self.options.interrupt_calculation_duration {
+            if !(b.is_finite() && b > 0.0) {
+                return Err(bad_global(
+                    "interrupt_calculation_duration",
+                    b,
+                    "is not a positive finite number of microseconds",
+                ));
+            }
+        }
         if self.options.duration_discretization == DurationDiscretization::Discrete
             && !(delta_time.is_finite() && delta_time > 0.0)
         {
@@ -390,7 +424,7 @@ impl InputView<'_> {
     #[cold]
     fn length_error(&self) -> Result<(), OtgError> {
         let n = self.dof();
-        let lens: [(&'static str, usize); 13] = [
+        let lens: [(&'static str, usize); 15] = [
             ("current_velocity", self.cv.len()),
             ("current_acceleration", self.ca.len()),
             ("target_position", self.tp.len()),
@@ -400,6 +434,8 @@ impl InputView<'_> {
             ("max_acceleration", self.amax.len()),
             ("max_jerk", self.jmax.len()),
             ("enabled", self.enabled.len()),
+            ("max_position", self.pmax.len()),
+            ("min_position", self.pmin.len()),
             ("min_velocity", self.vmin.map_or(n, |v| v.len())),
             ("min_acceleration", self.amin.map_or(n, |v| v.len())),
             ("per_dof_synchronization", self.sync.map_or(n, |v| v.len())),
@@ -422,21 +458,27 @@ impl InputView<'_> {
         let (vmax, amax, jmax) = (self.vmax[i], self.amax[i], self.jmax[i]);
         let vmin = self.vmin.map_or(-vmax, |v| v[i]);
         let amin = self.amin.map_or(-amax, |v| v[i]);
-        // Finite states, positive maxima, negative minima: in plain comparisons without
-        // branches for the common case; when one fails, `value_error` names the first
-        // offender in the order of the fields.
+        let (pmin, pmax) = (self.pmin[i], self.pmax[i]);
+        // Finite states, positive maxima, negative minima, positions within the position
+        // limits: in plain comparisons without branches for the common case; when one fails,
+        // `value_error` names the first offender in the order of the fields.
         let m = f64::MAX;
-        let plain = (self.cp[i].abs() <= m)
+        let (cp, tp) = (self.cp[i], self.tp[i]);
+        let plain = (cp.abs() <= m)
             & (self.cv[i].abs() <= m)
             & (self.ca[i].abs() <= m)
-            & (self.tp[i].abs() <= m)
+            & (tp.abs() <= m)
             & (self.tv[i].abs() <= m)
             & (self.ta[i].abs() <= m)
             & (vmax >= 0.0)
             & (amax >= 0.0)
             & (jmax >= 0.0)
             & (vmin <= 0.0)
-            & (amin <= 0.0);
+            & (amin <= 0.0)
+            & (pmin <= cp)
+            & (cp <= pmax)
+            & (pmin <= tp)
+            & (tp <= pmax);
         if !plain {
             self.value_error(i, vmin, amin)?;
         }
@@ -449,67 +491,27 @@ impl InputView<'_> {
             ));
         }
         let d = Dof1 {
-            p0: self.cp[i],
+            p0: cp,
             v0: self.cv[i],
             a0: self.ca[i],
-            pf: self.tp[i],
+            pf: tp,
             vf: self.tv[i],
             af: self.ta[i],
-            vmax: self.vmax[i],
+            vmax,
             vmin,
-            amax: self.amax[i],
+            amax,
             amin,
-            jmax: self.jmax[i],
+            jmax,
             interface: self.iface.map_or(self.options.control_interface, |c| c[i]),
+            pmin,
+            pmax,
         };
-        use super::problem::ProfileOrder;
-        let order = d.order();
-        if d.interface == ControlInterface::Position {
-            if order == ProfileOrder::First && (d.vmax.is_infinite() || d.vmin.is_infinite()) {
-                return Err(bad(
-                    i,
-                    "max_velocity",
-                    d.vmax,
-                    "must be finite when the acceleration limit is infinite",
-                ));
-            }
-            if d.vf > d.vmax || d.vf < d.vmin {
-                return Err(bad(
-                    i,
-                    "target_velocity",
-                    d.vf,
-                    "is outside the velocity limits",
-                ));
-            }
-        }
-        if order == ProfileOrder::Third {
-            if d.af > d.amax || d.af < d.amin {
-                return Err(bad(
-                    i,
-                    "target_acceleration",
-                    d.af,
-                    "is outside the acceleration limits",
-                ));
-            }
-            // With a_f = 0 this is the target velocity itself, checked above.
-            let before = || d.vf - d.af * d.af.abs() / (2.0 * d.jmax);
-            if d.interface == ControlInterface::Position
-                && d.af != 0.0
-                && (before() > d.vmax || before() < d.vmin)
-            {
-                return Err(bad(
-                    i,
-                    "target_acceleration",
-                    d.af,
-                    "cannot be reached with the target velocity inside the velocity limits",
-                ));
-            }
-        }
+        check_target(&d, i)?;
         Ok(d)
     }
 
-    /// The first state that is not finite, maximum that is not positive or minimum that is
-    /// not negative of degree of freedom `i`, as an error.
+    /// The first state that is not finite, maximum that is not positive, minimum that is not
+    /// negative or position outside the position limits of degree of freedom `i`, as an error.
     #[cold]
     fn value_error(&self, i: usize, vmin: f64, amin: f64) -> Result<(), OtgError> {
         for (f, v) in [
@@ -539,8 +541,97 @@ impl InputView<'_> {
         if amin.is_nan() || amin > 0.0 {
             return Err(bad(i, "min_acceleration", amin, NOT_NEGATIVE));
         }
+        self.position_error(i)
+    }
+
+    /// The position limits of degree of freedom `i` that are not numbers, cross each other or
+    /// do not hold the current or target position, as an error.
+    #[cold]
+    fn position_error(&self, i: usize) -> Result<(), OtgError> {
+        let (pmin, pmax) = (self.pmin[i], self.pmax[i]);
+        if pmax.is_nan() {
+            return Err(bad(i, "max_position", pmax, "is not a number"));
+        }
+        if pmin.is_nan() {
+            return Err(bad(i, "min_position", pmin, "is not a number"));
+        }
+        if pmin > pmax {
+            return Err(bad(i, "min_position", pmin, "is above max_position"));
+        }
+        let outside = "is outside the position limits [min_position, max_position]";
+        if !(pmin <= self.cp[i] && self.cp[i] <= pmax) {
+            return Err(bad(i, "current_position", self.cp[i], outside));
+        }
+        let velocity = self.iface.map_or(self.options.control_interface, |c| c[i])
+            == ControlInterface::Velocity;
+        let target_inside = pmin <= self.tp[i] && self.tp[i] <= pmax;
+        if !(velocity || target_inside) {
+            return Err(bad(i, "target_position", self.tp[i], outside));
+        }
         Ok(())
     }
+}
+
+/// The checks that combine a DOF's target with its limits: a target velocity and acceleration
+/// that the limits allow to reach, position limits only with the position interface.
+#[inline]
+fn check_target(d: &Dof1, i: usize) -> Result<(), OtgError> {
+    use super::problem::ProfileOrder;
+    let order = d.order();
+    if d.interface == ControlInterface::Position {
+        if order == ProfileOrder::First && (d.vmax.is_infinite() || d.vmin.is_infinite()) {
+            return Err(bad(
+                i,
+                "max_velocity",
+                d.vmax,
+                "must be finite when the acceleration limit is infinite",
+            ));
+        }
+        if d.vf > d.vmax || d.vf < d.vmin {
+            return Err(bad(
+                i,
+                "target_velocity",
+                d.vf,
+                "is outside the velocity limits",
+            ));
+        }
+    } else if d.has_position_limits() {
+        let (field, value) = if d.pmax < f64::INFINITY {
+            ("max_position", d.pmax)
+        } else {
+            ("min_position", d.pmin)
+        };
+        return Err(bad(
+            i,
+            field,
+            value,
+            "applies to the position interface only (this DOF uses the velocity interface)",
+        ));
+    }
+    if order == ProfileOrder::Third {
+        if d.af > d.amax || d.af < d.amin {
+            return Err(bad(
+                i,
+                "target_acceleration",
+                d.af,
+                "is outside the acceleration limits",
+            ));
+        }
+        // With a_f = 0 this is the target velocity itself, checked above.
+        let before = || d.vf - d.af * d.af.abs() / (2.0 * d.jmax);
+        if d.interface == ControlInterface::Position
+            && d.af != 0.0
+            && (before() > d.vmax || before() < d.vmin)
+        {
+            return Err(bad(
+                i,
+                "target_acceleration",
+                d.af,
+                "cannot be reached with the target velocity inside the velocity limits",
+            ));
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -17,6 +17,8 @@
 //! | `duration_discretization` | `"continuous"`, `"discrete"` | no (`"continuous"`) |
 //! | `per_dof_synchronization`, `per_dof_control_interface` | lists of the words above | no |
 //! | `minimum_duration` | number ≥ 0 | no |
+//! | `max_position`, `min_position` | lists of numbers or `"inf"` / `"-inf"` (Ruckig Pro's position limits) | no (none) |
+//! | `interrupt_calculation_duration` | calculation budget in µs, number > 0 (Ruckig Pro's name) | no (none) |
 //! | `dt` | the control period, number > 0 | no (0.001) |
 //!
 //! The reader is strict. A limit that is missing is an error, never "unlimited": JSON has no
@@ -25,8 +27,7 @@
 //! profiles and an infinite acceleration limit first-order ones. An unknown field is an error
 //! that names the closest known one (`'max_jerks' is not a known field (did you mean
 //! 'max_jerk'?)`), and Ruckig's fields that trajkit does not support yet (Ruckig Pro's
-//! intermediate waypoints, position limits, per-section limits, calculation budget) are
-//! refused by name. Values are checked for type and length here and for range by the
+//! intermediate waypoints and per-section limits) are refused by name. Values are checked for type and length here and for range by the
 //! generator (which names DOF, field and value).
 
 use super::input::{ControlInterface, DurationDiscretization, DynInputParameter, Synchronization};
@@ -43,7 +44,7 @@ pub struct OtgProblem {
 }
 
 /// Every field the reader accepts.
-pub const KNOWN_FIELDS: [&str; 20] = [
+pub const KNOWN_FIELDS: [&str; 23] = [
     "current_position",
     "current_velocity",
     "current_acceleration",
@@ -62,12 +63,15 @@ pub const KNOWN_FIELDS: [&str; 20] = [
     "per_dof_synchronization",
     "per_dof_control_interface",
     "minimum_duration",
+    "max_position",
+    "min_position",
+    "interrupt_calculation_duration",
     "dt",
     "delta_time",
 ];
 
 /// Ruckig's input fields that trajkit does not support yet (refused by name).
-pub const NOT_SUPPORTED_YET: [&str; 12] = [
+pub const NOT_SUPPORTED_YET: [&str; 9] = [
     "intermediate_positions",
     "per_section_max_velocity",
     "per_section_max_acceleration",
@@ -77,13 +81,11 @@ pub const NOT_SUPPORTED_YET: [&str; 12] = [
     "per_section_max_position",
     "per_section_min_position",
     "per_section_minimum_duration",
-    "max_position",
-    "min_position",
-    "interrupt_calculation_duration",
 ];
 
 /// The answer to one solved problem, as `trajkit otg` writes it: `result`, `duration`,
-/// `independent_min_durations`, `final_error` and `worst_limit_ratio` ([`super::check`]), and
+/// `independent_min_durations`, `final_error`, `worst_limit_ratio` and `position_excess`
+/// ([`super::check`]), and
 /// the `samples` of the trajectory every `delta_time` seconds (the JSON sample table of
 /// [`crate::io::table_to_json`]). The caller caps the sample count (duration / `delta_time`).
 pub fn answer(problem: &OtgProblem, trajectory: &super::DynTrajectory) -> crate::Result<Value> {
@@ -107,6 +109,7 @@ pub fn answer(problem: &OtgProblem, trajectory: &super::DynTrajectory) -> crate:
         "final_error": {"position": c.final_error[0], "velocity": c.final_error[1],
                         "acceleration": c.final_error[2]},
         "worst_limit_ratio": c.worst_limit_ratio,
+        "position_excess": c.position_excess,
         "samples": samples,
     }))
 }
@@ -227,6 +230,9 @@ impl Reader<'_> {
             input.min_acceleration =
                 Some(self.numbers("min_acceleration", n, None, Some("-inf"))?);
         }
+        input.max_position = self.numbers("max_position", n, Some(f64::INFINITY), Some("inf"))?;
+        input.min_position =
+            self.numbers("min_position", n, Some(f64::NEG_INFINITY), Some("-inf"))?;
         match self.obj.get("enabled") {
             None => {}
             Some(Value::Array(a)) if a.len() == n && a.iter().all(Value::is_boolean) => {
@@ -241,6 +247,10 @@ impl Reader<'_> {
         }
         if let Some(v) = self.obj.get("minimum_duration") {
             input.options.minimum_duration = Some(self.number("minimum_duration", v)?);
+        }
+        if let Some(v) = self.obj.get("interrupt_calculation_duration") {
+            input.options.interrupt_calculation_duration =
+                Some(self.positive("interrupt_calculation_duration", v)?);
         }
         let delta_time = match (self.obj.get("dt"), self.obj.get("delta_time")) {
             (Some(_), Some(_)) => {
@@ -434,6 +444,18 @@ mod tests {
         assert_eq!(i.options.minimum_duration, Some(2.0));
         assert_eq!(p.delta_time, 0.01);
         assert_eq!(i.current_velocity, vec![0.1, 0.0]);
+        // Absent position limits are none; no budget.
+        assert_eq!(i.max_position, vec![f64::INFINITY; 2]);
+        assert_eq!(i.min_position, vec![f64::NEG_INFINITY; 2]);
+        assert_eq!(i.options.interrupt_calculation_duration, None);
+        let p = parse(
+            r#""max_position":[2,"inf"],"min_position":["-inf",-1],
+            "interrupt_calculation_duration":500"#,
+        )
+        .unwrap();
+        assert_eq!(p.input.max_position, vec![2.0, f64::INFINITY]);
+        assert_eq!(p.input.min_position, vec![f64::NEG_INFINITY, -1.0]);
+        assert_eq!(p.input.options.interrupt_calculation_duration, Some(500.0));
     }
 
     #[test]
@@ -444,7 +466,11 @@ mod tests {
         );
         assert!(message(r#""intermediate_positions":[[0,0]]"#)
             .contains("field 'intermediate_positions': is a Ruckig (Pro) field"));
-        assert!(message(r#""max_position":[1,1]"#).contains("does not support yet"));
+        assert!(message(r#""per_section_max_jerk":[[1,1]]"#).contains("does not support yet"));
+        assert!(message(r#""max_position":[1,"-inf"]"#)
+            .contains("field 'max_position[1]': = \"-inf\" is not a number (or \"inf\")"));
+        assert!(message(r#""interrupt_calculation_duration":-5"#)
+            .contains("field 'interrupt_calculation_duration': = -5 is not a positive number"));
         let e = parse_problem(
             r#"{"current_position":[0],"target_position":[1],"max_velocity":[1],"max_acceleration":[1]}"#,
             "p.json",

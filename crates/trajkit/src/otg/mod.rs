@@ -34,6 +34,16 @@
 //! outside the limits back inside, is exempt from the limits it repairs. A start state equal to
 //! the target state (exactly) gives a trajectory of duration 0.
 //!
+//! # Ruckig Pro's features
+//! Position limits (`min_position`/`max_position`): positions stay within them along the
+//! whole motion, checked at the profiles' exact position extrema (to 1e-12 of the motion's
+//! position scale); the unconstrained optimum is kept whenever it stays inside; a target that
+//! cannot be reached inside is [`OtgError::PositionLimits`]. Method and what is optimal about
+//! it: `position.rs`. A calculation budget (`options.interrupt_calculation_duration`, µs)
+//! bounds the synchronization search: [`OtgError::Interrupted`] when no duration has worked
+//! yet, the shortest valid result otherwise (`sync.rs`). Intermediate waypoints and
+//! per-section limits are not implemented (the JSON reader refuses them by name).
+//!
 //! # Files (one per step)
 //! `json.rs` the Ruckig-style JSON reader (public: [`json`]) · `input.rs` the input types
 //! and their validation · `problem.rs` one DOF's problem · `profile.rs` the segment list of
@@ -43,7 +53,7 @@
 //! families) · `families.rs` + `families_gen.rs` the families' position polynomials ·
 //! `step2.rs` profiles of a given duration · `sync.rs` the common duration · `phase.rs`
 //! Ruckig's phase synchronization and the straight-line mode · `result.rs`, `trajectory.rs`,
-//! `generator.rs`, `check.rs`. Polynomial and scalar roots come from [`crate::roots`].
+//! `generator.rs`, `check.rs` · `position.rs` position limits. Polynomial and scalar roots come from [`crate::roots`].
 //!
 //! # Public API
 //! Everything a user needs is re-exported here; the files are private.
@@ -105,6 +115,7 @@ mod input;
 #[cfg(feature = "serde")]
 pub mod json;
 mod phase;
+mod position;
 mod problem;
 mod profile;
 mod result;

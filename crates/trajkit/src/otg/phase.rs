@@ -307,6 +307,9 @@ fn path_problem(view: &InputView<'_>, scratch: &[Scratch], lam: [f64; 4]) -> Dof
         amin,
         jmax,
         interface: ControlInterface::Position,
+        // The DOFs' position limits are checked on the scaled profiles (`verify`).
+        pmin: f64::NEG_INFINITY,
+        pmax: f64::INFINITY,
     }
 }
 

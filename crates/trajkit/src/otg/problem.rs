@@ -1,7 +1,7 @@
 //! One degree of freedom's problem: boundary states, limits and the profile order.
 //!
 //! The solver works on [`Dof1`]: the state to start from, the state to reach and the limits of
-//! one joint. Limits follow trajkit's convention (an infinite value means unlimited; minima are
+//! one joint (position limits included). Limits follow trajkit's convention (an infinite value means unlimited; minima are
 //! negative). The order of the profiles follows from which limits are finite: an infinite
 //! acceleration limit gives first-order (velocity-limited) profiles, an infinite jerk limit with
 //! a finite acceleration limit gives second-order (trapezoidal) profiles, and otherwise
@@ -55,6 +55,10 @@ pub(crate) struct Dof1 {
     pub jmax: f64,
     /// Position or velocity target.
     pub interface: ControlInterface,
+    /// Smallest position (−infinite: none). Position interface only.
+    pub pmin: f64,
+    /// Largest position (infinite: none).
+    pub pmax: f64,
 }
 
 impl Dof1 {
@@ -73,6 +77,8 @@ impl Dof1 {
             amin: -amax,
             jmax,
             interface: ControlInterface::Position,
+            pmin: f64::NEG_INFINITY,
+            pmax: f64::INFINITY,
         }
     }
 
@@ -102,6 +108,24 @@ impl Dof1 {
             amin: -self.amax,
             jmax: self.jmax,
             interface: self.interface,
+            pmin: -self.pmax,
+            pmax: -self.pmin,
+        }
+    }
+
+    /// Whether a position limit is finite.
+    #[inline]
+    pub(crate) fn has_position_limits(&self) -> bool {
+        self.pmax < f64::INFINITY || self.pmin > f64::NEG_INFINITY
+    }
+
+    /// The same problem without position limits.
+    #[inline]
+    pub(crate) fn without_position_limits(&self) -> Dof1 {
+        Dof1 {
+            pmin: f64::NEG_INFINITY,
+            pmax: f64::INFINITY,
+            ..*self
         }
     }
 }

@@ -66,6 +66,19 @@ pub enum OtgError {
         /// The degree of freedom.
         dof: usize,
     },
+    /// A degree of freedom with position limits cannot reach its target without leaving them
+    /// (Ruckig Pro's `ErrorPositionalLimits`): its brake, or every motion to its target, or
+    /// its continuation after an early end, would cross `min_position` or `max_position`.
+    PositionLimits {
+        /// The degree of freedom.
+        dof: usize,
+    },
+    /// The calculation budget (`interrupt_calculation_duration`) ran out before a valid
+    /// result was found.
+    Interrupted {
+        /// The budget, in microseconds.
+        budget_us: f64,
+    },
     /// No common duration could be found for the synchronized degrees of freedom.
     SynchronizationFailed {
         /// The degree of freedom that could not be re-planned last (`None` when none was
@@ -78,12 +91,14 @@ pub enum OtgError {
 
 impl OtgError {
     /// A short machine-readable name: `invalid_input`, `calculation_failed`, `zero_limits`,
-    /// `synchronization_failed`.
+    /// `position_limits`, `interrupted`, `synchronization_failed`.
     pub fn name(&self) -> &'static str {
         match self {
             OtgError::InvalidInput { .. } => "invalid_input",
             OtgError::CalculationFailed { .. } => "calculation_failed",
             OtgError::ZeroLimits { .. } => "zero_limits",
+            OtgError::PositionLimits { .. } => "position_limits",
+            OtgError::Interrupted { .. } => "interrupted",
             OtgError::SynchronizationFailed { .. } => "synchronization_failed",
         }
     }
@@ -92,7 +107,10 @@ impl OtgError {
     pub fn dof(&self) -> Option<usize> {
         match *self {
             OtgError::InvalidInput { dof, .. } | OtgError::SynchronizationFailed { dof, .. } => dof,
-            OtgError::CalculationFailed { dof } | OtgError::ZeroLimits { dof } => Some(dof),
+            OtgError::CalculationFailed { dof }
+            | OtgError::ZeroLimits { dof }
+            | OtgError::PositionLimits { dof } => Some(dof),
+            OtgError::Interrupted { .. } => None,
         }
     }
 }
@@ -119,6 +137,15 @@ impl fmt::Display for OtgError {
                 f,
                 "zero limits: DOF {dof} has a zero limit and cannot reach its target at the \
                  duration the motion needs"
+            ),
+            OtgError::PositionLimits { dof } => write!(
+                f,
+                "position limits: DOF {dof} cannot reach its target without leaving \
+                 [min_position, max_position]"
+            ),
+            OtgError::Interrupted { budget_us } => write!(
+                f,
+                "interrupted: no valid trajectory within the calculation budget of {budget_us} µs"
             ),
             OtgError::SynchronizationFailed { dof, duration } => match dof {
                 Some(i) => write!(

@@ -52,7 +52,7 @@ pub(crate) fn step2_into(dof: &Dof1, t: f64, out: &mut Profile) -> bool {
             *out = p;
             true
         }
-        None => false,
+        None => dof.has_position_limits() && super::position::wait_into(dof, t, out),
     }
 }
 

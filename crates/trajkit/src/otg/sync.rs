@@ -20,10 +20,19 @@
 //! one). A duration found by bisection is the edge of the feasible range to 64 halvings (or to
 //! adjacent floating-point numbers, or to one control period for discrete durations).
 //!
+//! Calculation budget (`interrupt_calculation_duration`, Ruckig Pro's name, microseconds):
+//! the search checks the deadline before each attempt and returns `OtgError::Interrupted`
+//! when it runs out before any duration worked; the bisection stops at the deadline and keeps
+//! its shortest success (valid, possibly longer than the edge of the feasible range). The
+//! closed-form solves inside an attempt are not interrupted: the budget's granularity is one
+//! attempt (step 2 for every synchronized DOF), and step 1 (before the search) and the
+//! single-DOF shortcut run to the end.
+//!
 //! Phase synchronization (Ruckig's) and trajkit's straight-line mode live in `phase.rs`.
 
 use super::input::{DurationDiscretization, InputView, Synchronization};
 use super::phase::{phase, straight_line, PhaseCtx};
+use super::position::continuation_within;
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
 use super::result::OtgError;
@@ -32,6 +41,7 @@ use super::step2::{step2, step2_into};
 use super::trajectory::DofTrajectory;
 use super::velocity_change::fastest3;
 use super::zero::{at_rest, coasts, has_zero_limit};
+use std::time::{Duration, Instant};
 
 /// Per-DOF spare profile of the calculation: step 1's second working buffer, then the slot
 /// the time-optimal profile is copied to before step 2 overwrites the output (see
@@ -272,10 +282,13 @@ pub(crate) fn calculate(
 ) -> Result<f64, OtgError> {
     let n = view.dof();
     let d = calculate_profiles(view, delta_time, out, scratch, spare)
-        .map_err(|e| zero_limits_error(e, &scratch[..n.min(scratch.len())], view))?;
+        .map_err(|e| limits_error(e, &scratch[..n.min(scratch.len())], view))?;
     for i in 0..n {
         if !view.enabled[i] {
             continue;
+        }
+        if !continuation_within(&scratch[i].dof, &out[i].profile, d) {
+            return Err(OtgError::PositionLimits { dof: i });
         }
         let (m, p) = if scratch[i].solved == Solved::No {
             (f64::NAN, Some(scratch[i].dof))
@@ -290,15 +303,28 @@ pub(crate) fn calculate(
 
 /// A failure caused by a degree of freedom with a zero limit is reported as such (Ruckig's
 /// `ErrorZeroLimits`): step 1 of that DOF, or synchronization when any synchronized DOF has
-/// one.
+/// one. A step-1 failure of a DOF with position limits, or a synchronization failure of
+/// one (no motion of the common duration stays inside its limits), is `PositionLimits`
+/// (Ruckig's `ErrorPositionalLimits`).
 #[cold]
-fn zero_limits_error(e: OtgError, scratch: &[Scratch], view: &InputView<'_>) -> OtgError {
+fn limits_error(e: OtgError, scratch: &[Scratch], view: &InputView<'_>) -> OtgError {
     let zero = |i: usize| view.enabled[i] && has_zero_limit(&scratch[i].dof);
     match e {
         OtgError::CalculationFailed { dof } if zero(dof) => OtgError::ZeroLimits { dof },
-        OtgError::SynchronizationFailed { .. } => (0..scratch.len())
-            .find(|&i| zero(i))
-            .map_or(e, |dof| OtgError::ZeroLimits { dof }),
+        OtgError::CalculationFailed { dof } if scratch[dof].dof.has_position_limits() => {
+            OtgError::PositionLimits { dof }
+        }
+        OtgError::SynchronizationFailed { dof, .. } => {
+            match (0..scratch.len()).find(|&i| zero(i)) {
+                Some(dof) => OtgError::ZeroLimits { dof },
+                None => match dof {
+                    Some(i) if scratch[i].dof.has_position_limits() => {
+                        OtgError::PositionLimits { dof: i }
+                    }
+                    _ => e,
+                },
+            }
+        }
         e => e,
     }
 }
@@ -349,6 +375,7 @@ fn calculate_profiles(
         n,
         discrete: opts.duration_discretization == DurationDiscretization::Discrete,
         min_dur: opts.minimum_duration.unwrap_or(0.0),
+        budget: opts.interrupt_calculation_duration.map(Budget::start),
     };
     let (t_lead, lazy) = p.prepare()?;
     if opts.synchronization == Synchronization::StraightLine
@@ -373,9 +400,45 @@ struct Planner<'a, 'v> {
     n: usize,
     discrete: bool,
     min_dur: f64,
+    /// The calculation budget (`interrupt_calculation_duration`), when one is given.
+    budget: Option<Budget>,
+}
+
+/// A calculation budget: its deadline and its size in microseconds.
+#[derive(Clone, Copy)]
+struct Budget {
+    deadline: Instant,
+    us: f64,
+}
+
+impl Budget {
+    /// A budget of `us` microseconds from now (`us` was validated: positive and finite).
+    #[cold]
+    fn start(us: f64) -> Budget {
+        let now = Instant::now();
+        let deadline = now
+            .checked_add(Duration::from_secs_f64((us * 1e-6).min(1e9)))
+            .unwrap_or(now);
+        Budget { deadline, us }
+    }
+
+    /// Whether the budget has run out.
+    #[inline]
+    fn spent(&self) -> bool {
+        Instant::now() >= self.deadline
+    }
 }
 
 impl Planner<'_, '_> {
+    /// The budget's error when it has run out (no valid result is known yet).
+    #[inline]
+    fn check_budget(&self) -> Result<(), OtgError> {
+        match self.budget {
+            Some(b) if b.spent() => Err(OtgError::Interrupted { budget_us: b.us }),
+            _ => Ok(()),
+        }
+    }
+
     /// `t` rounded up to a multiple of the control period when durations are discrete.
     #[inline]
     fn disc(&self, t: f64) -> f64 {
@@ -419,7 +482,14 @@ impl Planner<'_, '_> {
                 Synchronization::None => false,
             };
             // Phase synchronization needs every minimum duration (the limiting DOF).
-            if sc.sync && mode != Synchronization::Phase && starts_safe(&d) && !has_zero_limit(&d) {
+            // (A DOF with position limits always runs step 1: the duration bound does not
+            // know them.)
+            if sc.sync
+                && mode != Synchronization::Phase
+                && starts_safe(&d)
+                && !has_zero_limit(&d)
+                && !d.has_position_limits()
+            {
                 sc.solved = Solved::No;
                 sc.ncand = 0;
                 sc.step1_in_out = false;
@@ -546,6 +616,7 @@ impl Planner<'_, '_> {
             if !(t.is_finite() && t < 1e300) {
                 break;
             }
+            self.check_budget()?;
             match try_all(self.scratch, self.spare, self.out, self.n, t) {
                 Ok(()) => {
                     if let Some(lo) = last_fail {
@@ -593,6 +664,10 @@ impl Planner<'_, '_> {
     fn bisect(&mut self, mut lo: f64, mut hi: f64, failed: usize) -> Result<f64, OtgError> {
         let mut last_ok = true;
         for _ in 0..64 {
+            // Out of budget: the shortest success so far is the result.
+            if self.budget.is_some_and(|b| b.spent()) {
+                break;
+            }
             let mid = self.disc(0.5 * (lo + hi));
             if mid <= lo || mid >= hi {
                 break;

@@ -84,7 +84,7 @@ use rest::rest_to_rest;
 
 pub(crate) use collector::Collector;
 pub(crate) use rest::RestShape;
-pub(crate) use verify::{velocity_cap, velocity_window, verify};
+pub(crate) use verify::{positions_within, velocity_cap, velocity_window, verify};
 pub use verify::{TOL_LIMIT, TOL_POSITION, TOL_VELOCITY};
 
 /// Largest number of candidate durations kept per degree of freedom.
@@ -130,6 +130,9 @@ pub(crate) fn step1_into(
     spare: &mut Option<Profile>,
     cand: &mut [f64; MAX_CANDIDATES],
 ) -> Option<usize> {
+    if dof.has_position_limits() {
+        return super::position::step1_limited(dof, profile, spare, Some(cand));
+    }
     step1_run(dof, profile, spare, Some(cand))
 }
 
@@ -150,6 +153,9 @@ pub(crate) fn step1_fastest_into(
     profile: &mut Profile,
     spare: &mut Option<Profile>,
 ) -> Option<()> {
+    if dof.has_position_limits() {
+        return super::position::step1_limited(dof, profile, spare, None).map(|_| ());
+    }
     step1_run(dof, profile, spare, None).map(|_| ())
 }
 
@@ -163,7 +169,7 @@ pub(crate) fn step1_fastest_into(
 /// fastest of its candidates (the others, in the full mode, still bound its blocked
 /// intervals: a moving state cannot stay on its target for a short while).
 #[inline(always)]
-fn step1_run(
+pub(crate) fn step1_run(
     dof: &Dof1,
     profile: &mut Profile,
     spare: &mut Option<Profile>,

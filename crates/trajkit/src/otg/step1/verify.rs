@@ -57,7 +57,30 @@ pub(crate) fn verify(dof: &Dof1, pr: &Profile) -> bool {
     if !pr.duration().is_finite() {
         return false;
     }
-    limits_hold(dof, pr)
+    limits_hold(dof, pr) && (!dof.has_position_limits() || positions_within(dof, pr))
+}
+
+/// Whether every position of `pr` (exact extrema: segment boundaries and interior velocity
+/// zeros) lies within the position limits of `dof`, to a tolerance of half [`TOL_LIMIT`]
+/// relative to the motion's position scale (the largest of |p₀|, |p_f|, the finite limits'
+/// magnitudes and the profile's extent), so that an independent re-evaluation finds them
+/// within [`TOL_LIMIT`] of that scale.
+#[cold]
+pub(crate) fn positions_within(dof: &Dof1, pr: &Profile) -> bool {
+    let (lo, _, hi, _) = pr.position_extrema();
+    if !(lo.is_finite() && hi.is_finite()) {
+        return false;
+    }
+    let fin = |x: f64| if x.is_finite() { x.abs() } else { 0.0 };
+    let scale = dof
+        .p0
+        .abs()
+        .max(dof.pf.abs())
+        .max(fin(dof.pmin))
+        .max(fin(dof.pmax))
+        .max(hi - lo);
+    let eps = 0.5 * TOL_LIMIT * scale;
+    lo >= dof.pmin - eps && hi <= dof.pmax + eps
 }
 
 /// Velocity and acceleration bounds of a check (infinite where a limit is not checked).
