@@ -15,12 +15,21 @@ use trajkit::{Limits, Order};
 /// The embedded default path (7-joint Panda, 8 waypoints).
 pub const DEFAULT_WAYPOINTS: &str = include_str!("../default_waypoints.csv");
 
+/// The jerk stage of toppra and ni.
+#[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JerkStageArg {
+    /// Exact optimum on straight-line pieces, the filter elsewhere.
+    Auto,
+    /// The filter on every piece.
+    Filter,
+}
+
 /// Time-parameterization method.
 #[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {
     /// Time-optimal parameterization (TOPP-RA) of a C² spline through the waypoints, kept
-    /// inside the position ranges, within the velocity and acceleration limits; then jerk
-    /// bounded by filtering the timing law and rescaling time (unless --no-jerk-limit).
+    /// inside the position ranges, within the velocity and acceleration limits; then the jerk
+    /// stage (--jerk-stage; none with --no-jerk-limit).
     Toppra,
     /// Synchronized polynomial segments between waypoints, each as short as the limits allow.
     Poly,
@@ -143,6 +152,18 @@ pub struct PlanArgs {
     /// with --max-jerk inf.
     #[arg(long, conflicts_with = "max_jerk")]
     pub no_jerk_limit: bool,
+    /// How toppra and ni bound jerk. `auto`: a rest-to-rest piece along a straight line
+    /// (collinear waypoints, no torque limits) takes the exact jerk-limited optimum along the
+    /// line (the 1-D problem of the online generator); other pieces are filtered. `filter`:
+    /// every piece's timing law is smoothed by a moving average and time is slowed uniformly
+    /// until every limit holds at every instant.
+    #[arg(
+        long,
+        value_enum,
+        default_value = "auto",
+        conflicts_with = "no_jerk_limit"
+    )]
+    pub jerk_stage: JerkStageArg,
     /// With --method toppra or ni: also hold each joint's torque within its `effort` limit, using the
     /// rigid-body dynamics of a URDF (see --dynamics). The torque is checked again after jerk
     /// bounding and time is slowed down uniformly (up to 4x) if needed.
@@ -330,7 +351,10 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
         jerk: if a.no_jerk_limit {
             JerkStage::Off
         } else {
-            JerkStage::Filter
+            match a.jerk_stage {
+                JerkStageArg::Auto => JerkStage::Auto,
+                JerkStageArg::Filter => JerkStage::Filter,
+            }
         },
         max_deviation: a.max_deviation.unwrap_or(0.1),
         degree: a.degree.into(),

@@ -269,7 +269,7 @@ impl Options {
                 }
             },
             jerk: if jerk_limit {
-                JerkStage::Filter
+                JerkStage::Auto
             } else {
                 JerkStage::Off
             },

@@ -137,10 +137,9 @@ pub use result::{FieldName, OtgError, OtgResult};
 pub use step1::{TOL_LIMIT, TOL_POSITION, TOL_VELOCITY};
 pub use trajectory::{DofTrajectory, DynTrajectory, FixedTrajectory, OtgTrajectory};
 
-#[cfg(test)]
-use problem::Dof1;
+/// One DOF's problem (limits, start, target), used by `plan`'s exact straight lines.
+pub(crate) use problem::Dof1;
 
-#[cfg(test)]
 /// Time-optimal profile of one degree of freedom (brake pre-profile included), or `None` when
 /// the solver finds no valid profile.
 pub(crate) fn time_optimal(dof: &Dof1) -> Option<Profile> {

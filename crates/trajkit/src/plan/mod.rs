@@ -23,16 +23,21 @@
 //! - **velocity, acceleration**: each method's precision contract (TOPP-RA checks between
 //!   gridpoints and refines; NI and TOTG bound the excess between knots).
 //! - **jerk**: bounded by the jerk stage for `toppra` and `ni`, by the polynomials' own
-//!   extrema for `poly` (quintic, septic). Methods that cannot bound jerk (`totg`'s C¹ path,
+//!   extrema for `poly` (quintic, septic). The default stage ([`JerkStage::Auto`]) times a
+//!   rest-to-rest piece along a straight line exactly ([`line_motion`]: the 1-D jerk-limited
+//!   optimum, constant jerk per segment, limits checked at segment boundaries and velocity
+//!   extrema) and filters the others ([`crate::topp::jerk`]: the time-scale factor is bounded
+//!   analytically on every cubic segment of the filtered law, so velocity, acceleration and
+//!   jerk hold at every instant, not only at samples). Methods that cannot bound jerk (`totg`'s C¹ path,
 //!   cubic polynomials, [`JerkStage::Off`]) refuse a finite jerk limit
 //!   ([`Error::CannotHold`]): state the jerk as unlimited (infinite) to use them.
 //! - **torque** (`toppra`, `ni` with [`PlanOptions::torque`]): within `±effort` at the
 //!   samples of the final trajectory; after the jerk stage time is slowed down uniformly (up
 //!   to [`MAX_TORQUE_SCALE`]) where needed.
 //!
-//! The final check can only fail by rounding-level amounts between a planner's own checks
-//! (the jerk filter checks at 20 kHz, the output may sample elsewhere); such an excess is
-//! removed by slowing down uniformly by the factor the ratios call for, and said in the notes.
+//! The final check can only fail by rounding-level amounts (or, for `ni` and `totg`, between
+//! knots within their contracts); such an excess is removed by slowing down uniformly by the
+//! factor the ratios call for, and said in the notes.
 //!
 //! # Sizes
 //! Waypoints (at most [`MAX_WAYPOINTS`], and the memory they imply), gridpoints and samples
@@ -56,9 +61,12 @@
 //! # Ok::<(), trajkit::Error>(())
 //! ```
 
+mod line;
 mod phase;
 mod torque;
 mod verify;
+
+pub use line::{line_motion, LineMotion, LIMIT_MARGIN, LINE_TOLERANCE};
 
 pub use phase::{PhasePiece, PhasePlane, PHASE_POINTS};
 pub use torque::{TorqueReport, MAX_TORQUE_SCALE, TORQUE_TOLERANCE};
@@ -112,8 +120,14 @@ impl Method {
 /// one internal function, so a new jerk-limited planner plugs in as one more variant.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum JerkStage {
-    /// Filter the timing law by a moving average and rescale time ([`crate::topp::jerk`]).
+    /// The default. A rest-to-rest piece whose path is a straight segment (collinear
+    /// waypoints in order) is timed exactly by the 1-D jerk-limited optimum along it
+    /// ([`line_motion`]: trajkit's online generator, rest to rest); every other piece, and
+    /// every piece when torque limits are set, by [`JerkStage::Filter`].
     #[default]
+    Auto,
+    /// Filter the timing law by a moving average and rescale time ([`crate::topp::jerk`]) on
+    /// every piece, straight or not.
     Filter,
     /// Keep the raw result (piecewise-constant path acceleration: unbounded jerk); every
     /// joint's jerk limit must be infinite.
@@ -142,7 +156,7 @@ pub struct PlanOptions {
     /// `Gridpoints::Auto { tolerance: 1e-4 }` (a duration within 1e-4 relative of the
     /// converged optimum).
     pub gridpoints: Gridpoints,
-    /// The jerk stage of `toppra` and `ni`. Default [`JerkStage::Filter`].
+    /// The jerk stage of `toppra` and `ni`. Default [`JerkStage::Auto`].
     pub jerk: JerkStage,
     /// Largest distance (joint units, Euclidean) between a waypoint and its blend, for `totg`.
     /// Default 0.1.
@@ -183,7 +197,7 @@ impl Default for PlanOptions {
             method: Method::Toppra,
             path: PathKind::NaturalCubic,
             gridpoints: Gridpoints::Auto { tolerance: 1e-4 },
-            jerk: JerkStage::Filter,
+            jerk: JerkStage::Auto,
             max_deviation: 0.1,
             degree: Degree::Quintic,
             via_velocity: ViaVelocity::Heuristic,
@@ -619,7 +633,14 @@ fn phase_plane(
         .phase_plane
         .then(|| phase::of_raw(&raw, limits))
         .transpose()?;
-    let (traj, note) = jerk_stage(raw, limits, o.jerk, name, phase.as_mut())?;
+    let (traj, note) = jerk_stage(
+        raw,
+        limits,
+        o.jerk,
+        o.torque.is_some(),
+        name,
+        phase.as_mut(),
+    )?;
     notes.insert(0, note);
     Ok(Timed {
         traj,
@@ -636,6 +657,7 @@ fn jerk_stage(
     raw: Sequence<Parametrized<PiecePath>>,
     limits: &Limits,
     stage: JerkStage,
+    torque: bool,
     name: &str,
     phase: Option<&mut PhasePlane>,
 ) -> Result<(Box<dyn Trajectory + Send + Sync>, String)> {
@@ -651,20 +673,45 @@ fn jerk_stage(
             );
             Ok((Box::new(raw), note))
         }
-        JerkStage::Filter if unlimited => {
+        JerkStage::Filter | JerkStage::Auto if unlimited => {
             let note = format!(
                 "jerk: not bounded (every joint's jerk limit is infinite; {name}'s raw result)"
             );
             Ok((Box::new(raw), note))
         }
-        JerkStage::Filter => {
-            let jl = crate::topp::jerk::limit_jerk_sequence(
-                &raw,
-                limits,
-                &crate::topp::jerk::JerkOptions::default(),
-            )?;
+        JerkStage::Filter | JerkStage::Auto => {
+            let lines_allowed = stage == JerkStage::Auto && !torque;
+            let options = crate::topp::jerk::JerkOptions::default();
+            let mut pieces = Vec::with_capacity(raw.pieces().len());
+            let mut lines = 0;
+            for p in raw.pieces() {
+                let line = lines_allowed
+                    .then(|| line_motion(p.path(), limits))
+                    .flatten();
+                pieces.push(match line {
+                    Some(m) => {
+                        lines += 1;
+                        JerkPiece::Line(Box::new(m))
+                    }
+                    None => JerkPiece::Filtered(crate::topp::jerk::limit_jerk(
+                        p.path().clone(),
+                        p.law().clone(),
+                        limits,
+                        &options,
+                    )?),
+                });
+            }
+            let jl = Sequence::new(pieces)?;
+            let total = jl.pieces().len();
+            let how = match lines {
+                0 => "filtered and rescaled".to_string(),
+                l if l == total => "straight line, exact jerk-limited optimum".to_string(),
+                l => format!(
+                    "{l} of {total} pieces straight (exact jerk-limited optimum), the rest filtered and rescaled"
+                ),
+            };
             let note = format!(
-                "jerk: bounded ({name} {:.6} s, filtered and rescaled +{:.2}%)",
+                "jerk: bounded ({name} {:.6} s, {how} +{:.2}%)",
                 raw.duration(),
                 100.0 * (jl.duration() / raw.duration() - 1.0)
             );
@@ -672,6 +719,49 @@ fn jerk_stage(
                 phase::add_played(plane, &jl);
             }
             Ok((Box::new(jl), note))
+        }
+    }
+}
+
+/// One rest-to-rest piece after the jerk stage.
+pub(crate) enum JerkPiece {
+    /// Filtered and rescaled.
+    Filtered(crate::topp::jerk::JerkLimited<PiecePath>),
+    /// A straight segment at its exact 1-D optimum (boxed: its profile is large).
+    Line(Box<LineMotion>),
+}
+
+impl JerkPiece {
+    /// The played path parameter and its rate at time `t`.
+    pub(crate) fn path_state(&self, t: f64) -> (f64, f64) {
+        use crate::topp::TimeLaw;
+        match self {
+            JerkPiece::Filtered(p) => {
+                let v = p.inner().law().eval(t / p.factor());
+                (v[0], v[1] / p.factor())
+            }
+            JerkPiece::Line(m) => m.path_state(t),
+        }
+    }
+}
+
+impl Trajectory for JerkPiece {
+    fn dof(&self) -> usize {
+        match self {
+            JerkPiece::Filtered(p) => p.dof(),
+            JerkPiece::Line(m) => m.dof(),
+        }
+    }
+    fn duration(&self) -> f64 {
+        match self {
+            JerkPiece::Filtered(p) => p.duration(),
+            JerkPiece::Line(m) => m.duration(),
+        }
+    }
+    fn eval(&self, t: f64, order: crate::Order, out: &mut [f64]) {
+        match self {
+            JerkPiece::Filtered(p) => p.eval(t, order, out),
+            JerkPiece::Line(m) => m.eval(t, order, out),
         }
     }
 }

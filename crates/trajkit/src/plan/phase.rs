@@ -9,10 +9,9 @@
 //! result, before any of them.
 
 use crate::error::Result;
-use crate::topp::jerk::JerkLimited;
 use crate::topp::max_velocity_curve;
 use crate::topp::messy::Sequence;
-use crate::topp::{Parametrized, TimeLaw, Toppra};
+use crate::topp::{Parametrized, Toppra};
 use crate::{Limits, Path};
 
 /// Largest number of points per curve and piece.
@@ -73,22 +72,19 @@ pub(crate) fn of_raw<P: Path + Clone>(
 }
 
 /// Adds the jerk-bounded profiles of `played` (piece by piece the same pieces).
-pub(crate) fn add_played<P: Path + Clone>(
-    plane: &mut PhasePlane,
-    played: &Sequence<JerkLimited<P>>,
-) {
+pub(crate) fn add_played(plane: &mut PhasePlane, played: &Sequence<super::JerkPiece>) {
+    use crate::Trajectory;
     for (k, piece) in plane.pieces.iter_mut().enumerate() {
         let p = &played.pieces()[k];
-        let (inner, factor) = (p.inner().law(), p.factor());
-        let d = inner.duration();
+        let d = p.duration();
         let (mut s, mut sd) = (
             Vec::with_capacity(PHASE_POINTS),
             Vec::with_capacity(PHASE_POINTS),
         );
         for m in 0..PHASE_POINTS {
-            let v = inner.eval(d * m as f64 / (PHASE_POINTS - 1) as f64);
-            s.push(v[0]);
-            sd.push(v[1] / factor);
+            let (a, b) = p.path_state(d * m as f64 / (PHASE_POINTS - 1) as f64);
+            s.push(a);
+            sd.push(b);
         }
         piece.start_time = played.boundaries()[k];
         piece.played = Some((s, sd));

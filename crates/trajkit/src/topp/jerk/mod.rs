@@ -14,11 +14,15 @@
 //!    path's end points are met exactly. Its velocity at any instant is an average of TOPP-RA's
 //!    velocities over the window, so the filtered motion stays close to the time-optimal one
 //!    (it is w longer).
-//! 2. **Scale.** The composed trajectory σ(s_w(t)) is checked against the velocity,
-//!    acceleration and jerk limits and slowed by the smallest factor
-//!    k = max(r_v, √r_a, ∛r_j) ≥ 1 ([`crate::topp::min_time_scale`], sampled at
-//!    [`JerkOptions::check_rate`]), which scales velocity by 1/k, acceleration by 1/k² and jerk
-//!    by 1/k³.
+//! 2. **Scale.** The composed trajectory σ(s_w(t)) is slowed by the smallest factor
+//!    k = max(r_v, √r_a, ∛r_j) that meets the velocity, acceleration and jerk limits, which
+//!    scales velocity by 1/k, acceleration by 1/k² and jerk by 1/k³. The filtered law is a
+//!    cubic polynomial in time between known kinks, so on a piecewise-polynomial path (every
+//!    trajkit spline and polyline) [`bound::scale_bound`] bounds each joint's velocity,
+//!    acceleration and jerk on every such segment analytically (a quadratic through three
+//!    exact values plus a certified remainder): k holds at every instant, not only at
+//!    samples, and costs a few evaluations per TOPP-RA gridpoint instead of dense sampling.
+//!    Other paths are sampled at [`JerkOptions::check_rate`] as well.
 //!
 //! The window w is the smallest that brings the jerk of the switches alone,
 //! |σ′ᵢ(s)·Δs̈|/w, within [`JerkOptions::budget`] of every joint's jerk limit at every switch
@@ -27,8 +31,12 @@
 //! # Precision contract
 //! Exact evaluation (closed form: the profile is evaluated at t and t − w, and ∫ s* over the
 //! window is summed piece by piece, never as a difference of large running integrals).
-//! Limits hold to 1e-6 relative at every instant sampled at `check_rate` (default 20 kHz) and
-//! at the pieces' ends; between samples the excess is second order in the sample spacing.
+//! On piecewise-polynomial paths of degree ≤ 6 the limits hold at every instant: the factor
+//! is an upper bound of the exact one (see [`bound`] for the bound and its margin, about 1e-9
+//! of the limits where they bind), raised by 1e-12 relative for rounding. On other paths they
+//! hold to 1e-6 relative at every instant sampled at `check_rate` (default 20 kHz), at nine
+//! points per segment and at the pieces' ends; between samples the excess is second order in
+//! the sample spacing.
 //! Boundary states: s = s*(0) and s*(T*) at rest with zero acceleration, to rounding.
 //! Only rest-to-rest profiles are accepted.
 
@@ -39,13 +47,17 @@ use crate::error::{Error, Result};
 use crate::traj::find_piece;
 use crate::{Limits, Order, Path};
 
+pub mod bound;
+pub use bound::{scale_bound, ScaleBound};
+
 /// Settings of [`limit_jerk`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct JerkOptions {
     /// Fraction of each joint's jerk limit the switches may use when choosing the window
     /// (0 < budget ≤ 1; the rest is left for the path-curvature terms).
     pub budget: f64,
-    /// Sample rate (Hz) of the limit check that sets the time-scaling factor.
+    /// Sample rate (Hz) of the limit check that sets the time-scaling factor on paths that are
+    /// not piecewise polynomials (on polynomial ones the factor is bounded analytically).
     pub check_rate: f64,
 }
 
@@ -222,6 +234,45 @@ pub fn filter_window<P: Path + ?Sized>(
 /// meets every limit. See the module documentation.
 pub type JerkLimited<P> = Scaled<Retimed<P, FilteredProfile>>;
 
+/// The filtered law of `profile` with window `w` on `path`, scaled by the factor of
+/// [`scale_bound`] (certified on piecewise-polynomial paths; on other paths also sampled at
+/// `check_rate` Hz), and that bound.
+pub fn filter_with_window<P: Path>(
+    path: P,
+    profile: Profile,
+    limits: &Limits,
+    w: f64,
+    check_rate: f64,
+) -> Result<(JerkLimited<P>, ScaleBound)> {
+    limits.expect_dof(path.dim(), "jerk filtering")?;
+    let law = FilteredProfile::new(profile, w)?;
+    let bound = scale_bound(&path, &law, limits);
+    if !bound.factor.is_finite() {
+        return Err(Error::InvalidValue {
+            field: format!(
+                "joint {} {} of the filtered trajectory at t = {}",
+                bound.at.1 + 1,
+                bound.at.2.name(),
+                bound.at.0
+            ),
+            value: bound.factor,
+            reason: "is not a finite number",
+        });
+    }
+    let traj = Retimed::new(path, law)?;
+    let mut factor = bound.factor;
+    if !bound.certified {
+        factor = factor.max(min_time_scale(&traj, limits, check_rate)?);
+    }
+    // A hair of margin for rounding; a trajectory that never moves is left as it is.
+    let k = if factor > 0.0 {
+        factor * (1.0 + 1e-12)
+    } else {
+        1.0
+    };
+    Ok((Scaled::new(traj, k)?, bound))
+}
+
 /// Bounds the jerk of a rest-to-rest TOPP-RA result (`path` timed by `profile`) and returns a
 /// trajectory within every velocity, acceleration and jerk limit of `limits`.
 ///
@@ -240,123 +291,7 @@ pub fn limit_jerk<P: Path>(
             reason: "are absent on every joint: nothing to bound",
         }
     })?;
-    let law = FilteredProfile::new(profile, w)?;
-    let traj = Retimed::new(path, law)?;
-    let sampled = min_time_scale(&traj, limits, options.check_rate)?;
-    let k = sampled.max(scale_needed(&traj, limits));
-    // Never speed up TOPP-RA's result; a hair of margin for rounding.
-    let k = (k * (1.0 + 1e-9)).max(1.0);
-    Scaled::new(traj, k)
-}
-
-/// The time-scaling factor the filtered trajectory needs, max over t of
-/// max(r_v, √r_a, ∛r_j), found piece by piece: the filtered law is smooth between its kinks
-/// (the profile's switch times t_i and t_i + w, and the times where s crosses a path
-/// breakpoint), so each piece is evaluated just inside both ends (one-sided values at the
-/// jumps of the jerk) and at interior points, and the pieces whose value comes within 1e-3 of
-/// the largest are refined by golden-section search.
-fn scale_needed<P: Path>(traj: &Retimed<P, FilteredProfile>, limits: &Limits) -> f64 {
-    use crate::Trajectory;
-    let n = traj.dof();
-    let law = traj.law();
-    let w = law.window();
-    let big_t = law.duration();
-    let mut buf = vec![0.0; n];
-    let mut kval = |t: f64| -> f64 {
-        let mut k: f64 = 0.0;
-        for (order, root) in [
-            (Order::Velocity, 1),
-            (Order::Acceleration, 2),
-            (Order::Jerk, 3),
-        ] {
-            traj.eval(t, order, &mut buf);
-            for (j, &v) in buf.iter().enumerate() {
-                let r = limits.joint(j).ratio(order, v);
-                let f = match root {
-                    1 => r,
-                    2 => r.sqrt(),
-                    _ => r.cbrt(),
-                };
-                if f > k {
-                    k = f;
-                }
-            }
-        }
-        k
-    };
-    // Kinks of the filtered law.
-    let mut kinks: Vec<f64> = Vec::with_capacity(2 * law.profile().times().len() + 16);
-    for &ti in law.profile().times() {
-        kinks.push(ti);
-        kinks.push(ti + w);
-    }
-    for sb in traj.path().breakpoints() {
-        // s_w is non-decreasing: bisection for the time it reaches sb.
-        let (mut lo, mut hi) = (0.0, big_t);
-        if law.eval(hi)[0] < sb || law.eval(lo)[0] >= sb {
-            continue;
-        }
-        for _ in 0..100 {
-            let mid = 0.5 * (lo + hi);
-            if law.eval(mid)[0] < sb {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        kinks.push(hi);
-    }
-    kinks.push(0.0);
-    kinks.push(big_t);
-    kinks.retain(|t| (0.0..=big_t).contains(t));
-    kinks.sort_by(f64::total_cmp);
-    kinks.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * big_t.max(1.0));
-    let mut best: f64 = 0.0;
-    let mut candidates: Vec<(f64, f64, f64)> = Vec::new(); // (value, a, b)
-    for pair in kinks.windows(2) {
-        let (a, b) = (pair[0], pair[1]);
-        let eps = 1e-9 * (b - a);
-        let mut piece_best: f64 = 0.0;
-        let mut interior_best = (0.0f64, a);
-        for (i, f) in [0.0, 0.25, 0.5, 0.75, 1.0].iter().enumerate() {
-            let t = (a + f * (b - a)).clamp(a + eps, b - eps);
-            let v = kval(t);
-            piece_best = piece_best.max(v);
-            if i > 0 && i < 4 && v > interior_best.0 {
-                interior_best = (v, t);
-            }
-        }
-        best = best.max(piece_best);
-        candidates.push((interior_best.0, a, b));
-    }
-    for &(v, a, b) in &candidates {
-        if v < best * (1.0 - 1e-3) {
-            continue;
-        }
-        // Golden-section search for the interior maximum.
-        let g = 0.5 * (5f64.sqrt() - 1.0);
-        let (mut lo, mut hi) = (a, b);
-        let mut x1 = hi - g * (hi - lo);
-        let mut x2 = lo + g * (hi - lo);
-        let (mut f1, mut f2) = (kval(x1), kval(x2));
-        for _ in 0..60 {
-            if f1 > f2 {
-                hi = x2;
-                x2 = x1;
-                f2 = f1;
-                x1 = hi - g * (hi - lo);
-                f1 = kval(x1);
-            } else {
-                lo = x1;
-                x1 = x2;
-                f1 = f2;
-                x2 = lo + g * (hi - lo);
-                f2 = kval(x2);
-            }
-        }
-        best = best.max(f1).max(f2);
-    }
-    best
+    Ok(filter_with_window(path, profile, limits, w, options.check_rate)?.0)
 }
 
 /// [`limit_jerk`] applied to every rest-to-rest piece of a planned sequence

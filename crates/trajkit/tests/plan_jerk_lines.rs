@@ -1,0 +1,223 @@
+//! The default jerk stage of `trajkit::plan` on straight-line paths: the exact jerk-limited
+//! optimum (Ruckig's durations, `tests/fixtures/jerk/lines.json` from
+//! `tools/jerk_line_fixtures.py`), limits held at 50 kHz and by finite differences, never
+//! longer than the filter.
+
+use serde_json::Value;
+use trajkit::io::Waypoints;
+use trajkit::plan::{plan, JerkStage, PlanOptions};
+use trajkit::{JointLimits, Limits, Order, Trajectory};
+
+mod topp_common;
+
+fn line_cases() -> Vec<Value> {
+    let p = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/jerk/lines.json"
+    );
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
+    v["cases"].as_array().unwrap().clone()
+}
+
+fn waypoints(c: &Value) -> Waypoints {
+    let dof = c["dof"].as_u64().unwrap() as usize;
+    let w: Vec<f64> = c["waypoints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(topp_common::floats)
+        .collect();
+    Waypoints::new(w, dof, vec![]).unwrap()
+}
+
+/// The fixture's velocity, acceleration and jerk limits; position ranges of the Panda (7
+/// joints) or ±10 (one joint).
+fn limits(c: &Value) -> Limits {
+    let (v, a, j) = (
+        topp_common::floats(&c["vmax"]),
+        topp_common::floats(&c["amax"]),
+        topp_common::floats(&c["jmax"]),
+    );
+    if v.len() == 7 {
+        Limits::preset("panda")
+            .unwrap()
+            .with_override(Order::Velocity, &v)
+            .unwrap()
+            .with_override(Order::Acceleration, &a)
+            .unwrap()
+            .with_override(Order::Jerk, &j)
+            .unwrap()
+    } else {
+        Limits::new(
+            (0..v.len())
+                .map(|k| JointLimits {
+                    position_min: -10.0,
+                    position_max: 10.0,
+                    ..JointLimits::symmetric(v[k], a[k], j[k])
+                })
+                .collect(),
+        )
+        .unwrap()
+    }
+}
+
+/// Largest ratio |value| / limit of velocity, acceleration and jerk at `rate` Hz, and of the
+/// position's distance outside its range.
+fn worst_ratio(traj: &dyn Trajectory, limits: &Limits, rate: f64) -> ([f64; 3], f64) {
+    let n = traj.dof();
+    let mut buf = vec![0.0; n];
+    let mut worst = [0.0f64; 3];
+    let mut outside = 0.0f64;
+    let count = (traj.duration() * rate).ceil() as usize;
+    for k in 0..=count {
+        let t = (k as f64 / rate).min(traj.duration());
+        traj.eval(t, Order::Position, &mut buf);
+        for (j, &q) in buf.iter().enumerate() {
+            let jl = limits.joint(j);
+            outside = outside.max(jl.position_min - q).max(q - jl.position_max);
+        }
+        for (o, order) in [Order::Velocity, Order::Acceleration, Order::Jerk]
+            .into_iter()
+            .enumerate()
+        {
+            traj.eval(t, order, &mut buf);
+            for (j, &v) in buf.iter().enumerate() {
+                worst[o] = worst[o].max(limits.joint(j).ratio(order, v));
+            }
+        }
+    }
+    (worst, outside)
+}
+
+/// Central differences of position, velocity and acceleration against the evaluated next
+/// derivative (relative to 1 + its size), at `count` times away from the ends.
+fn finite_difference_error(traj: &dyn Trajectory, count: usize) -> [f64; 3] {
+    let n = traj.dof();
+    let h = 1e-6;
+    let (mut a, mut b, mut c) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let orders = [
+        Order::Position,
+        Order::Velocity,
+        Order::Acceleration,
+        Order::Jerk,
+    ];
+    let mut err = [0.0f64; 3];
+    for k in 1..count {
+        // Irrational fractions: away from the profile's segment boundaries.
+        let t = traj.duration() * (k as f64 + 0.381_966) / (count as f64 + 1.0);
+        for o in 0..3 {
+            traj.eval(t + h, orders[o], &mut a);
+            traj.eval(t - h, orders[o], &mut b);
+            traj.eval(t, orders[o + 1], &mut c);
+            for j in 0..n {
+                let num = (a[j] - b[j]) / (2.0 * h);
+                err[o] = err[o].max((num - c[j]).abs() / (1.0 + c[j].abs()));
+            }
+        }
+    }
+    err
+}
+
+#[test]
+fn straight_lines_take_the_exact_jerk_limited_optimum() {
+    for c in line_cases() {
+        let name = c["name"].as_str().unwrap();
+        let (w, l) = (waypoints(&c), limits(&c));
+        let p = plan(&w, &l, &PlanOptions::default()).unwrap();
+        let exact = c["duration"].as_f64().unwrap();
+        let pieces = c["piece_durations"].as_array().unwrap().len();
+        assert_eq!(p.pieces, pieces, "{name}");
+        // Never faster than the optimum (beyond the generator's margin), and at it: far
+        // inside issue's 0.1 %.
+        let ratio = p.duration() / exact;
+        assert!(
+            (1.0 - 1e-9..1.0 + 1e-7).contains(&ratio),
+            "{name}: {} vs Ruckig {exact} ({:?})",
+            p.duration(),
+            p.notes
+        );
+        assert!(p.notes[0].contains("exact"), "{name}: {:?}", p.notes);
+        assert_eq!(p.check_scale, 1.0, "{name}");
+        // Between samples: 50 kHz, and the derivatives are those of the motion.
+        let (worst, outside) = worst_ratio(p.trajectory.as_ref(), &l, 50_000.0);
+        assert!(worst.iter().all(|&r| r <= 1.0 + 1e-12), "{name}: {worst:?}");
+        assert!(outside <= 0.0, "{name}: {outside}");
+        let fd = finite_difference_error(p.trajectory.as_ref(), 97);
+        assert!(
+            fd[0] < 1e-6 && fd[1] < 1e-5 && fd[2] < 1e-3,
+            "{name}: {fd:?}"
+        );
+        // It ends at the last waypoint (to the path's rounding).
+        let mut q = vec![0.0; w.dof()];
+        p.trajectory.eval(p.duration(), Order::Position, &mut q);
+        let last = &w.points()[w.points().len() - w.dof()..];
+        for (a, b) in q.iter().zip(last) {
+            assert!((a - b).abs() < 1e-12, "{name}: {q:?} vs {last:?}");
+        }
+    }
+}
+
+#[test]
+fn lines_are_never_longer_than_the_filter() {
+    for c in line_cases().iter().step_by(3) {
+        let (w, l) = (waypoints(c), limits(c));
+        let auto = plan(&w, &l, &PlanOptions::default()).unwrap();
+        let filter = plan(
+            &w,
+            &l,
+            &PlanOptions {
+                jerk: JerkStage::Filter,
+                ..PlanOptions::default()
+            },
+        )
+        .unwrap();
+        assert!(
+            auto.duration() < filter.duration(),
+            "{}: {} vs filter {}",
+            c["name"],
+            auto.duration(),
+            filter.duration()
+        );
+    }
+}
+
+#[test]
+fn bent_paths_do_not_take_the_line_shortcut() {
+    // A path that is straight except for a 1e-6 rad detour at its middle waypoint.
+    let l = Limits::preset("panda").unwrap();
+    let q0 = [0.0, 0.0, 0.0, -1.5, 0.0, 1.5, 0.0];
+    let mut w = Vec::new();
+    for f in [0.0, 0.5, 1.0] {
+        w.extend(q0.iter().map(|q| q + 0.4 * f));
+    }
+    w[7] += 1e-6;
+    let p = plan(
+        &Waypoints::new(w, 7, vec![]).unwrap(),
+        &l,
+        &PlanOptions::default(),
+    )
+    .unwrap();
+    assert!(p.notes[0].contains("filtered"), "{:?}", p.notes);
+}
+
+#[test]
+fn phase_plane_of_a_line_is_the_played_profile() {
+    let c = &line_cases()[0];
+    let (w, l) = (waypoints(c), limits(c));
+    let p = plan(
+        &w,
+        &l,
+        &PlanOptions {
+            phase_plane: true,
+            ..PlanOptions::default()
+        },
+    )
+    .unwrap();
+    let plane = p.phase_plane.unwrap();
+    let (s, sd) = plane.pieces[0].played.as_ref().unwrap();
+    assert_eq!(s[0], 0.0);
+    assert!((s[s.len() - 1] - 1.0).abs() < 1e-12);
+    // v = 1 is reached on this 1 rad move (1.7 s with a = 2, j = 10).
+    let peak = sd.iter().cloned().fold(0.0, f64::max);
+    assert!(peak <= 1.0 && peak > 0.99, "{peak}");
+}
