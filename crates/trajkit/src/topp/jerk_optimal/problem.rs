@@ -43,6 +43,12 @@ const CUT_SHRINK: f64 = 1.0 - 1e-6;
 /// Relative excess accepted between gridpoints (rounding of the certification itself).
 pub(crate) const CERT_TOL: f64 = 1e-9;
 
+/// Where x = ṡ² fell to zero inside an interval, a cut requires x there to be at least this
+/// fraction of x at both of the interval's ends (rows linear and homogeneous in the state: a
+/// lower bound on x itself, taken from one round's solution, could contradict the next
+/// round's tighter rows and empty the controllable sets).
+const POSITIVE_FRACTION: f64 = 0.25;
+
 /// Largest relative bump (interval maximum over check-point maximum, minus 1) removed by
 /// scaling the limit rather than by a cut.
 const BUMP: f64 = 1e-3;
@@ -55,8 +61,6 @@ pub(crate) struct Cut {
     pub(crate) delta: f64,
     pub(crate) joint: usize,
     pub(crate) kind: Kind,
-    /// For `Kind::Positive`: the smallest x allowed there.
-    pub(crate) floor: f64,
 }
 
 /// The problem on one grid.
@@ -368,7 +372,13 @@ impl<'a, 'c, P: Path> Problem<'a, 'c, P> {
                         velocity_row(c.d1(k)[j], lim, kv * CUT_SHRINK, &at, &mut rows);
                     }
                     Kind::Extra => extra_rows(c, k, CUT_SHRINK, &at, &mut rows),
-                    Kind::Positive => rows.push([-1.0, -at.e1, -at.e2, -cut.floor]),
+                    Kind::Positive => {
+                        // x(δ) ≥ f·x_i and x(δ) ≥ f·x_{i+1}: homogeneous, so rest stays
+                        // feasible and the controllable sets cannot become empty.
+                        let f = POSITIVE_FRACTION;
+                        rows.push([f - 1.0, -at.e1, -at.e2, 0.0]);
+                        rows.push([f - 1.0, f * a1.e1 - at.e1, f * a1.e2 - at.e2, 0.0]);
+                    }
                 }
             }
         }
@@ -558,14 +568,6 @@ impl<'a, 'c, P: Path> Problem<'a, 'c, P> {
                 .time(st.len, 2);
             }
             let settled = (last_t - big_t).abs() <= settle * big_t;
-            if std::env::var("JERK_DEBUG").is_ok() {
-                let kinds: Vec<(Kind, usize, f64, f64)> = findings
-                    .iter()
-                    .take(6)
-                    .map(|f| (f.kind, f.interval, f.ratio, f.check))
-                    .collect();
-                eprintln!("round {round}: T {big_t:.9} findings {} worst {worst:.2e} slack {:.1e} {kinds:?}", findings.len(), passes.forward_slack);
-            }
             if (findings.is_empty() && settled) || round == max_rounds {
                 let has_gap = findings.iter().any(|f| f.kind == Kind::Positive);
                 if !has_gap {
@@ -603,7 +605,10 @@ impl<'a, 'c, P: Path> Problem<'a, 'c, P> {
                 let len = self.len(i);
                 if (1..nn - 1).contains(&i) {
                     let st = self.state(&x, &u, &v, i);
-                    self.xbar_m[i] = st.x_at(0.5 * len).max(1e-300);
+                    // Not below the smaller end: x dipping towards zero inside an interval
+                    // would put the jerk rows' tangent there, which then forbids any x above
+                    // three times that dip (the velocity would have to vanish).
+                    self.xbar_m[i] = st.x_at(0.5 * len).max(x[i].min(x[i + 1])).max(1e-300);
                 } else {
                     self.xbar_m[i] = 0.5 * (x[i] + x[i + 1]);
                 }
@@ -611,7 +616,8 @@ impl<'a, 'c, P: Path> Problem<'a, 'c, P> {
             for k in 0..self.cuts.len() {
                 let cut = self.cuts[k];
                 let st = self.state(&x, &u, &v, cut.interval);
-                self.xbar_c[k] = st.x_at(cut.delta).max(1e-300);
+                let ends = x[cut.interval].min(x[cut.interval + 1]);
+                self.xbar_c[k] = st.x_at(cut.delta).max(ends).max(1e-300);
             }
             self.xbar.copy_from_slice(&x);
             for i in 1..nn - 1 {
@@ -628,18 +634,18 @@ impl<'a, 'c, P: Path> Problem<'a, 'c, P> {
         let st = self.state(x, u, v, i);
         let len = st.len;
         let d = f.delta.clamp(1e-6 * len, (1.0 - 1e-6) * len);
+        // The tangent point of the cut's jerk rows: not below the smaller end (see `solve`).
+        let xbar = st.x_at(d).max(x[i].min(x[i + 1])).max(1e-300);
         match f.kind {
             Kind::Positive => {
-                let floor = 0.25 * x[i].min(x[i + 1]);
                 self.add_cut(
                     Cut {
                         interval: i,
                         delta: d,
                         joint: 0,
                         kind: Kind::Positive,
-                        floor,
                     },
-                    st.x_at(d).max(floor),
+                    xbar,
                 )?;
                 Ok(false)
             }
@@ -650,9 +656,8 @@ impl<'a, 'c, P: Path> Problem<'a, 'c, P> {
                         delta: d,
                         joint: 0,
                         kind: Kind::Extra,
-                        floor: 0.0,
                     },
-                    st.x_at(d).max(1e-300),
+                    xbar,
                 )?;
                 Ok(false)
             }
@@ -675,9 +680,8 @@ impl<'a, 'c, P: Path> Problem<'a, 'c, P> {
                             delta: d,
                             joint: f.joint,
                             kind,
-                            floor: 0.0,
                         },
-                        st.x_at(d).max(1e-300),
+                        xbar,
                     )?;
                     Ok(false)
                 }

@@ -59,6 +59,8 @@ pub(crate) struct Passes {
     lo: Vec<Row>,
     scratch: Vec<Pt>,
     used: Vec<bool>,
+    act_u: Vec<usize>,
+    act_l: Vec<usize>,
     /// Largest relative violation of a stage row accepted by the forward pass.
     pub(crate) forward_slack: f64,
 }
@@ -167,50 +169,63 @@ impl Passes {
         let (nu, nl) = (self.up.len(), self.lo.len());
         self.used.clear();
         self.used.resize(nu * nl, false);
-        // v bound of a row at q: (c − ax·x − au·u)/av.
-        let bound = |r: &[f64; 4], q: &Pt| (r[3] - r[0] * q[0] - r[1] * q[1]) / r[2];
-        for _ in 0..nu * nl {
-            let mut worst: Option<(f64, usize, usize)> = None;
+        // Active rows: those binding at some vertex. The clipping works on them only (most
+        // rows never bind near the polygon); a full check at every vertex then brings in the
+        // binding rows the clips missed, until no vertex is cut off by any unused pair. That
+        // is the same end condition as with every row active.
+        self.act_u.clear();
+        self.act_l.clear();
+        let mut budget = nu * nl;
+        loop {
+            let mut added = false;
             for q in &p.v {
-                let (mut umin, mut ku) = (f64::INFINITY, 0);
-                for (k, r) in self.up.iter().enumerate() {
-                    let b = bound(r, q);
-                    if b < umin {
-                        umin = b;
-                        ku = k;
-                    }
-                }
-                let (mut lmax, mut kl) = (f64::NEG_INFINITY, 0);
-                for (k, r) in self.lo.iter().enumerate() {
-                    let b = bound(r, q);
-                    if b > lmax {
-                        lmax = b;
-                        kl = k;
-                    }
-                }
+                let (umin, ku) = binding(&self.up, None, q, true);
+                let (lmax, kl) = binding(&self.lo, None, q, false);
                 if lmax <= umin || self.used[ku * nl + kl] {
                     continue;
                 }
-                let (ru, rl) = (&self.up[ku], &self.lo[kl]);
-                let (wu, wl) = (-rl[2], ru[2]);
-                let val = |r: &[f64; 4]| r[0] * q[0] + r[1] * q[1] - r[3];
-                let mag = |r: &[f64; 4]| (r[0] * q[0]).abs() + (r[1] * q[1]).abs() + r[3].abs();
-                let gap = wu * val(ru) + wl * val(rl);
-                let tol = 1e-12 * (wu * mag(ru) + wl * mag(rl));
-                if gap > tol && worst.is_none_or(|w| gap > w.0) {
-                    worst = Some((gap, ku, kl));
+                if gap_of(&self.up[ku], &self.lo[kl], q).is_none() {
+                    continue;
+                }
+                for (act, k) in [(&mut self.act_u, ku), (&mut self.act_l, kl)] {
+                    if !act.contains(&k) {
+                        act.push(k);
+                        added = true;
+                    }
                 }
             }
-            let Some((_, ku, kl)) = worst else { break };
-            self.used[ku * nl + kl] = true;
-            let (ru, rl) = (self.up[ku], self.lo[kl]);
-            let (wu, wl) = (-rl[2], ru[2]);
-            p.clip(
-                [wu * ru[0] + wl * rl[0], wu * ru[1] + wl * rl[1]],
-                wu * ru[3] + wl * rl[3],
-                &mut self.scratch,
-            );
-            if p.is_empty() {
+            if !added {
+                return;
+            }
+            while budget > 0 {
+                budget -= 1;
+                let mut worst: Option<(f64, usize, usize)> = None;
+                for q in &p.v {
+                    let (umin, ku) = binding(&self.up, Some(&self.act_u), q, true);
+                    let (lmax, kl) = binding(&self.lo, Some(&self.act_l), q, false);
+                    if lmax <= umin || self.used[ku * nl + kl] {
+                        continue;
+                    }
+                    if let Some(gap) = gap_of(&self.up[ku], &self.lo[kl], q) {
+                        if worst.is_none_or(|w| gap > w.0) {
+                            worst = Some((gap, ku, kl));
+                        }
+                    }
+                }
+                let Some((_, ku, kl)) = worst else { break };
+                self.used[ku * nl + kl] = true;
+                let (ru, rl) = (self.up[ku], self.lo[kl]);
+                let (wu, wl) = (-rl[2], ru[2]);
+                p.clip(
+                    [wu * ru[0] + wl * rl[0], wu * ru[1] + wl * rl[1]],
+                    wu * ru[3] + wl * rl[3],
+                    &mut self.scratch,
+                );
+                if p.is_empty() {
+                    return;
+                }
+            }
+            if budget == 0 {
                 return;
             }
         }
@@ -337,4 +352,47 @@ pub(crate) fn edges(p: &Polygon) -> Vec<([f64; 2], f64)> {
         }
     }
     out
+}
+
+/// v bound of a row at q: (c − ax·x − au·u)/av.
+#[inline]
+fn bound(r: &Row, q: &Pt) -> f64 {
+    (r[3] - r[0] * q[0] - r[1] * q[1]) / r[2]
+}
+
+/// The tightest bound on v at q among `rows` (all of them, or those listed in `only`): the
+/// smallest for upper bounds (`upper`), the largest for lower ones; with its row index.
+#[inline]
+fn binding(rows: &[Row], only: Option<&[usize]>, q: &Pt, upper: bool) -> (f64, usize) {
+    let mut best = (
+        if upper {
+            f64::INFINITY
+        } else {
+            f64::NEG_INFINITY
+        },
+        0,
+    );
+    let mut consider = |k: usize| {
+        let b = bound(&rows[k], q);
+        if (upper && b < best.0) || (!upper && b > best.0) {
+            best = (b, k);
+        }
+    };
+    match only {
+        Some(list) => list.iter().for_each(|&k| consider(k)),
+        None => (0..rows.len()).for_each(consider),
+    }
+    best
+}
+
+/// How far q lies outside the combination of an upper row `ru` and a lower row `rl` (scaled
+/// without dividing by either coefficient of v), when beyond rounding.
+#[inline]
+fn gap_of(ru: &Row, rl: &Row, q: &Pt) -> Option<f64> {
+    let (wu, wl) = (-rl[2], ru[2]);
+    let val = |r: &Row| r[0] * q[0] + r[1] * q[1] - r[3];
+    let mag = |r: &Row| (r[0] * q[0]).abs() + (r[1] * q[1]).abs() + r[3].abs();
+    let gap = wu * val(ru) + wl * val(rl);
+    let tol = 1e-12 * (wu * mag(ru) + wl * mag(rl));
+    (gap > tol).then_some(gap)
 }
