@@ -1,17 +1,24 @@
-//! The discretized problem: path data and constraint rows at gridpoints and at extra points
-//! inside intervals ("cuts"), and the rows of each stage in the variables (x_i, u_i, v_i).
+//! The discretized problem: path data at gridpoints and at points inside intervals
+//! (midpoints and "cuts"), and the rows of each stage in the variables (x_i, u_i, v_i).
 //!
-//! At a point δ into middle interval i, x(δ) = x_i + 2δ·u_i + δ²·v_i and u(δ) = u_i + δ·v_i
-//! are linear in (x_i, u_i, v_i), so every constraint becomes linear rows there:
-//! - second-order rows α·u + β·x ≤ γ of a [`Constraint`] (joint acceleration, torque, …) and the
-//!   velocity bound x ≤ x_max: `β·x_i + (α + 2βδ)·u_i + (αδ + βδ²)·v_i ≤ γ`;
-//! - joint jerk `|σ‴x + 3σ″u + σ′v|·√x ≤ J`, written `|g| ≤ J/√x` with g linear and the
+//! At a point δ into middle interval i, x(δ) = x_i + e1·u_i + e2·v_i and u(δ) = u_i + f·v_i
+//! ([`super::shape::At`]) are linear in (x_i, u_i, v_i), so every constraint becomes linear
+//! rows there:
+//! - joint velocity: x(δ) ≤ x_max(δ) = min_j (V_j/σ′_j)² (direction of σ′_j);
+//! - joint acceleration: A⁻_j ≤ σ″_j·x(δ) + σ′_j·u(δ) ≤ A⁺_j;
+//! - second-order rows α·u + β·x ≤ γ of any other [`Constraint`] (torque, …);
+//! - joint jerk `|σ‴x + 3σ″u + σ′·θ′·v|·√x ≤ J`, written `|g| ≤ J/√x` with g linear and the
 //!   convex right-hand side replaced by its tangent at a linearization point x̄ > 0,
 //!   `J/√x ≥ (J/√x̄)·(3/2 − x/(2x̄))`. The tangent lies below the curve, so the rows are
-//!   conservative: a point that meets them meets the jerk limit.
+//!   conservative: a point that meets them meets the jerk limit, whatever x̄ is.
+//!
+//! Every limit of a joint on an interval can be scaled by a factor κ ≤ 1 (see
+//! [`super::problem`]): the rows then hold it with room for what happens between the points.
 //!
 //! A row is `[a_x, a_u, a_v, c]`: `a_x·x + a_u·u + a_v·v ≤ c`.
 
+use super::certify::JointRange;
+use super::shape::At;
 use crate::error::Result;
 use crate::topp::constraint::{Constraint, ConstraintRows, PathPoint};
 use crate::Path;
@@ -19,7 +26,7 @@ use crate::Path;
 /// A stage row: `a_x·x + a_u·u + a_v·v ≤ c`.
 pub(crate) type Row = [f64; 4];
 
-/// Path derivatives and constraint rows at a list of points.
+/// Path derivatives and the rows of the extra (non-joint) constraints at a list of points.
 #[derive(Default)]
 pub(crate) struct Points {
     pub(crate) n: usize,
@@ -27,14 +34,15 @@ pub(crate) struct Points {
     /// σ′, σ″ (flat, `n` per point).
     pub(crate) d1: Vec<f64>,
     pub(crate) d2: Vec<f64>,
-    /// σ‴ on the right of the point (the interval that starts there) and on its left.
+    /// σ‴ on the right of the point (the interval that starts there) and on its left; they
+    /// differ only at breakpoints of the path.
     pub(crate) d3r: Vec<f64>,
     pub(crate) d3l: Vec<f64>,
-    /// Upper bound on x from the constraints.
+    /// Bounds on x from the extra constraints.
     pub(crate) xmax: Vec<f64>,
-    /// Lower bound on x from the constraints.
     pub(crate) xmin: Vec<f64>,
-    /// Second-order rows (α, β, γ): α·u + β·x ≤ γ, of point k in `rows[off[k]..off[k+1]]`.
+    /// Second-order rows (α, β, γ) of the extra constraints: α·u + β·x ≤ γ, of point k in
+    /// `rows[off[k]..off[k+1]]`.
     pub(crate) rows: Vec<[f64; 3]>,
     pub(crate) off: Vec<usize>,
     q: Vec<f64>,
@@ -58,12 +66,13 @@ impl Points {
         self.s.len()
     }
 
-    /// Appends the point s; `left` is a parameter just left of s inside the same smooth piece
-    /// as the interval that ends at s (for σ‴'s left value), or `None` at the path's start.
+    /// Appends the point s; `left` is a parameter just left of s inside the smooth piece of
+    /// the interval that ends at s (for σ‴'s left value at a breakpoint), `None` elsewhere.
+    /// `extra` are the constraints other than joint velocity and acceleration.
     pub(crate) fn push<P: Path>(
         &mut self,
         path: &P,
-        cons: &[Box<dyn Constraint + '_>],
+        extra: &[Box<dyn Constraint + '_>],
         s: f64,
         left: Option<f64>,
     ) -> Result<()> {
@@ -80,12 +89,13 @@ impl Points {
         match left {
             Some(sl) => path.eval(sl, 3, &mut self.d3l[r.clone()]),
             None => {
-                let (a, b) = self.d3l.split_at_mut(k * n);
-                let _ = a;
-                b[..n].copy_from_slice(&self.d3r[r.clone()]);
+                for j in r.clone() {
+                    self.d3l[j] = self.d3r[j];
+                }
             }
         }
-        if cons.iter().any(|c| c.uses_position()) {
+        let need_q = extra.iter().any(|c| c.uses_position());
+        if need_q {
             path.eval(s, 0, &mut self.q);
         }
         crate::topp::toppra::check_path_values(
@@ -94,36 +104,40 @@ impl Points {
             &self.d1[r.clone()],
             &self.d2[r.clone()],
         )?;
-        if let Some(j) = self.d3r[r.clone()].iter().position(|v| !v.is_finite()) {
-            return Err(crate::Error::InvalidValue {
-                field: format!("path third derivative of joint {} at s = {s}", j + 1),
-                value: self.d3r[k * n + j],
-                reason: "is not a finite number",
-            });
+        for d3 in [&self.d3r, &self.d3l] {
+            if let Some(j) = d3[r.clone()].iter().position(|v| !v.is_finite()) {
+                return Err(crate::Error::InvalidValue {
+                    field: format!("path third derivative of joint {} at s = {s}", j + 1),
+                    value: d3[k * n + j],
+                    reason: "is not a finite number",
+                });
+            }
         }
-        let p = PathPoint {
-            s,
-            q: &self.q,
-            dq: &self.d1[r.clone()],
-            ddq: &self.d2[r],
-        };
         let (mut lo, mut hi) = (0.0f64, f64::INFINITY);
-        self.cr.clear();
-        for c in cons {
-            self.cr.clear_bounds();
-            c.write(&p, &mut self.cr);
-            self.cr.check(&**c, s)?;
-            lo = lo.max(self.cr.x_min);
-            hi = hi.min(self.cr.x_max);
+        if !extra.is_empty() {
+            let p = PathPoint {
+                s,
+                q: &self.q,
+                dq: &self.d1[r.clone()],
+                ddq: &self.d2[r],
+            };
+            self.cr.clear();
+            for c in extra {
+                self.cr.clear_bounds();
+                c.write(&p, &mut self.cr);
+                self.cr.check(&**c, s)?;
+                lo = lo.max(self.cr.x_min);
+                hi = hi.min(self.cr.x_max);
+            }
+            self.rows.extend_from_slice(&self.cr.rows);
         }
-        self.rows.extend_from_slice(&self.cr.rows);
         self.off.push(self.rows.len());
         self.xmin.push(lo);
         self.xmax.push(hi);
         Ok(())
     }
 
-    /// Second-order rows of point k.
+    /// Extra rows of point k.
     #[inline]
     pub(crate) fn rows_of(&self, k: usize) -> &[[f64; 3]] {
         &self.rows[self.off[k]..self.off[k + 1]]
@@ -147,58 +161,92 @@ impl Points {
     }
 }
 
-/// Appends the jerk rows of one point, δ into the interval, to `out`: for every joint with a
-/// finite jerk limit, `±g + c·x(δ) ≤ 1.5·J/√x̄` with `c = J/(2x̄^{3/2})`. `shrink` scales the
-/// limits (1 for gridpoints, slightly below 1 at cuts).
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn jerk_rows(
-    d1: &[f64],
-    d2: &[f64],
-    d3: &[f64],
-    jerk: &[f64],
-    delta: f64,
-    xbar: f64,
-    shrink: f64,
-    out: &mut Vec<Row>,
-) {
-    let xbar = xbar.max(f64::MIN_POSITIVE.sqrt());
-    let rs = xbar.sqrt();
-    let (e1, e2) = (2.0 * delta, delta * delta);
-    for j in 0..d1.len() {
-        let lim = jerk[j] * shrink;
-        if !lim.is_finite() {
-            continue;
-        }
-        let gx = d3[j];
-        let gu = e1 * d3[j] + 3.0 * d2[j];
-        let gv = e2 * d3[j] + 3.0 * delta * d2[j] + d1[j];
-        let rhs = 1.5 * lim / rs;
-        let c = 0.5 * lim / (xbar * rs);
-        out.push([gx + c, gu + e1 * c, gv + e2 * c, rhs]);
-        out.push([-gx + c, -gu + e1 * c, -gv + e2 * c, rhs]);
+/// The largest x = ṡ² joint j's velocity limit allows at a point with σ′_j = `d1`, scaled by
+/// κ (∞ when σ′_j = 0).
+#[inline]
+pub(crate) fn joint_xmax(d1: f64, lim: &JointRange, kappa: f64) -> f64 {
+    let v = if d1 > 0.0 {
+        lim.v.1 / d1
+    } else if d1 < 0.0 {
+        lim.v.0 / d1
+    } else {
+        return f64::INFINITY;
+    };
+    let v = v * kappa;
+    v * v
+}
+
+/// Appends the velocity row of one joint at a point (skipped when it does not bound x).
+#[inline]
+pub(crate) fn velocity_row(d1: f64, lim: &JointRange, kappa: f64, at: &At, out: &mut Vec<Row>) {
+    let xm = joint_xmax(d1, lim, kappa);
+    if xm.is_finite() {
+        out.push([1.0, at.e1, at.e2, xm]);
     }
 }
 
-/// Appends the second-order rows and the velocity bound of point `k` of `pts`, δ into the
-/// interval, to `out`; limits scaled by `shrink` (right-hand sides that are positive, and
-/// x_max by shrink²).
-pub(crate) fn second_order_rows(
-    pts: &Points,
-    k: usize,
-    delta: f64,
-    shrink: f64,
+/// Appends the two acceleration rows of one joint at a point: A⁻·κ ≤ σ″x + σ′u ≤ A⁺·κ.
+#[inline]
+pub(crate) fn acceleration_rows(
+    d1: f64,
+    d2: f64,
+    lim: &JointRange,
+    kappa: f64,
+    at: &At,
     out: &mut Vec<Row>,
 ) {
-    let (e1, e2) = (2.0 * delta, delta * delta);
+    if d1 == 0.0 && d2 == 0.0 {
+        return;
+    }
+    let r = [d2, d2 * at.e1 + d1, d2 * at.e2 + d1 * at.f];
+    if lim.a.1.is_finite() {
+        out.push([r[0], r[1], r[2], lim.a.1 * kappa]);
+    }
+    if lim.a.0.is_finite() {
+        out.push([-r[0], -r[1], -r[2], -lim.a.0 * kappa]);
+    }
+}
+
+/// Appends the two jerk rows of one joint at a point: `±g + c·x(δ) ≤ 1.5·J/√x̄` with
+/// `c = J/(2x̄^{3/2})` and J = κ·jerk limit (nothing when the limit is infinite).
+#[inline]
+pub(crate) fn jerk_rows(
+    d: [f64; 3],
+    jerk: f64,
+    kappa: f64,
+    at: &At,
+    xbar: f64,
+    out: &mut Vec<Row>,
+) {
+    let lim = jerk * kappa;
+    if !lim.is_finite() {
+        return;
+    }
+    let [d1, d2, d3] = d;
+    let xbar = xbar.max(1e-150);
+    let rs = xbar.sqrt();
+    let gx = d3;
+    let gu = at.e1 * d3 + 3.0 * d2;
+    let gv = at.e2 * d3 + 3.0 * at.f * d2 + at.th * d1;
+    let rhs = 1.5 * lim / rs;
+    let c = 0.5 * lim / (xbar * rs);
+    let cx = [c, at.e1 * c, at.e2 * c];
+    out.push([gx + cx[0], gu + cx[1], gv + cx[2], rhs]);
+    out.push([-gx + cx[0], -gu + cx[1], -gv + cx[2], rhs]);
+}
+
+/// Appends the extra constraints' rows of point `k` of `pts` (with x bounds), limits scaled
+/// by `shrink` (positive right-hand sides only).
+pub(crate) fn extra_rows(pts: &Points, k: usize, shrink: f64, at: &At, out: &mut Vec<Row>) {
     for &[al, be, ga] in pts.rows_of(k) {
         let g = if ga > 0.0 { ga * shrink } else { ga };
-        out.push([be, al + e1 * be, al * delta + be * e2, g]);
+        out.push([be, al + at.e1 * be, al * at.f + be * at.e2, g]);
     }
     let xm = pts.xmax[k];
     if xm.is_finite() {
-        out.push([1.0, e1, e2, xm * shrink * shrink]);
+        out.push([1.0, at.e1, at.e2, xm * shrink * shrink]);
     }
     if pts.xmin[k] > 0.0 {
-        out.push([-1.0, -e1, -e2, -pts.xmin[k]]);
+        out.push([-1.0, -at.e1, -at.e2, -pts.xmin[k]]);
     }
 }

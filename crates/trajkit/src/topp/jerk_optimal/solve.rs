@@ -1,7 +1,8 @@
 //! Backward pass (controllable sets as convex polygons in (x, u)) and greedy forward pass.
 //!
 //! Stage i (middle interval i) has rows in (x_i, u_i, v_i) ([`super::discretize`]) and the
-//! requirement that the next state (x_i + 2Δu_i + Δ²v_i, u_i + Δv_i) lies in K_{i+1}. K_i is
+//! requirement that the next state (x_i + 2Δu_i + E·v_i, u_i + F·v_i) lies in K_{i+1}, with
+//! E = 2ψ(Δ) and F = φ(Δ) of the interval's shape ([`super::shape`]). K_i is
 //! the projection of that 3-D polytope onto (x, u), intersected with the gridpoint's own
 //! second-order rows. The projection eliminates v (Fourier–Motzkin) lazily: each row bounds v
 //! from above (U_k(x, u)) or below (L_l(x, u)); min_k U_k − max_l L_l is concave, so it is
@@ -26,10 +27,12 @@ pub(crate) trait StageSource {
     fn intervals(&self) -> usize;
     /// Δ_i = s_{i+1} − s_i.
     fn delta(&self, i: usize) -> f64;
+    /// (E, F) of middle stage i: x_{i+1} = x_i + 2Δu_i + E·v_i, u_{i+1} = u_i + F·v_i.
+    fn transition(&self, i: usize) -> (f64, f64);
     /// The box and the gridpoint's own rows, as a polygon (K_i before the stage).
-    fn start_set(&self, i: usize, scratch: &mut Vec<Pt>) -> Polygon;
+    fn start_set(&self, i: usize) -> &Polygon;
     /// The rows of middle stage i in (x_i, u_i, v_i).
-    fn stage_rows(&self, i: usize, out: &mut Vec<Row>);
+    fn stage_rows(&self, i: usize) -> &[Row];
     /// Largest |u| at gridpoint 1 allowed by the first rest interval.
     fn first_rest(&self) -> f64;
     /// Largest |u| at gridpoint N−1 allowed by the last rest interval.
@@ -56,6 +59,8 @@ pub(crate) struct Passes {
     lo: Vec<Row>,
     scratch: Vec<Pt>,
     used: Vec<bool>,
+    act_u: Vec<usize>,
+    act_l: Vec<usize>,
     /// Largest relative violation of a stage row accepted by the forward pass.
     pub(crate) forward_slack: f64,
 }
@@ -68,7 +73,7 @@ impl Passes {
         // K_{N−1}: the final rest ray, within the gridpoint's own rows.
         let dl = src.delta(n - 1);
         let w = src.last_rest();
-        let mut seg = src.start_set(n - 1, &mut self.scratch);
+        let seg = src.start_set(n - 1);
         let mut ray = Polygon {
             v: vec![[0.0, 0.0], [1.5 * dl * w, -w]],
         };
@@ -78,25 +83,25 @@ impl Passes {
             ray.v[1] = [ex, -ex / (1.5 * dl)];
         }
         // Clip the ray by the edges of the start set.
-        for (a, c) in edges(&seg) {
+        for (a, c) in edges(seg) {
             ray.clip(a, c, &mut self.scratch);
         }
         if ray.v.len() < 2 {
             return Err(PassError::Empty(n - 1));
         }
-        seg = ray;
-        self.k[n - 1] = seg;
+        self.k[n - 1] = ray;
         self.k[n] = Polygon {
             v: vec![[0.0, 0.0]],
         };
         for i in (1..n - 1).rev() {
-            let mut p = src.start_set(i, &mut self.scratch);
+            let mut p = src.start_set(i).clone();
             self.rows.clear();
-            src.stage_rows(i, &mut self.rows);
+            self.rows.extend_from_slice(src.stage_rows(i));
             let d = src.delta(i);
+            let (e, f) = src.transition(i);
             if i == n - 2 {
                 // v = ex·x + eu·u lands on the final ray; substitute it.
-                let (ex, eu) = forced_v(d, dl);
+                let (ex, eu) = forced_v(d, e, f, dl);
                 let u_lo = self.k[n - 1]
                     .v
                     .iter()
@@ -111,14 +116,14 @@ impl Passes {
                     let [ax, au, av, c] = *r;
                     p.clip([ax + av * ex, au + av * eu], c, &mut self.scratch);
                 }
-                // u' = u + Δv within the ray's range.
-                p.clip([d * ex, 1.0 + d * eu], u_hi, &mut self.scratch);
-                p.clip([-d * ex, -1.0 - d * eu], -u_lo, &mut self.scratch);
+                // u' = u + F·v within the ray's range.
+                p.clip([f * ex, 1.0 + f * eu], u_hi, &mut self.scratch);
+                p.clip([-f * ex, -1.0 - f * eu], -u_lo, &mut self.scratch);
             } else {
                 for (a, c) in edges(&self.k[i + 1]) {
-                    // a·(x + 2Δu + Δ²v, u + Δv) ≤ c.
+                    // a·(x + 2Δu + E·v, u + F·v) ≤ c.
                     self.rows
-                        .push([a[0], 2.0 * d * a[0] + a[1], d * d * a[0] + d * a[1], c]);
+                        .push([a[0], 2.0 * d * a[0] + a[1], e * a[0] + f * a[1], c]);
                 }
                 self.project(&mut p);
             }
@@ -164,67 +169,83 @@ impl Passes {
         let (nu, nl) = (self.up.len(), self.lo.len());
         self.used.clear();
         self.used.resize(nu * nl, false);
-        // v bound of a row at q: (c − ax·x − au·u)/av.
-        let bound = |r: &[f64; 4], q: &Pt| (r[3] - r[0] * q[0] - r[1] * q[1]) / r[2];
-        for _ in 0..nu * nl {
-            let mut worst: Option<(f64, usize, usize)> = None;
+        // Active rows: those binding at some vertex. The clipping works on them only (most
+        // rows never bind near the polygon); a full check at every vertex then brings in the
+        // binding rows the clips missed, until no vertex is cut off by any unused pair. That
+        // is the same end condition as with every row active.
+        self.act_u.clear();
+        self.act_l.clear();
+        let mut budget = nu * nl;
+        loop {
+            let mut added = false;
             for q in &p.v {
-                let (mut umin, mut ku) = (f64::INFINITY, 0);
-                for (k, r) in self.up.iter().enumerate() {
-                    let b = bound(r, q);
-                    if b < umin {
-                        umin = b;
-                        ku = k;
-                    }
-                }
-                let (mut lmax, mut kl) = (f64::NEG_INFINITY, 0);
-                for (k, r) in self.lo.iter().enumerate() {
-                    let b = bound(r, q);
-                    if b > lmax {
-                        lmax = b;
-                        kl = k;
-                    }
-                }
+                let (umin, ku) = binding(&self.up, None, q, true);
+                let (lmax, kl) = binding(&self.lo, None, q, false);
                 if lmax <= umin || self.used[ku * nl + kl] {
                     continue;
                 }
-                let (ru, rl) = (&self.up[ku], &self.lo[kl]);
-                let (wu, wl) = (-rl[2], ru[2]);
-                let val = |r: &[f64; 4]| r[0] * q[0] + r[1] * q[1] - r[3];
-                let mag = |r: &[f64; 4]| (r[0] * q[0]).abs() + (r[1] * q[1]).abs() + r[3].abs();
-                let gap = wu * val(ru) + wl * val(rl);
-                let tol = 1e-12 * (wu * mag(ru) + wl * mag(rl));
-                if gap > tol && worst.is_none_or(|w| gap > w.0) {
-                    worst = Some((gap, ku, kl));
+                if gap_of(&self.up[ku], &self.lo[kl], q).is_none() {
+                    continue;
+                }
+                for (act, k) in [(&mut self.act_u, ku), (&mut self.act_l, kl)] {
+                    if !act.contains(&k) {
+                        act.push(k);
+                        added = true;
+                    }
                 }
             }
-            let Some((_, ku, kl)) = worst else { break };
-            self.used[ku * nl + kl] = true;
-            let (ru, rl) = (self.up[ku], self.lo[kl]);
-            let (wu, wl) = (-rl[2], ru[2]);
-            p.clip(
-                [wu * ru[0] + wl * rl[0], wu * ru[1] + wl * rl[1]],
-                wu * ru[3] + wl * rl[3],
-                &mut self.scratch,
-            );
-            if p.is_empty() {
+            if !added {
+                return;
+            }
+            while budget > 0 {
+                budget -= 1;
+                let mut worst: Option<(f64, usize, usize)> = None;
+                for q in &p.v {
+                    let (umin, ku) = binding(&self.up, Some(&self.act_u), q, true);
+                    let (lmax, kl) = binding(&self.lo, Some(&self.act_l), q, false);
+                    if lmax <= umin || self.used[ku * nl + kl] {
+                        continue;
+                    }
+                    if let Some(gap) = gap_of(&self.up[ku], &self.lo[kl], q) {
+                        if worst.is_none_or(|w| gap > w.0) {
+                            worst = Some((gap, ku, kl));
+                        }
+                    }
+                }
+                let Some((_, ku, kl)) = worst else { break };
+                self.used[ku * nl + kl] = true;
+                let (ru, rl) = (self.up[ku], self.lo[kl]);
+                let (wu, wl) = (-rl[2], ru[2]);
+                p.clip(
+                    [wu * ru[0] + wl * rl[0], wu * ru[1] + wl * rl[1]],
+                    wu * ru[3] + wl * rl[3],
+                    &mut self.scratch,
+                );
+                if p.is_empty() {
+                    return;
+                }
+            }
+            if budget == 0 {
                 return;
             }
         }
     }
 
-    /// The greedy forward pass; returns x and u at every gridpoint.
+    /// The greedy forward pass; returns x and u at every gridpoint and v of every interval.
     pub(crate) fn forward<S: StageSource>(
         &mut self,
         src: &S,
         x: &mut Vec<f64>,
         u: &mut Vec<f64>,
+        v: &mut Vec<f64>,
     ) -> Result<(), PassError> {
         let n = src.intervals();
         x.clear();
         x.resize(n + 1, 0.0);
         u.clear();
         u.resize(n + 1, 0.0);
+        v.clear();
+        v.resize(n, 0.0);
         self.forward_slack = 0.0;
         let d0 = src.delta(0);
         let dl = src.delta(n - 1);
@@ -239,11 +260,10 @@ impl Passes {
         x[1] = 1.5 * d0 * u1;
         for i in 1..n - 1 {
             let d = src.delta(i);
+            let (e, f) = src.transition(i);
             let (xi, ui) = (x[i], u[i]);
-            self.rows.clear();
-            src.stage_rows(i, &mut self.rows);
             let (mut vlo, mut vhi) = (f64::NEG_INFINITY, f64::INFINITY);
-            for r in &self.rows {
+            for r in src.stage_rows(i) {
                 let [ax, au, av, c] = *r;
                 let rhs = c - ax * xi - au * ui;
                 if av > 0.0 {
@@ -252,12 +272,12 @@ impl Passes {
                     vlo = vlo.max(rhs / av);
                 }
             }
-            let v = if i == n - 2 {
-                let (ex, eu) = forced_v(d, dl);
+            let vi = if i == n - 2 {
+                let (ex, eu) = forced_v(d, e, f, dl);
                 ex * xi + eu * ui
             } else {
                 let Some((klo, khi)) =
-                    self.k[i + 1].line_range_robust([xi + 2.0 * d * ui, ui], [d * d, d])
+                    self.k[i + 1].line_range_robust([xi + 2.0 * d * ui, ui], [e, f])
                 else {
                     return Err(PassError::Lost(i + 1));
                 };
@@ -265,13 +285,14 @@ impl Passes {
                 // leave the rows no room; the certification then measures the excess.
                 vhi.min(khi).max(klo)
             };
-            if v > vhi || v < vlo {
-                let scale = vhi.abs().max(vlo.abs()).max(v.abs());
-                let viol = (v - vhi).max(vlo - v) / scale;
+            if vi > vhi || vi < vlo {
+                let scale = vhi.abs().max(vlo.abs()).max(vi.abs());
+                let viol = (vi - vhi).max(vlo - vi) / scale;
                 self.forward_slack = self.forward_slack.max(viol);
             }
-            x[i + 1] = (xi + 2.0 * d * ui + d * d * v).max(0.0);
-            u[i + 1] = ui + d * v;
+            v[i] = vi;
+            x[i + 1] = (xi + 2.0 * d * ui + e * vi).max(0.0);
+            u[i + 1] = ui + f * vi;
         }
         if i_last_bad(x, u, n, dl) {
             return Err(PassError::Lost(n - 1));
@@ -288,10 +309,10 @@ fn i_last_bad(x: &[f64], u: &[f64], n: usize, dl: f64) -> bool {
         || (x[n - 1] - want).abs() > 1e-6 * want.abs().max(x[n - 1].abs())
 }
 
-/// The v of the last middle stage (length Δ) that lands on the final rest ray (length Δ_L):
-/// x + 2Δu + Δ²v = −1.5Δ_L·(u + Δv) ⇒ v = ex·x + eu·u.
-fn forced_v(d: f64, dl: f64) -> (f64, f64) {
-    let den = d * d + 1.5 * dl * d;
+/// The v of the last middle stage (length Δ, transition E, F) that lands on the final rest
+/// ray (length Δ_L): x + 2Δu + E·v = −1.5Δ_L·(u + F·v) ⇒ v = ex·x + eu·u.
+pub(crate) fn forced_v(d: f64, e: f64, f: f64, dl: f64) -> (f64, f64) {
+    let den = e + 1.5 * dl * f;
     (-1.0 / den, -(2.0 * d + 1.5 * dl) / den)
 }
 
@@ -331,4 +352,47 @@ pub(crate) fn edges(p: &Polygon) -> Vec<([f64; 2], f64)> {
         }
     }
     out
+}
+
+/// v bound of a row at q: (c − ax·x − au·u)/av.
+#[inline]
+fn bound(r: &Row, q: &Pt) -> f64 {
+    (r[3] - r[0] * q[0] - r[1] * q[1]) / r[2]
+}
+
+/// The tightest bound on v at q among `rows` (all of them, or those listed in `only`): the
+/// smallest for upper bounds (`upper`), the largest for lower ones; with its row index.
+#[inline]
+fn binding(rows: &[Row], only: Option<&[usize]>, q: &Pt, upper: bool) -> (f64, usize) {
+    let mut best = (
+        if upper {
+            f64::INFINITY
+        } else {
+            f64::NEG_INFINITY
+        },
+        0,
+    );
+    let mut consider = |k: usize| {
+        let b = bound(&rows[k], q);
+        if (upper && b < best.0) || (!upper && b > best.0) {
+            best = (b, k);
+        }
+    };
+    match only {
+        Some(list) => list.iter().for_each(|&k| consider(k)),
+        None => (0..rows.len()).for_each(consider),
+    }
+    best
+}
+
+/// How far q lies outside the combination of an upper row `ru` and a lower row `rl` (scaled
+/// without dividing by either coefficient of v), when beyond rounding.
+#[inline]
+fn gap_of(ru: &Row, rl: &Row, q: &Pt) -> Option<f64> {
+    let (wu, wl) = (-rl[2], ru[2]);
+    let val = |r: &Row| r[0] * q[0] + r[1] * q[1] - r[3];
+    let mag = |r: &Row| (r[0] * q[0]).abs() + (r[1] * q[1]).abs() + r[3].abs();
+    let gap = wu * val(ru) + wl * val(rl);
+    let tol = 1e-12 * (wu * mag(ru) + wl * mag(rl));
+    (gap > tol).then_some(gap)
 }
