@@ -60,7 +60,6 @@
 //!   than roundoff.
 //! - Evaluation (rollouts, means, KMP covariance with its expansion) allocates nothing; time
 //!   is clamped to the trajectory's interval.
-//! trajectory. Each module states its precision contract.
 //!
 //! # Implementation notes
 //!
