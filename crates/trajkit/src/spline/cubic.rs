@@ -122,75 +122,9 @@ impl CubicSpline {
             }
         }
         let mut m = vec![0.0; n * dim];
-        if big_n == 1 {
-            // Constant: slopes zero.
-        } else {
-            // Row i: h_i m_{i-1} + 2(h_{i-1} + h_i) m_i + h_{i-1} m_{i+1}
-            //        = 3 (h_i δ_{i-1} + h_{i-1} δ_i), indices cyclic.
-            let prev = |i: usize| if i == 0 { big_n - 1 } else { i - 1 };
-            let mut rhs = vec![0.0; big_n * dim];
-            for i in 0..big_n {
-                let p = prev(i);
-                for d in 0..dim {
-                    rhs[i * dim + d] =
-                        3.0 * (h[i] * delta[p * dim + d] + h[p] * delta[i * dim + d]);
-                }
-            }
-            let diag = |i: usize| 2.0 * (h[prev(i)] + h[i]);
-            if big_n == 2 {
-                // Both neighbours of each unknown are the other one.
-                let (a00, a01) = (diag(0), h[1] + h[0]);
-                let (a10, a11) = (h[1] + h[0], diag(1));
-                let det = a00 * a11 - a01 * a10;
-                for d in 0..dim {
-                    let (r0, r1) = (rhs[d], rhs[dim + d]);
-                    m[d] = (r0 * a11 - a01 * r1) / det;
-                    m[dim + d] = (a00 * r1 - a10 * r0) / det;
-                }
-            } else {
-                // Sherman–Morrison: A = T + u vᵀ with u = (γ, 0, …, 0, α), v = (1, 0, …, 0, β/γ),
-                // α = A[N−1][0] (the m_N = m_0 term of row N−1) = h_{N−2},
-                // β = A[0][N−1] (the m_{−1} = m_{N−1} term of row 0) = h_0.
-                let nn = big_n;
-                let alpha = h[nn - 2];
-                let beta = h[0];
-                let gamma = -diag(0);
-                let mut t = Banded::zeros(nn, 1, 1);
-                for i in 0..nn {
-                    let mut di = diag(i);
-                    if i == 0 {
-                        di -= gamma;
-                    }
-                    if i == nn - 1 {
-                        di -= alpha * beta / gamma;
-                    }
-                    t.set(i, i, di);
-                    if i > 0 {
-                        t.set(i, i - 1, h[i]);
-                    }
-                    if i + 1 < nn {
-                        t.set(i, i + 1, h[prev(i)]);
-                    }
-                }
-                t.factor().map_err(|_| singular())?;
-                // Solve for all components and u at once: columns 0..dim are rhs, column dim is u.
-                let w = dim + 1;
-                let mut b = vec![0.0; nn * w];
-                for i in 0..nn {
-                    b[i * w..i * w + dim].copy_from_slice(&rhs[i * dim..(i + 1) * dim]);
-                }
-                b[dim] = gamma;
-                b[(nn - 1) * w + dim] = alpha;
-                t.solve(&mut b, w);
-                let vz = b[dim] + beta / gamma * b[(nn - 1) * w + dim];
-                for d in 0..dim {
-                    let vy = b[d] + beta / gamma * b[(nn - 1) * w + d];
-                    let f = vy / (1.0 + vz);
-                    for i in 0..nn {
-                        m[i * dim + d] = b[i * w + d] - f * b[i * w + dim];
-                    }
-                }
-            }
+        // Two points give the constant: slopes zero.
+        if big_n > 1 {
+            periodic_slopes(&h, &delta, dim, &mut m)?;
             for d in 0..dim {
                 m[big_n * dim + d] = m[d];
             }
@@ -280,6 +214,86 @@ use crate::spline::validate::interpolation_data as check;
 
 fn singular() -> Error {
     Error::Infeasible("cubic spline: the slope system is singular".into())
+}
+
+/// The slopes m_0..m_{N−1} of the periodic cubic spline (N = `h.len()` ≥ 2 intervals, `delta`
+/// their divided differences, row-major with `dim` columns) into the first N rows of `m`.
+///
+/// Row i: h_i m_{i-1} + 2(h_{i-1} + h_i) m_i + h_{i-1} m_{i+1} = 3 (h_i δ_{i-1} + h_{i-1} δ_i),
+/// indices cyclic.
+fn periodic_slopes(h: &[f64], delta: &[f64], dim: usize, m: &mut [f64]) -> Result<()> {
+    let big_n = h.len();
+    let prev = |i: usize| if i == 0 { big_n - 1 } else { i - 1 };
+    let mut rhs = vec![0.0; big_n * dim];
+    for i in 0..big_n {
+        let p = prev(i);
+        for d in 0..dim {
+            rhs[i * dim + d] = 3.0 * (h[i] * delta[p * dim + d] + h[p] * delta[i * dim + d]);
+        }
+    }
+    let diag = |i: usize| 2.0 * (h[prev(i)] + h[i]);
+    if big_n == 2 {
+        // Both neighbours of each unknown are the other one.
+        let (a00, a01) = (diag(0), h[1] + h[0]);
+        let (a10, a11) = (h[1] + h[0], diag(1));
+        let det = a00 * a11 - a01 * a10;
+        for d in 0..dim {
+            let (r0, r1) = (rhs[d], rhs[dim + d]);
+            m[d] = (r0 * a11 - a01 * r1) / det;
+            m[dim + d] = (a00 * r1 - a10 * r0) / det;
+        }
+        Ok(())
+    } else {
+        cyclic_solve(h, &rhs, dim, m)
+    }
+}
+
+/// The cyclic tridiagonal system of [`periodic_slopes`] for N ≥ 3 by Sherman–Morrison:
+/// A = T + u vᵀ with u = (γ, 0, …, 0, α), v = (1, 0, …, 0, β/γ), α = A[N−1][0] (the m_N = m_0
+/// term of row N−1) = h_{N−2}, β = A[0][N−1] (the m_{−1} = m_{N−1} term of row 0) = h_0.
+fn cyclic_solve(h: &[f64], rhs: &[f64], dim: usize, m: &mut [f64]) -> Result<()> {
+    let nn = h.len();
+    let prev = |i: usize| if i == 0 { nn - 1 } else { i - 1 };
+    let diag = |i: usize| 2.0 * (h[prev(i)] + h[i]);
+    let alpha = h[nn - 2];
+    let beta = h[0];
+    let gamma = -diag(0);
+    let mut t = Banded::zeros(nn, 1, 1);
+    for i in 0..nn {
+        let mut di = diag(i);
+        if i == 0 {
+            di -= gamma;
+        }
+        if i == nn - 1 {
+            di -= alpha * beta / gamma;
+        }
+        t.set(i, i, di);
+        if i > 0 {
+            t.set(i, i - 1, h[i]);
+        }
+        if i + 1 < nn {
+            t.set(i, i + 1, h[prev(i)]);
+        }
+    }
+    t.factor().map_err(|_| singular())?;
+    // Solve for all components and u at once: columns 0..dim are rhs, column dim is u.
+    let w = dim + 1;
+    let mut b = vec![0.0; nn * w];
+    for i in 0..nn {
+        b[i * w..i * w + dim].copy_from_slice(&rhs[i * dim..(i + 1) * dim]);
+    }
+    b[dim] = gamma;
+    b[(nn - 1) * w + dim] = alpha;
+    t.solve(&mut b, w);
+    let vz = b[dim] + beta / gamma * b[(nn - 1) * w + dim];
+    for d in 0..dim {
+        let vy = b[d] + beta / gamma * b[(nn - 1) * w + d];
+        let f = vy / (1.0 + vz);
+        for i in 0..nn {
+            m[i * dim + d] = b[i * w + d] - f * b[i * w + dim];
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]
