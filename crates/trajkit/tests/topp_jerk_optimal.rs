@@ -528,7 +528,8 @@ fn report_curved_against_ipopt() {
 /// forward pass stalled: "the path velocity vanishes"). With the default options it now
 /// solves: the automatic grid doubles past the grids where the backward pass still breaks
 /// down (fixed grids of 200-1000 steps fail; see BENCHMARKS.md), and the result holds every
-/// limit at 50 kHz. Ignored: ~25 s in release mode, far longer in a debug build.
+/// limit at 50 kHz. Ignored: 1-4 minutes in release mode (one solve 23-62 s on the shared
+/// machine), far longer in a debug build.
 #[test]
 #[ignore]
 fn hundred_waypoints_with_default_options() {

@@ -5,13 +5,13 @@ use crate::spline::ppoly::{quintic_coeffs, PiecewisePolynomial};
 use crate::Path;
 
 /// 8-point Gauss–Legendre nodes on [−1, 1] (positive half) and weights.
-const GX: [f64; 4] = [
+pub(crate) const GX: [f64; 4] = [
     0.183_434_642_495_649_8,
     0.525_532_409_916_329,
     0.796_666_477_413_626_7,
     0.960_289_856_497_536_3,
 ];
-const GW: [f64; 4] = [
+pub(crate) const GW: [f64; 4] = [
     0.362_683_783_378_362,
     0.313_706_645_877_887_3,
     0.222_381_034_453_374_5,

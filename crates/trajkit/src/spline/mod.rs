@@ -120,7 +120,7 @@ macro_rules! ppoly_backed {
 pub(crate) use ppoly_backed;
 
 mod akima;
-mod arclen;
+pub(crate) mod arclen;
 mod banded;
 mod basis;
 mod bezier;

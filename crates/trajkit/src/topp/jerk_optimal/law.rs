@@ -24,19 +24,8 @@ use crate::error::{Error, Result};
 use crate::topp::rescale::TimeLaw;
 use crate::traj::{clamp_time, find_piece};
 
-/// Gauss–Legendre nodes and weights on [−1, 1] (8 points, symmetric pairs).
-const GL_X: [f64; 4] = [
-    0.183_434_642_495_649_8,
-    0.525_532_409_916_329,
-    0.796_666_477_413_626_7,
-    0.960_289_856_497_536_3,
-];
-const GL_W: [f64; 4] = [
-    0.362_683_783_378_362,
-    0.313_706_645_877_887_3,
-    0.222_381_034_453_374_5,
-    0.101_228_536_290_376_3,
-];
+// Gauss–Legendre nodes (positive half) and weights on [−1, 1], 8 points.
+use crate::spline::arclen::{GW as GL_W, GX as GL_X};
 
 /// Largest number of quadrature panels of one interval.
 const MAX_PANELS: usize = 1024;
