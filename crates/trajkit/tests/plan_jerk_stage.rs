@@ -1,7 +1,7 @@
-//! The default jerk stage of `trajkit::plan` on straight-line paths: the exact jerk-limited
-//! optimum (Ruckig's durations, `tests/fixtures/jerk/lines.json` from
-//! `tools/jerk_line_fixtures.py`), limits held at 50 kHz and by finite differences, never
-//! longer than the filter.
+//! The jerk stages of `trajkit::plan`. On straight-line paths the default takes the exact
+//! jerk-limited optimum (Ruckig's durations, `tests/fixtures/jerk/lines.json` from
+//! `tools/jerk_line_fixtures.py`); limits hold at 50 kHz and by finite differences; no stage
+//! is longer than the filter.
 
 use serde_json::Value;
 use trajkit::io::Waypoints;
@@ -220,4 +220,52 @@ fn phase_plane_of_a_line_is_the_played_profile() {
     // v = 1 is reached on this 1 rad move (1.7 s with a = 2, j = 10).
     let peak = sd.iter().cloned().fold(0.0, f64::max);
     assert!(peak <= 1.0 && peak > 0.99, "{peak}");
+}
+
+#[test]
+fn third_order_stage_is_never_longer_than_the_filter_and_holds_the_limits() {
+    // A curved 3-waypoint, 2-joint path at low jerk limits, where the filter is poor.
+    let l = Limits::new(
+        (0..2)
+            .map(|_| JointLimits {
+                position_min: -3.0,
+                position_max: 3.0,
+                ..JointLimits::symmetric(1.0, 2.0, 10.0)
+            })
+            .collect(),
+    )
+    .unwrap();
+    let w = Waypoints::new(vec![0.0, 0.0, 0.5, 0.3, 1.0, -0.2], 2, vec![]).unwrap();
+    let run = |jerk| {
+        plan(
+            &w,
+            &l,
+            &PlanOptions {
+                jerk,
+                phase_plane: true,
+                ..PlanOptions::default()
+            },
+        )
+        .unwrap()
+    };
+    let (filter, third) = (run(JerkStage::Filter), run(JerkStage::ThirdOrder));
+    assert!(
+        third.duration() <= filter.duration(),
+        "{} vs filter {}",
+        third.duration(),
+        filter.duration()
+    );
+    assert!(
+        third.notes[0].contains("third-order"),
+        "the third-order planner should win here: {:?}",
+        third.notes
+    );
+    let (worst, outside) = worst_ratio(third.trajectory.as_ref(), &l, 50_000.0);
+    assert!(worst.iter().all(|&r| r <= 1.0 + 1e-9), "{worst:?}");
+    assert!(outside <= 0.0, "{outside}");
+    let fd = finite_difference_error(third.trajectory.as_ref(), 97);
+    assert!(fd[0] < 1e-6 && fd[1] < 1e-5 && fd[2] < 1e-2, "{fd:?}");
+    let plane = third.phase_plane.unwrap();
+    let (s, _) = plane.pieces[0].played.as_ref().unwrap();
+    assert_eq!(s[0], 0.0);
 }
