@@ -269,3 +269,35 @@ fn third_order_stage_is_never_longer_than_the_filter_and_holds_the_limits() {
     let (s, _) = plane.pieces[0].played.as_ref().unwrap();
     assert_eq!(s[0], 0.0);
 }
+
+/// BENCHMARKS.md table: straight lines, the default stage and the filter against Ruckig.
+/// `cargo test -p trajkit --test plan_jerk_stage -- --ignored --nocapture`
+#[test]
+#[ignore]
+fn report_lines_against_ruckig() {
+    println!("| case | pieces | Ruckig (s) | default (s) | over Ruckig | filter (s) | filter over Ruckig |");
+    println!("|---|---|---|---|---|---|---|");
+    for c in line_cases() {
+        let (w, l) = (waypoints(&c), limits(&c));
+        let auto = plan(&w, &l, &PlanOptions::default()).unwrap();
+        let filter = plan(
+            &w,
+            &l,
+            &PlanOptions {
+                jerk: JerkStage::Filter,
+                ..PlanOptions::default()
+            },
+        )
+        .unwrap();
+        let exact = c["duration"].as_f64().unwrap();
+        println!(
+            "| {} | {} | {exact:.6} | {:.6} | {:+.2e} | {:.6} | {:+.3} % |",
+            c["name"].as_str().unwrap(),
+            auto.pieces,
+            auto.duration(),
+            auto.duration() / exact - 1.0,
+            filter.duration(),
+            100.0 * (filter.duration() / exact - 1.0)
+        );
+    }
+}
