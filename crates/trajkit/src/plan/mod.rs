@@ -28,7 +28,8 @@
 //!   optimum, constant jerk per segment, limits checked at segment boundaries and velocity
 //!   extrema) and filters the others ([`crate::topp::jerk`]: the time-scale factor is bounded
 //!   analytically on every cubic segment of the filtered law, so velocity, acceleration and
-//!   jerk hold at every instant, not only at samples). Methods that cannot bound jerk (`totg`'s C¹ path,
+//!   jerk hold at every instant, not only at samples). [`JerkStage::ThirdOrder`] results are
+//!   slowed by the factor of their own 20 kHz check times 1 + [`THIRD_ORDER_MARGIN`]. Methods that cannot bound jerk (`totg`'s C¹ path,
 //!   cubic polynomials, [`JerkStage::Off`]) refuse a finite jerk limit
 //!   ([`Error::CannotHold`]): state the jerk as unlimited (infinite) to use them.
 //! - **torque** (`toppra`, `ni` with [`PlanOptions::torque`]): within `±effort` at the
