@@ -22,6 +22,9 @@ pub enum JerkStageArg {
     Auto,
     /// The filter on every piece.
     Filter,
+    /// `auto`, plus the third-order time-optimal planner on curved pieces (the shorter result
+    /// is kept): shorter motions at low jerk limits, seconds of computation.
+    ThirdOrder,
 }
 
 /// Time-parameterization method.
@@ -156,7 +159,9 @@ pub struct PlanArgs {
     /// (collinear waypoints, no torque limits) takes the exact jerk-limited optimum along the
     /// line (the 1-D problem of the online generator); other pieces are filtered. `filter`:
     /// every piece's timing law is smoothed by a moving average and time is slowed uniformly
-    /// until every limit holds at every instant.
+    /// until every limit holds at every instant. `third-order`: `auto`, and on curved pieces
+    /// also the jerk-limited time-optimal planner (third-order reachability), keeping the
+    /// shorter result (slow: seconds per piece).
     #[arg(
         long,
         value_enum,
@@ -354,6 +359,7 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
             match a.jerk_stage {
                 JerkStageArg::Auto => JerkStage::Auto,
                 JerkStageArg::Filter => JerkStage::Filter,
+                JerkStageArg::ThirdOrder => JerkStage::ThirdOrder,
             }
         },
         max_deviation: a.max_deviation.unwrap_or(0.1),

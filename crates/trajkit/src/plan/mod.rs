@@ -28,7 +28,8 @@
 //!   optimum, constant jerk per segment, limits checked at segment boundaries and velocity
 //!   extrema) and filters the others ([`crate::topp::jerk`]: the time-scale factor is bounded
 //!   analytically on every cubic segment of the filtered law, so velocity, acceleration and
-//!   jerk hold at every instant, not only at samples). Methods that cannot bound jerk (`totg`'s C¹ path,
+//!   jerk hold at every instant, not only at samples). [`JerkStage::ThirdOrder`] results are
+//!   slowed by the factor of their own 20 kHz check times 1 + [`THIRD_ORDER_MARGIN`]. Methods that cannot bound jerk (`totg`'s C¹ path,
 //!   cubic polynomials, [`JerkStage::Off`]) refuse a finite jerk limit
 //!   ([`Error::CannotHold`]): state the jerk as unlimited (infinite) to use them.
 //! - **torque** (`toppra`, `ni` with [`PlanOptions::torque`]): within `±effort` at the
@@ -129,6 +130,12 @@ pub enum JerkStage {
     /// Filter the timing law by a moving average and rescale time ([`crate::topp::jerk`]) on
     /// every piece, straight or not.
     Filter,
+    /// [`JerkStage::Auto`], and on every piece that is not a straight line also the
+    /// jerk-limited time-optimal planner by third-order reachability
+    /// ([`crate::topp::jerk_optimal`]); the shorter of its result (slowed by its 20 kHz check's
+    /// factor and [`THIRD_ORDER_MARGIN`]) and the filter's is kept, the filter's when it fails. Much shorter motions at low jerk limits (see BENCHMARKS.md),
+    /// but seconds of computation per piece: not the default.
+    ThirdOrder,
     /// Keep the raw result (piecewise-constant path acceleration: unbounded jerk); every
     /// joint's jerk limit must be infinite.
     Off,
@@ -673,45 +680,65 @@ fn jerk_stage(
             );
             Ok((Box::new(raw), note))
         }
-        JerkStage::Filter | JerkStage::Auto if unlimited => {
+        JerkStage::Filter | JerkStage::Auto | JerkStage::ThirdOrder if unlimited => {
             let note = format!(
                 "jerk: not bounded (every joint's jerk limit is infinite; {name}'s raw result)"
             );
             Ok((Box::new(raw), note))
         }
-        JerkStage::Filter | JerkStage::Auto => {
-            let lines_allowed = stage == JerkStage::Auto && !torque;
+        JerkStage::Filter | JerkStage::Auto | JerkStage::ThirdOrder => {
+            let lines_allowed = stage != JerkStage::Filter && !torque;
             let options = crate::topp::jerk::JerkOptions::default();
             let mut pieces = Vec::with_capacity(raw.pieces().len());
-            let mut lines = 0;
+            let (mut lines, mut third) = (0, 0);
             for p in raw.pieces() {
                 let line = lines_allowed
                     .then(|| line_motion(p.path(), limits))
                     .flatten();
-                pieces.push(match line {
-                    Some(m) => {
-                        lines += 1;
-                        JerkPiece::Line(Box::new(m))
+                if let Some(m) = line {
+                    lines += 1;
+                    pieces.push(JerkPiece::Line(Box::new(m)));
+                    continue;
+                }
+                let filtered = crate::topp::jerk::limit_jerk(
+                    p.path().clone(),
+                    p.law().clone(),
+                    limits,
+                    &options,
+                )?;
+                let optimal = (stage == JerkStage::ThirdOrder)
+                    .then(|| {
+                        crate::topp::jerk_optimal::JerkOptimal::new(p.path().clone(), limits)
+                            .and_then(|prob| prob.solve())
+                            .ok()
+                    })
+                    .flatten()
+                    .and_then(|o| third_order_margin(o, limits))
+                    .filter(|o| o.duration() < filtered.duration());
+                pieces.push(match optimal {
+                    Some(o) => {
+                        third += 1;
+                        JerkPiece::ThirdOrder(Box::new(o))
                     }
-                    None => JerkPiece::Filtered(crate::topp::jerk::limit_jerk(
-                        p.path().clone(),
-                        p.law().clone(),
-                        limits,
-                        &options,
-                    )?),
+                    None => JerkPiece::Filtered(filtered),
                 });
             }
             let jl = Sequence::new(pieces)?;
             let total = jl.pieces().len();
-            let how = match lines {
-                0 => "filtered and rescaled".to_string(),
-                l if l == total => "straight line, exact jerk-limited optimum".to_string(),
-                l => format!(
-                    "{l} of {total} pieces straight (exact jerk-limited optimum), the rest filtered and rescaled"
-                ),
-            };
+            let mut parts = Vec::new();
+            if lines > 0 {
+                parts.push(format!("{lines} straight (exact jerk-limited optimum)"));
+            }
+            if third > 0 {
+                parts.push(format!("{third} third-order time-optimal"));
+            }
+            let filtered = total - lines - third;
+            if filtered > 0 {
+                parts.push(format!("{filtered} filtered and rescaled"));
+            }
+            let how = parts.join(", ");
             let note = format!(
-                "jerk: bounded ({name} {:.6} s, {how} +{:.2}%)",
+                "jerk: bounded ({name} {:.6} s; pieces: {how}; +{:.2}%)",
                 raw.duration(),
                 100.0 * (jl.duration() / raw.duration() - 1.0)
             );
@@ -729,6 +756,23 @@ pub(crate) enum JerkPiece {
     Filtered(crate::topp::jerk::JerkLimited<PiecePath>),
     /// A straight segment at its exact 1-D optimum (boxed: its profile is large).
     Line(Box<LineMotion>),
+    /// The third-order time-optimal planner's result, with [`third_order_margin`].
+    ThirdOrder(Box<crate::topp::Scaled<crate::topp::jerk_optimal::JerkTimed<PiecePath>>>),
+}
+
+/// Relative slow-down added to the third-order planner's result on top of the factor its
+/// 20 kHz check calls for: room for excesses between the check's samples (50 kHz checks found
+/// up to 1e-7 relative in acceleration where that planner's contract states 1e-9).
+pub const THIRD_ORDER_MARGIN: f64 = 1e-6;
+
+/// The third-order result slowed by its sampled factor (at least 1) times
+/// 1 + [`THIRD_ORDER_MARGIN`]; `None` when the check fails.
+fn third_order_margin(
+    traj: crate::topp::jerk_optimal::JerkTimed<PiecePath>,
+    limits: &Limits,
+) -> Option<crate::topp::Scaled<crate::topp::jerk_optimal::JerkTimed<PiecePath>>> {
+    let k = crate::topp::min_time_scale(&traj, limits, 20_000.0).ok()?;
+    crate::topp::Scaled::new(traj, k.max(1.0) * (1.0 + THIRD_ORDER_MARGIN)).ok()
 }
 
 impl JerkPiece {
@@ -741,6 +785,10 @@ impl JerkPiece {
                 (v[0], v[1] / p.factor())
             }
             JerkPiece::Line(m) => m.path_state(t),
+            JerkPiece::ThirdOrder(o) => {
+                let v = o.inner().law().eval(t / o.factor());
+                (v[0], v[1] / o.factor())
+            }
         }
     }
 }
@@ -750,18 +798,21 @@ impl Trajectory for JerkPiece {
         match self {
             JerkPiece::Filtered(p) => p.dof(),
             JerkPiece::Line(m) => m.dof(),
+            JerkPiece::ThirdOrder(o) => o.dof(),
         }
     }
     fn duration(&self) -> f64 {
         match self {
             JerkPiece::Filtered(p) => p.duration(),
             JerkPiece::Line(m) => m.duration(),
+            JerkPiece::ThirdOrder(o) => o.duration(),
         }
     }
     fn eval(&self, t: f64, order: crate::Order, out: &mut [f64]) {
         match self {
             JerkPiece::Filtered(p) => p.eval(t, order, out),
             JerkPiece::Line(m) => m.eval(t, order, out),
+            JerkPiece::ThirdOrder(o) => o.eval(t, order, out),
         }
     }
 }

@@ -3,7 +3,7 @@
 
 use serde_json::Value;
 use trajkit::spline::PiecewisePolynomial;
-use trajkit::{Order, Trajectory};
+use trajkit::{Limits, Order, Trajectory};
 
 /// The toppra fixture file.
 pub fn fixtures() -> Vec<Value> {
@@ -121,6 +121,67 @@ pub fn worst_ratios<T: Trajectory>(
         }
     }
     w
+}
+
+/// Largest ratio |value| / limit of velocity, acceleration and jerk at `rate` Hz, and of the
+/// position's distance outside its range.
+pub fn worst_ratio_with_range(
+    traj: &dyn Trajectory,
+    limits: &Limits,
+    rate: f64,
+) -> ([f64; 3], f64) {
+    let n = traj.dof();
+    let mut buf = vec![0.0; n];
+    let mut worst = [0.0f64; 3];
+    let mut outside = 0.0f64;
+    let count = (traj.duration() * rate).ceil() as usize;
+    for k in 0..=count {
+        let t = (k as f64 / rate).min(traj.duration());
+        traj.eval(t, Order::Position, &mut buf);
+        for (j, &q) in buf.iter().enumerate() {
+            let jl = limits.joint(j);
+            outside = outside.max(jl.position_min - q).max(q - jl.position_max);
+        }
+        for (o, order) in [Order::Velocity, Order::Acceleration, Order::Jerk]
+            .into_iter()
+            .enumerate()
+        {
+            traj.eval(t, order, &mut buf);
+            for (j, &v) in buf.iter().enumerate() {
+                worst[o] = worst[o].max(limits.joint(j).ratio(order, v));
+            }
+        }
+    }
+    (worst, outside)
+}
+
+/// Central differences of position, velocity and acceleration against the evaluated next
+/// derivative (relative to 1 + its size), at `count` times away from the ends.
+pub fn finite_difference_error(traj: &dyn Trajectory, count: usize) -> [f64; 3] {
+    let n = traj.dof();
+    let h = 1e-6;
+    let (mut a, mut b, mut c) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let orders = [
+        Order::Position,
+        Order::Velocity,
+        Order::Acceleration,
+        Order::Jerk,
+    ];
+    let mut err = [0.0f64; 3];
+    for k in 1..count {
+        // Irrational fractions: away from the profile's segment boundaries.
+        let t = traj.duration() * (k as f64 + 0.381_966) / (count as f64 + 1.0);
+        for o in 0..3 {
+            traj.eval(t + h, orders[o], &mut a);
+            traj.eval(t - h, orders[o], &mut b);
+            traj.eval(t, orders[o + 1], &mut c);
+            for j in 0..n {
+                let num = (a[j] - b[j]) / (2.0 * h);
+                err[o] = err[o].max((num - c[j]).abs() / (1.0 + c[j].abs()));
+            }
+        }
+    }
+    err
 }
 
 /// A two-link arm moving in the vertical x-z plane (joint axes y, gravity −z), with effort

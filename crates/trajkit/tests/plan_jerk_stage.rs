@@ -1,7 +1,7 @@
-//! The default jerk stage of `trajkit::plan` on straight-line paths: the exact jerk-limited
-//! optimum (Ruckig's durations, `tests/fixtures/jerk/lines.json` from
-//! `tools/jerk_line_fixtures.py`), limits held at 50 kHz and by finite differences, never
-//! longer than the filter.
+//! The jerk stages of `trajkit::plan`. On straight-line paths the default takes the exact
+//! jerk-limited optimum (Ruckig's durations, `tests/fixtures/jerk/lines.json` from
+//! `tools/jerk_line_fixtures.py`); limits hold at 50 kHz and by finite differences; no stage
+//! is longer than the filter.
 
 use serde_json::Value;
 use trajkit::io::Waypoints;
@@ -61,61 +61,17 @@ fn limits(c: &Value) -> Limits {
     }
 }
 
-/// Largest ratio |value| / limit of velocity, acceleration and jerk at `rate` Hz, and of the
-/// position's distance outside its range.
-fn worst_ratio(traj: &dyn Trajectory, limits: &Limits, rate: f64) -> ([f64; 3], f64) {
-    let n = traj.dof();
-    let mut buf = vec![0.0; n];
-    let mut worst = [0.0f64; 3];
-    let mut outside = 0.0f64;
-    let count = (traj.duration() * rate).ceil() as usize;
-    for k in 0..=count {
-        let t = (k as f64 / rate).min(traj.duration());
-        traj.eval(t, Order::Position, &mut buf);
-        for (j, &q) in buf.iter().enumerate() {
-            let jl = limits.joint(j);
-            outside = outside.max(jl.position_min - q).max(q - jl.position_max);
-        }
-        for (o, order) in [Order::Velocity, Order::Acceleration, Order::Jerk]
-            .into_iter()
-            .enumerate()
-        {
-            traj.eval(t, order, &mut buf);
-            for (j, &v) in buf.iter().enumerate() {
-                worst[o] = worst[o].max(limits.joint(j).ratio(order, v));
-            }
-        }
-    }
-    (worst, outside)
-}
-
-/// Central differences of position, velocity and acceleration against the evaluated next
-/// derivative (relative to 1 + its size), at `count` times away from the ends.
-fn finite_difference_error(traj: &dyn Trajectory, count: usize) -> [f64; 3] {
-    let n = traj.dof();
-    let h = 1e-6;
-    let (mut a, mut b, mut c) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let orders = [
-        Order::Position,
-        Order::Velocity,
-        Order::Acceleration,
-        Order::Jerk,
-    ];
-    let mut err = [0.0f64; 3];
-    for k in 1..count {
-        // Irrational fractions: away from the profile's segment boundaries.
-        let t = traj.duration() * (k as f64 + 0.381_966) / (count as f64 + 1.0);
-        for o in 0..3 {
-            traj.eval(t + h, orders[o], &mut a);
-            traj.eval(t - h, orders[o], &mut b);
-            traj.eval(t, orders[o + 1], &mut c);
-            for j in 0..n {
-                let num = (a[j] - b[j]) / (2.0 * h);
-                err[o] = err[o].max((num - c[j]).abs() / (1.0 + c[j].abs()));
-            }
-        }
-    }
-    err
+/// `plan` with default options but the jerk stage.
+fn plan_with(w: &Waypoints, l: &Limits, jerk: JerkStage) -> trajkit::Plan {
+    plan(
+        w,
+        l,
+        &PlanOptions {
+            jerk,
+            ..PlanOptions::default()
+        },
+    )
+    .unwrap()
 }
 
 #[test]
@@ -139,10 +95,11 @@ fn straight_lines_take_the_exact_jerk_limited_optimum() {
         assert!(p.notes[0].contains("exact"), "{name}: {:?}", p.notes);
         assert_eq!(p.check_scale, 1.0, "{name}");
         // Between samples: 50 kHz, and the derivatives are those of the motion.
-        let (worst, outside) = worst_ratio(p.trajectory.as_ref(), &l, 50_000.0);
+        let (worst, outside) =
+            topp_common::worst_ratio_with_range(p.trajectory.as_ref(), &l, 50_000.0);
         assert!(worst.iter().all(|&r| r <= 1.0 + 1e-12), "{name}: {worst:?}");
         assert!(outside <= 0.0, "{name}: {outside}");
-        let fd = finite_difference_error(p.trajectory.as_ref(), 97);
+        let fd = topp_common::finite_difference_error(p.trajectory.as_ref(), 97);
         assert!(
             fd[0] < 1e-6 && fd[1] < 1e-5 && fd[2] < 1e-3,
             "{name}: {fd:?}"
@@ -161,16 +118,8 @@ fn straight_lines_take_the_exact_jerk_limited_optimum() {
 fn lines_are_never_longer_than_the_filter() {
     for c in line_cases().iter().step_by(3) {
         let (w, l) = (waypoints(c), limits(c));
-        let auto = plan(&w, &l, &PlanOptions::default()).unwrap();
-        let filter = plan(
-            &w,
-            &l,
-            &PlanOptions {
-                jerk: JerkStage::Filter,
-                ..PlanOptions::default()
-            },
-        )
-        .unwrap();
+        let auto = plan_with(&w, &l, JerkStage::Auto);
+        let filter = plan_with(&w, &l, JerkStage::Filter);
         assert!(
             auto.duration() < filter.duration(),
             "{}: {} vs filter {}",
@@ -220,4 +169,77 @@ fn phase_plane_of_a_line_is_the_played_profile() {
     // v = 1 is reached on this 1 rad move (1.7 s with a = 2, j = 10).
     let peak = sd.iter().cloned().fold(0.0, f64::max);
     assert!(peak <= 1.0 && peak > 0.99, "{peak}");
+}
+
+#[test]
+fn third_order_stage_is_never_longer_than_the_filter_and_holds_the_limits() {
+    // A curved 3-waypoint, 2-joint path at low jerk limits, where the filter is poor.
+    let l = Limits::new(
+        (0..2)
+            .map(|_| JointLimits {
+                position_min: -3.0,
+                position_max: 3.0,
+                ..JointLimits::symmetric(1.0, 2.0, 10.0)
+            })
+            .collect(),
+    )
+    .unwrap();
+    let w = Waypoints::new(vec![0.0, 0.0, 0.5, 0.3, 1.0, -0.2], 2, vec![]).unwrap();
+    let run = |jerk| {
+        plan(
+            &w,
+            &l,
+            &PlanOptions {
+                jerk,
+                phase_plane: true,
+                ..PlanOptions::default()
+            },
+        )
+        .unwrap()
+    };
+    let (filter, third) = (run(JerkStage::Filter), run(JerkStage::ThirdOrder));
+    assert!(
+        third.duration() <= filter.duration(),
+        "{} vs filter {}",
+        third.duration(),
+        filter.duration()
+    );
+    assert!(
+        third.notes[0].contains("third-order"),
+        "the third-order planner should win here: {:?}",
+        third.notes
+    );
+    let (worst, outside) =
+        topp_common::worst_ratio_with_range(third.trajectory.as_ref(), &l, 50_000.0);
+    assert!(worst.iter().all(|&r| r <= 1.0 + 1e-9), "{worst:?}");
+    assert!(outside <= 0.0, "{outside}");
+    let fd = topp_common::finite_difference_error(third.trajectory.as_ref(), 97);
+    assert!(fd[0] < 1e-6 && fd[1] < 1e-5 && fd[2] < 1e-2, "{fd:?}");
+    let plane = third.phase_plane.unwrap();
+    let (s, _) = plane.pieces[0].played.as_ref().unwrap();
+    assert_eq!(s[0], 0.0);
+}
+
+/// BENCHMARKS.md table: straight lines, the default stage and the filter against Ruckig.
+/// `cargo test -p trajkit --test plan_jerk_stage -- --ignored --nocapture`
+#[test]
+#[ignore]
+fn report_lines_against_ruckig() {
+    println!("| case | pieces | Ruckig (s) | default (s) | over Ruckig | filter (s) | filter over Ruckig |");
+    println!("|---|---|---|---|---|---|---|");
+    for c in line_cases() {
+        let (w, l) = (waypoints(&c), limits(&c));
+        let auto = plan_with(&w, &l, JerkStage::Auto);
+        let filter = plan_with(&w, &l, JerkStage::Filter);
+        let exact = c["duration"].as_f64().unwrap();
+        println!(
+            "| {} | {} | {exact:.6} | {:.6} | {:+.2e} | {:.6} | {:+.3} % |",
+            c["name"].as_str().unwrap(),
+            auto.pieces,
+            auto.duration(),
+            auto.duration() / exact - 1.0,
+            filter.duration(),
+            100.0 * (filter.duration() / exact - 1.0)
+        );
+    }
 }

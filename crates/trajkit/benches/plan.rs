@@ -1,0 +1,103 @@
+//! `trajkit::plan` speed, jerk stage included: 7-DOF Panda (velocity, acceleration and jerk
+//! limits of the preset).
+//!
+//! - `plan_default/std7`: [`plan`] with `PlanOptions::default()` (TOPP-RA on the auto grid with
+//!   its between-gridpoint guarantee, the default jerk stage, 1 kHz samples and their check)
+//!   on the 7 waypoints of the `standard_7wp_natural_N1000` fixture problem;
+//! - `plan_default/random_W`: the same through W seeded random Panda waypoints (W = 10, 100);
+//! - `plan_default/line`: a 2-waypoint straight line (the exact 1-D optimum);
+//! - `jerk_scale/analytic` and `jerk_scale/sampled_20khz`: the filter's time-scale factor
+//!   on the standard problem's TOPP-RA result, by the per-segment bound
+//!   ([`trajkit::topp::jerk::scale_bound`]) and by sampling the filtered trajectory at 20 kHz
+//!   (what the filter did before the bound);
+//! - `toppra_default/std7`: the TOPP-RA stage alone (the paths and the auto-grid solve).
+//!
+//! Run: `cargo bench -p trajkit --bench plan`.
+
+mod common;
+
+use criterion::{criterion_group, BenchmarkId, Criterion};
+use std::hint::black_box;
+use trajkit::io::Waypoints;
+use trajkit::plan::{plan, PlanOptions};
+use trajkit::rng::SplitMix64;
+use trajkit::topp::jerk::{filter_window, scale_bound, FilteredProfile};
+use trajkit::topp::messy;
+use trajkit::topp::{min_time_scale, Retimed};
+use trajkit::{Limits, Trajectory};
+
+fn random_waypoints(n: usize) -> Waypoints {
+    let lim = Limits::preset("panda").unwrap();
+    let mut rng = SplitMix64::new(4242);
+    let mut wp = Vec::with_capacity(n * 7);
+    for _ in 0..n {
+        for j in lim.joints() {
+            wp.push(rng.uniform(j.position_min + 0.1, j.position_max - 0.1));
+        }
+    }
+    Waypoints::new(wp, 7, vec![]).unwrap()
+}
+
+fn bench(c: &mut Criterion) {
+    let limits = Limits::preset("panda").unwrap();
+    let std7 = Waypoints::new(common::standard_7wp_waypoints(), 7, vec![]).unwrap();
+    let q0 = [0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785];
+    let line: Vec<f64> = q0
+        .iter()
+        .copied()
+        .chain(q0.iter().map(|q| q + 0.5))
+        .collect();
+    let line = Waypoints::new(line, 7, vec![]).unwrap();
+    let mut g = c.benchmark_group("plan_default");
+    let mut cases = vec![("std7".to_string(), std7.clone()), ("line".into(), line)];
+    for n in [10usize, 100] {
+        cases.push((format!("random_{n}"), random_waypoints(n)));
+    }
+    for (name, w) in &cases {
+        g.bench_with_input(BenchmarkId::from_parameter(name), w, |b, w| {
+            b.iter(|| {
+                black_box(
+                    plan(w, &limits, &PlanOptions::default())
+                        .unwrap()
+                        .duration(),
+                )
+            })
+        });
+    }
+    g.finish();
+
+    let mo = messy::PlanOptions::default();
+    let mut g = c.benchmark_group("toppra_default");
+    g.bench_function("std7", |b| {
+        b.iter(|| {
+            let paths = messy::piece_paths(std7.points(), 7, &limits, &mo).unwrap();
+            let raw = messy::time_pieces(paths, &limits, &mo, &mut |_, _| {}).unwrap();
+            black_box(raw.duration())
+        })
+    });
+    g.finish();
+
+    let paths = messy::piece_paths(std7.points(), 7, &limits, &mo).unwrap();
+    let raw = messy::time_pieces(paths, &limits, &mo, &mut |_, _| {}).unwrap();
+    let piece = &raw.pieces()[0];
+    let w = filter_window(piece.law(), piece.path(), &limits, 0.5)
+        .unwrap()
+        .unwrap();
+    let law = FilteredProfile::new(piece.law().clone(), w).unwrap();
+    let mut g = c.benchmark_group("jerk_scale");
+    g.bench_function("analytic", |b| {
+        b.iter(|| black_box(scale_bound(piece.path(), &law, &limits).factor))
+    });
+    let traj = Retimed::new(piece.path(), law.clone()).unwrap();
+    g.bench_function("sampled_20khz", |b| {
+        b.iter(|| black_box(min_time_scale(&traj, &limits, 20_000.0).unwrap()))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+
+fn main() {
+    benches();
+    Criterion::default().configure_from_args().final_summary();
+}
