@@ -236,8 +236,14 @@ fn tiny_velocity_limits_hold() {
     let x = [0.0, 1.0, 2.0];
     let w = [0.0, 1.8964997692526548, -0.7762982103459327];
     let path = CubicSpline::natural(&x, &w, 1).unwrap();
-    for v in [1.0, 1e-2, 1e-4, 1e-5, 1e-6, 1e-7, 1e-9] {
-        let limits = Limits::uniform(1, v, 0.2, f64::INFINITY).unwrap();
+    let speeds = [1.0, 1e-2, 1e-4, 1e-5, 1e-6, 1e-7, 1e-9];
+    // Tiny velocity limits alone, then with tiny acceleration limits too.
+    let cases = speeds
+        .iter()
+        .map(|&v| (v, 0.2))
+        .chain(speeds.iter().map(|&v| (v, 0.2 * v)));
+    for (v, a) in cases {
+        let limits = Limits::uniform(1, v, a, f64::INFINITY).unwrap();
         for n in [5, 50] {
             let options = ToppraOptions {
                 gridpoints: Gridpoints::Uniform(n),
@@ -249,7 +255,7 @@ fn tiny_velocity_limits_hold() {
             let (wv, wa) = worst_use(&traj, &limits);
             assert!(
                 wv <= 1.0 + 1e-6 && wa <= 1.0 + 1e-6,
-                "v = {v:e}, {n} gridpoints: use {wv}, {wa}"
+                "v = {v:e}, a = {a:e}, {n} gridpoints: use {wv}, {wa}"
             );
         }
     }

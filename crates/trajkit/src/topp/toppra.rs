@@ -32,8 +32,10 @@
 //!
 //! # Precision contract
 //! - The profile is the exact greedy solution of the discretized problem up to the LP tolerance
-//!   (1e-10 relative): at every gridpoint, every constraint holds for the interval's u on both
-//!   sides within 1e-9 relative.
+//!   (1e-10 relative, to the larger of the next controllable set's top and the problem's scale
+//!   of ṡ², the median velocity bound at the gridpoints; so limits of any size, 1e-9 included,
+//!   get the same relative precision): at every gridpoint, every constraint holds for the
+//!   interval's u on both sides within 1e-9 relative.
 //! - Between gridpoints, with [`ToppraOptions::refine`] on (the default):
 //!   - on paths that are polynomials of degree ≤ 3 between breakpoints
 //!     ([`crate::Path::piecewise_degree`]) with gridpoints at the breakpoints (every grid but
