@@ -32,8 +32,10 @@
 //!
 //! # Precision contract
 //! - The profile is the exact greedy solution of the discretized problem up to the LP tolerance
-//!   (1e-10 relative): at every gridpoint, every constraint holds for the interval's u on both
-//!   sides within 1e-9 relative.
+//!   (1e-10 relative, to the larger of the next controllable set's top and the problem's scale
+//!   of ṡ², the median velocity bound at the gridpoints; so limits of any size, 1e-9 included,
+//!   get the same relative precision): at every gridpoint, every constraint holds for the
+//!   interval's u on both sides within 1e-9 relative.
 //! - Between gridpoints, with [`ToppraOptions::refine`] on (the default):
 //!   - on paths that are polynomials of degree ≤ 3 between breakpoints
 //!     ([`crate::Path::piecewise_degree`]) with gridpoints at the breakpoints (every grid but
@@ -368,6 +370,10 @@ pub(super) struct Workspace {
     /// Whether every row at the gridpoint holds at rest (right-hand side ≥ 0).
     rests: Vec<bool>,
     nc: usize,
+    /// The problem's scale of x = ṡ² (see [`Workspace::x_scale`]): the LP tolerances are
+    /// relative to it, so that a problem whose limits are all multiplied by c > 0 is solved
+    /// with the same relative precision (ṡ² scales by c, or c² for velocity limits).
+    scale: f64,
     /// Controllable sets.
     klo: Vec<f64>,
     khi: Vec<f64>,
@@ -401,6 +407,25 @@ fn same(a: f64, b: f64) -> bool {
 /// Stand-in for "no finite bound": velocities beyond this are reported as unbounded.
 const X_BIG: f64 = 1e30;
 
+/// The scale of x = ṡ² for the LP tolerances: the median of the positive, finite velocity
+/// bounds at the gridpoints (1 when there is none). The median ignores the few huge bounds
+/// where the path nearly stops (ṡ unbounded) and the zeros where it must rest; an absolute
+/// tolerance instead would be as large as ṡ² itself under tiny limits (ṡ² ~ 1e-12 for a
+/// velocity limit of 1e-6) and let the solution exceed them.
+fn x_scale(xhi: &[f64]) -> f64 {
+    let mut finite: Vec<f64> = xhi
+        .iter()
+        .copied()
+        .filter(|&v| v > 0.0 && v < X_BIG)
+        .collect();
+    if finite.is_empty() {
+        return 1.0;
+    }
+    let mid = finite.len() / 2;
+    let (_, m, _) = finite.select_nth_unstable_by(mid, f64::total_cmp);
+    *m
+}
+
 impl Workspace {
     fn evaluate<P: Path>(
         &mut self,
@@ -430,6 +455,7 @@ impl Workspace {
         self.cr.rows.clear();
         let result = self.evaluate_rows(path, cons, grid);
         self.rows = std::mem::replace(&mut self.cr.rows, own);
+        self.scale = x_scale(&self.xhi);
         result
     }
 
@@ -634,7 +660,7 @@ impl Workspace {
         for i in (0..top).rev() {
             let delta = grid[i + 1] - grid[i];
             let (klo, khi) = (self.klo[i + 1], self.khi[i + 1]);
-            let tol = 1e-10 * (1.0 + khi);
+            let tol = 1e-10 * (self.scale + khi);
             let stage = &self.stage(i, delta, disc, None, khi, klo);
             let xhi = self.xhi[i].min(X_BIG);
             let xlo = self.xlo[i];
@@ -739,7 +765,7 @@ impl Workspace {
         let xlo = self.xlo[i];
         let lo = [(klo - xhi) / (2.0 * delta), xlo];
         let hi = [(khi - xlo) / (2.0 * delta), xhi];
-        let tol = 1e-10 * (1.0 + khi);
+        let tol = 1e-10 * (self.scale + khi);
         let mut culprits = Vec::new();
         for k in 0..self.nc {
             let stage = self.stage(i, delta, prob.options.discretization, Some(k), khi, klo);
