@@ -207,6 +207,7 @@ fn seeded_limited_motions_stay_inside() {
 /// refuses with `PositionLimits`; where it finds one, trajkit's motion is valid and its
 /// duration agrees with the reference to the grid's accuracy (recorded in the fixture).
 #[test]
+#[cfg(feature = "serde")]
 fn reference_durations() {
     use trajkit::otg::{calculate_dyn, json::parse_problem, OtgError};
     let text = include_str!("fixtures/otg/position_reference.json");

@@ -18,7 +18,7 @@
 //! ([`crate::poly::roots::roots_in`]). x itself is checked to stay positive the same way.
 //! Where the path is not such a cubic (the path says so through
 //! [`crate::Path::piecewise_degree`]), and for constraints given as rows (torque, user
-//! constraints), the interval is sampled at [`SAMPLES`] interior points instead.
+//! constraints), the interval is sampled at `SAMPLES` interior points instead.
 
 use super::shape::Shape;
 use crate::poly::roots::{horner, roots_in, MAX_DEGREE};

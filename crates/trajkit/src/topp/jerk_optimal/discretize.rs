@@ -2,7 +2,7 @@
 //! (midpoints and "cuts"), and the rows of each stage in the variables (x_i, u_i, v_i).
 //!
 //! At a point δ into middle interval i, x(δ) = x_i + e1·u_i + e2·v_i and u(δ) = u_i + f·v_i
-//! ([`super::shape::At`]) are linear in (x_i, u_i, v_i), so every constraint becomes linear
+//! (`shape::At`) are linear in (x_i, u_i, v_i), so every constraint becomes linear
 //! rows there:
 //! - joint velocity: x(δ) ≤ x_max(δ) = min_j (V_j/σ′_j)² (direction of σ′_j);
 //! - joint acceleration: A⁻_j ≤ σ″_j·x(δ) + σ′_j·u(δ) ≤ A⁺_j;

@@ -47,11 +47,11 @@
 //!   (Bernstein form) and, where the bound is inconclusive, computed exactly (polynomial
 //!   roots) after the last solve; the rest intervals meet them by construction (each term
 //!   bounded by its largest value on the interval). On other paths the intervals are checked
-//!   at the gridpoints, the cuts and [`certify::SAMPLES`] interior points each.
+//!   at the gridpoints, the cuts and `certify::SAMPLES` interior points each.
 //!   [`JerkReport::worst_excess`] is the largest relative excess found, and
 //!   [`JerkReport::sampled_intervals`] counts intervals checked by sampling only.
 //! - Other constraints (torque, user rows) hold at gridpoints, midpoints, cuts and
-//!   [`certify::EXTRA_SAMPLES`] points per interval, to 1e-9 relative; between those, the
+//!   `certify::EXTRA_SAMPLES` points per interval, to 1e-9 relative; between those, the
 //!   excess is that of a smooth function between samples (second order in the sample spacing).
 //! - If the certification still finds an excess after the last round, the trajectory is
 //!   slowed down uniformly by the smallest factor that removes it (velocity scales by 1/k,

@@ -15,7 +15,7 @@
 //! second order in the interval's length). The certification measures, for each joint and
 //! limit on each interval, the worst value on the interval (`ratio`) and the worst at the
 //! check points (`check`), relative to the limit. Where the interval exceeds the limit:
-//! - a **small bump** (ratio/check − 1 ≤ [`BUMP`]): the limit's rows on that interval are
+//! - a **small bump** (ratio/check − 1 ≤ `BUMP`): the limit's rows on that interval are
 //!   scaled by κ = check/ratio (with a quarter of the excess as margin), which removes the
 //!   excess for the same shape of the constraint along the interval, without adding rows;
 //! - otherwise a **cut**: the rows of that joint and limit are added at the worst point.

@@ -10,7 +10,7 @@
 //! ```
 //!
 //! (x′ = 2u holds exactly). The path jerk is s⃛ = ṡ·du/ds = v_i·θ′(δ)·√x(δ). The interval's
-//! (p, q) interpolate 1/√x̄ of a reference solution x̄ (the previous round's, [`Shape::new`]), so
+//! (p, q) interpolate 1/√x̄ of a reference solution x̄ (the previous round's, `Shape::new`), so
 //! θ is the reference's own time up to second order and **v_i is the path jerk in time**,
 //! nearly constant over the interval once x is close to x̄. This is what removes the
 //! first-order loss of s̈ linear in s (p = 1, q = 0), where the path jerk v·√x varies with ṡ
