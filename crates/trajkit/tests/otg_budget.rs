@@ -67,12 +67,17 @@ fn a_budget_that_runs_out_interrupts_in_time() {
             "{r:?}"
         );
     }
-    // A quarter of that: interrupted, in time (the least overrun of a few runs: a loaded
-    // machine only adds time).
+    // A quarter of that: interrupted, in time. The budget is wall-clock time, so a thread
+    // that is preempted past its deadline overruns by the preemption (as any such budget
+    // does); on a loaded machine the least of up to 20 runs measures the budget's own
+    // granularity.
     let budget = full / 4.0;
     inp.options.interrupt_calculation_duration = Some(budget);
     let mut least = f64::INFINITY;
-    for _ in 0..5 {
+    for _ in 0..20 {
+        if least <= 1.1 * budget {
+            break;
+        }
         let t0 = Instant::now();
         let r = otg.calculate(&inp);
         least = least.min(t0.elapsed().as_secs_f64() * 1e6);

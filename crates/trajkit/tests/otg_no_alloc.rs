@@ -37,6 +37,16 @@ fn calculate_update_and_queries_allocate_nothing() {
             Synchronization::Phase,
             Synchronization::None,
         ][k % 4];
+        // Position limits (step 1 with the position check) and a calculation budget.
+        if k % 16 == 1 {
+            for i in 0..7 {
+                p.max_position[i] = p.current_position[i].max(p.target_position[i]) + 1.0;
+                p.min_position[i] = p.current_position[i].min(p.target_position[i]) - 1.0;
+            }
+        }
+        if k % 16 == 2 {
+            p.options.interrupt_calculation_duration = Some(1e6);
+        }
     }
     // Non-finite input goes through the same path.
     problems[5].target_position[3] = f64::NAN;

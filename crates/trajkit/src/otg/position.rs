@@ -8,9 +8,11 @@
 //! checked too (a start that cannot be braked inside the limits is an error), and so is the
 //! constant-acceleration continuation of a DOF that finishes before the others.
 //!
-//! **Time-optimal when the limits are not in the way.** Step 1 runs as usual; when its
-//! fastest profile stays inside, it is the result (the unconstrained optimum, so the
-//! duration is the same as without position limits).
+//! **Time-optimal when the limits are not in the way.** Step 1 runs as usual (without the
+//! limits); when its fastest profile stays inside, it is the result (the unconstrained
+//! optimum, so the duration is the same as without position limits), at the cost of one
+//! extrema check (and, when the synchronization search asks for candidate durations, the
+//! waiting threshold below).
 //!
 //! **When they are in the way** (the unconstrained optimum overshoots), any valid motion
 //! either stays strictly inside or touches a limit. Strictly inside, it is an extremal of the
@@ -32,6 +34,11 @@
 //! check; when none fits, a waiting profile — stop (where the fastest stop lands, or at rest
 //! on a limit), wait, go — takes any duration from its two legs' sum on. That sum is added to
 //! the DOF's candidate durations, so the synchronization search always finds a duration.
+//!
+//! Size: a contact or waiting profile is two legs of up to 7 segments each (and a wait); one
+//! that does not fit in [`super::MAX_SEGMENTS`] together with its brake is not used (the
+//! profile size is kept for the speed of the unlimited path), so after a long brake such a
+//! motion may be refused with `PositionLimits` although it exists.
 //!
 //! Precision: positions within the limits to 1e-12 of the motion's position scale (the
 //! largest of |p₀|, |p_f|, the finite limits' magnitudes and the motion's extent); the
@@ -55,13 +62,22 @@ pub(crate) fn step1_limited(
 ) -> Option<usize> {
     // A brake that leaves the limits cannot be helped.
     after_brake(dof)?;
+    // The unconstrained optimum: when it stays inside, it is the result (time-optimal), and
+    // one step-1 solve and one extrema check is all a DOF whose limits are out of the way
+    // costs.
+    let mut n = step1_run(
+        &dof.without_position_limits(),
+        profile,
+        spare,
+        cand.as_deref_mut(),
+    );
+    let t_free = n.map(|_| profile.duration());
+    if n.is_some() && positions_within(dof, profile) {
+        return with_wait_candidate(dof, n, cand);
+    }
     // Candidates inside the limits (verification checks the positions).
-    let mut n = step1_run(dof, profile, spare, cand.as_deref_mut());
+    n = step1_run(dof, profile, spare, cand.as_deref_mut());
     let t_inside = n.map(|_| profile.duration());
-    // The unconstrained optimum: when it is not shorter, the result is time-optimal.
-    let mut free = Profile::default();
-    let t_free = step1_run(&dof.without_position_limits(), &mut free, &mut None, None)
-        .map(|_| free.duration());
     let optimal = matches!((t_inside, t_free), (Some(a), Some(b)) if a <= b * (1.0 + 1e-12));
     if !optimal {
         if let Some(c) = contact_profile(dof) {
@@ -78,8 +94,16 @@ pub(crate) fn step1_limited(
             }
         }
     }
-    // Every duration from the waiting threshold on is feasible: a candidate for
-    // synchronization.
+    with_wait_candidate(dof, n, cand)
+}
+
+/// Every duration from the waiting threshold on is feasible: with candidates requested, it
+/// joins the `n` candidate durations (for the synchronization search).
+fn with_wait_candidate(
+    dof: &Dof1,
+    n: Option<usize>,
+    cand: Option<&mut [f64; MAX_CANDIDATES]>,
+) -> Option<usize> {
     if let (Some(k), Some(cs)) = (n, cand) {
         if let Some(w) = wait_threshold(dof) {
             if k < MAX_CANDIDATES && !cs[..k].contains(&w) {

@@ -12,10 +12,10 @@
 //! start, whose state was obtained by integrating the previous segments in f64. The round-off
 //! accumulated over ten segments is a few ulp of the largest |p|, |v|·T, |a|·T², |j|·T³.
 
-/// Largest number of segments in a profile: up to 6 brake segments, then two legs of up to 8
-/// segments each (a motion through a position limit: 7 segments and the split of a snapped
-/// landing) with a wait between them, plus one spare.
-pub const MAX_SEGMENTS: usize = 24;
+/// Largest number of segments in a profile: up to 6 brake segments and 7 main segments, plus
+/// one spare. (A motion through a position limit, two legs of up to 7 segments, fits when it
+/// needs no brake; the size is kept small because every profile is copied on the hot path.)
+pub const MAX_SEGMENTS: usize = 14;
 
 /// A kinematic state of one degree of freedom.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
