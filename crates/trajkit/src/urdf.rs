@@ -50,15 +50,15 @@ struct Tag {
 }
 
 impl Tag {
-    fn read(doc: &roxmltree::Document<'_>, node: roxmltree::Node<'_, '_>) -> Tag {
+    fn read(lines: &Lines, node: roxmltree::Node<'_, '_>) -> Tag {
         Tag {
-            line: line_of(doc, node.range().start),
+            line: lines.line_of(node.range().start),
             attrs: node
                 .attributes()
                 .map(|a| Attr {
                     name: a.name().to_string(),
                     text: a.value().to_string(),
-                    line: line_of(doc, a.range_value().start),
+                    line: lines.line_of(a.range_value().start),
                 })
                 .collect(),
         }
@@ -71,10 +71,38 @@ impl Tag {
     fn text(&self, name: &str) -> Option<&str> {
         self.attr(name).map(|a| a.text.as_str())
     }
+
+    /// The `name` attribute of this `<element>`; errors name the element when it is missing.
+    fn name<'a>(&'a self, src: &Src, element: &str) -> Result<&'a str> {
+        self.text("name").ok_or_else(|| {
+            src.error(
+                self.line,
+                format!("<{element} name>"),
+                format!("the {element} has no name attribute"),
+            )
+        })
+    }
 }
 
-fn line_of(doc: &roxmltree::Document<'_>, pos: usize) -> usize {
-    doc.text_pos_at(pos).row as usize
+/// Line numbers of byte positions in the text, from the positions of its line breaks (found
+/// once: roxmltree's own `text_pos_at` counts from the start at every call).
+struct Lines(Vec<usize>);
+
+impl Lines {
+    fn new(text: &str) -> Lines {
+        Lines(
+            text.bytes()
+                .enumerate()
+                .filter(|&(_, b)| b == b'\n')
+                .map(|(i, _)| i)
+                .collect(),
+        )
+    }
+
+    /// The 1-based line of byte position `pos`: one more than the line breaks before it.
+    fn line_of(&self, pos: usize) -> usize {
+        1 + self.0.partition_point(|&nl| nl < pos)
+    }
 }
 
 /// The first child element of `node` named `tag`.
@@ -251,13 +279,7 @@ impl Joint {
 
     /// The joint's name. Errors: the attribute is missing.
     pub fn name(&self) -> Result<&str> {
-        self.tag.text("name").ok_or_else(|| {
-            self.src.error(
-                self.tag.line,
-                "<joint name>",
-                "the joint has no name attribute",
-            )
-        })
+        self.tag.name(&self.src, "joint")
     }
 
     /// `joint 'name'` for fields in messages.
@@ -401,13 +423,7 @@ impl Link {
 
     /// The link's name. Errors: the attribute is missing.
     pub fn name(&self) -> Result<&str> {
-        self.tag.text("name").ok_or_else(|| {
-            self.src.error(
-                self.tag.line,
-                "<link name>",
-                "the link has no name attribute",
-            )
-        })
+        self.tag.name(&self.src, "link")
     }
 
     /// The inertial parameters; `None` for a link without `<inertial>` (massless). Errors: a
@@ -488,8 +504,9 @@ impl Robot {
                 format!("not well-formed XML: {e}"),
             )
         })?;
+        let lines = Lines::new(text);
         let root = doc.root_element();
-        let root_tag = Tag::read(&doc, root);
+        let root_tag = Tag::read(&lines, root);
         if root.tag_name().name() != "robot" {
             return Err(src.error(
                 root_tag.line,
@@ -500,7 +517,7 @@ impl Robot {
                 ),
             ));
         }
-        let tag_of = |n: Option<roxmltree::Node<'_, '_>>| n.map(|n| Tag::read(&doc, n));
+        let tag_of = |n: Option<roxmltree::Node<'_, '_>>| n.map(|n| Tag::read(&lines, n));
         let elements = |name: &'static str| {
             root.children()
                 .filter(move |n| n.is_element() && n.tag_name().name() == name)
@@ -508,9 +525,9 @@ impl Robot {
         let links = elements("link")
             .map(|node| Link {
                 src: src.clone(),
-                tag: Tag::read(&doc, node),
+                tag: Tag::read(&lines, node),
                 inertial: child(node, "inertial").map(|i| InertialTags {
-                    tag: Tag::read(&doc, i),
+                    tag: Tag::read(&lines, i),
                     origin: tag_of(child(i, "origin")),
                     mass: tag_of(child(i, "mass")),
                     inertia: tag_of(child(i, "inertia")),
@@ -520,7 +537,7 @@ impl Robot {
         let joints = elements("joint")
             .map(|node| Joint {
                 src: src.clone(),
-                tag: Tag::read(&doc, node),
+                tag: Tag::read(&lines, node),
                 parent: tag_of(child(node, "parent")),
                 child: tag_of(child(node, "child")),
                 origin: tag_of(child(node, "origin")),

@@ -268,6 +268,49 @@ pub struct DmpArgs {
     pub output: OutputArgs,
 }
 
+/// The position limits of `--within spec` for the demonstration's joints (by name when it
+/// names them).
+fn within_limits(demo: &DemoFile, spec: &str) -> CliResult<trajkit::Limits> {
+    let named = demo.named.then_some(&demo.names[..]);
+    let (limits, _) = trajkit::limits::load::from_spec(spec)?
+        .for_joints("table", named)
+        .map_err(|e| CliError(format!("{}: --within {spec}: {e}", demo.src)))?;
+    if limits.dof() != demo.dof {
+        return Err(CliError(format!(
+            "{}: --within {spec} has {} joints, the demonstration {}",
+            demo.src,
+            limits.dof(),
+            demo.dof
+        )));
+    }
+    let position = trajkit::limits::Needs {
+        position: true,
+        ..trajkit::limits::Needs::NONE
+    };
+    super::common::complete(&limits, position)
+        .map_err(|e| CliError(format!("--within {spec}: {e}")))
+}
+
+/// The rollout's RMS error against the demonstration, relative to each joint's range (absolute
+/// for a joint that does not move); the worst joint's.
+fn reproduction_error(demo: &DemoFile, roll: &dyn Trajectory) -> f64 {
+    let mut y = vec![0.0; demo.dof];
+    let mut worst: f64 = 0.0;
+    for j in 0..demo.dof {
+        let (mut se, mut lo, mut hi) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
+        for (k, &tk) in demo.t.iter().enumerate() {
+            roll.eval(tk - demo.t[0], Order::Position, &mut y);
+            let qk = demo.q[k * demo.dof + j];
+            se += (y[j] - qk).powi(2);
+            lo = lo.min(qk);
+            hi = hi.max(qk);
+        }
+        let rms = (se / demo.t.len() as f64).sqrt();
+        worst = worst.max(if hi > lo { rms / (hi - lo) } else { rms });
+    }
+    worst
+}
+
 /// Runs `trajkit dmp`.
 pub fn run(a: &DmpArgs) -> CliResult<u8> {
     let demo = read_demo(&a.demo)?;
@@ -306,24 +349,7 @@ pub fn run(a: &DmpArgs) -> CliResult<u8> {
             (Box::new(dmp.rollout(&opts)?), dmp.tau())
         }
         Some(spec) => {
-            let named = demo.named.then_some(&demo.names[..]);
-            let (limits, _) = trajkit::limits::load::from_spec(spec)?
-                .for_joints("table", named)
-                .map_err(|e| CliError(format!("{}: --within {spec}: {e}", demo.src)))?;
-            if limits.dof() != demo.dof {
-                return Err(CliError(format!(
-                    "{}: --within {spec} has {} joints, the demonstration {}",
-                    demo.src,
-                    limits.dof(),
-                    demo.dof
-                )));
-            }
-            let position = trajkit::limits::Needs {
-                position: true,
-                ..trajkit::limits::Needs::NONE
-            };
-            let limits = super::common::complete(&limits, position)
-                .map_err(|e| CliError(format!("--within {spec}: {e}")))?;
+            let limits = within_limits(&demo, spec)?;
             let dmp = BoundedDmp::fit(&demo.t, &demo.q, demo.dof, &cfg, &limits)
                 .map_err(|e| CliError(format!("{}: {e}", demo.src)))?;
             (Box::new(dmp.rollout(&opts)?), dmp.inner().tau())
@@ -351,23 +377,9 @@ pub fn run(a: &DmpArgs) -> CliResult<u8> {
         ));
     }
     if a.goal.is_none() && a.start.is_none() && a.tau.is_none() {
-        // Reproduction error against the demonstration itself.
-        let mut y = vec![0.0; demo.dof];
-        let mut worst: f64 = 0.0;
-        for j in 0..demo.dof {
-            let (mut se, mut lo, mut hi) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
-            for (k, &tk) in demo.t.iter().enumerate() {
-                roll.eval(tk - demo.t[0], Order::Position, &mut y);
-                let qk = demo.q[k * demo.dof + j];
-                se += (y[j] - qk).powi(2);
-                lo = lo.min(qk);
-                hi = hi.max(qk);
-            }
-            let rms = (se / demo.t.len() as f64).sqrt();
-            worst = worst.max(if hi > lo { rms / (hi - lo) } else { rms });
-        }
         s.push_str(&format!(
-            "\nreproduction RMS error: {worst:.3e} of the joint's range (worst joint)"
+            "\nreproduction RMS error: {:.3e} of the joint's range (worst joint)",
+            reproduction_error(&demo, roll)
         ));
     }
     s.push_str(&format!("\nwrote {}", a.out.display()));

@@ -84,6 +84,64 @@ pub fn table_text() -> String {
     s
 }
 
+/// The shortest duration of the move within the limits that `--limits` and its flags give,
+/// and those limits.
+fn shortest(
+    a: &PolyArgs,
+    degree: Degree,
+    start: &EndState,
+    end: &EndState,
+) -> CliResult<(f64, Limits)> {
+    let resolved = a.limits.resolve("waypoint", None, a.from.len(), None)?;
+    let needs = Needs {
+        position: false,
+        jerk: degree != Degree::Cubic,
+        ..Needs::ALL
+    };
+    let l = complete(&resolved.limits, needs)?;
+    if degree == Degree::Cubic {
+        if let Some((j, jl)) = l
+            .joints()
+            .iter()
+            .enumerate()
+            .find(|(_, jl)| jl.jerk.is_finite())
+        {
+            return Err(CliError(format!(
+                "{}: a cubic move jumps in acceleration at both ends (unbounded jerk) and cannot hold the jerk limit {}; use --degree quintic or septic, or --max-jerk inf",
+                trajkit::error::joint_label(j, &jl.name),
+                jl.jerk
+            )));
+        }
+    }
+    let rest = start
+        .qd
+        .iter()
+        .chain(&start.qdd)
+        .chain(&start.qddd)
+        .chain(&end.qd)
+        .chain(&end.qdd)
+        .chain(&end.qddd)
+        .all(|&x| x == 0.0);
+    let t = if rest {
+        if a.to.len() != a.from.len() {
+            return Err(CliError(format!(
+                "--to has {} values, --from has {}",
+                a.to.len(),
+                a.from.len()
+            )));
+        }
+        min_duration_rest_to_rest(degree, &a.from, &a.to, &l)?
+    } else {
+        min_duration(degree, start, end, &l)?
+    };
+    if t == 0.0 {
+        return Err(CliError(
+            "--from equals --to and the move is at rest: nothing to do".into(),
+        ));
+    }
+    Ok((t, l))
+}
+
 /// Runs `trajkit poly`.
 pub fn run(a: &PolyArgs) -> CliResult<u8> {
     if a.table {
@@ -118,53 +176,7 @@ pub fn run(a: &PolyArgs) -> CliResult<u8> {
     let (duration, limits) = match a.duration {
         Some(t) => (t, None),
         None => {
-            let resolved = a.limits.resolve("waypoint", None, a.from.len(), None)?;
-            let needs = Needs {
-                position: false,
-                jerk: degree != Degree::Cubic,
-                ..Needs::ALL
-            };
-            let l = complete(&resolved.limits, needs)?;
-            if degree == Degree::Cubic {
-                if let Some((j, jl)) = l
-                    .joints()
-                    .iter()
-                    .enumerate()
-                    .find(|(_, jl)| jl.jerk.is_finite())
-                {
-                    return Err(CliError(format!(
-                        "{}: a cubic move jumps in acceleration at both ends (unbounded jerk) and cannot hold the jerk limit {}; use --degree quintic or septic, or --max-jerk inf",
-                        trajkit::error::joint_label(j, &jl.name),
-                        jl.jerk
-                    )));
-                }
-            }
-            let rest = start
-                .qd
-                .iter()
-                .chain(&start.qdd)
-                .chain(&start.qddd)
-                .chain(&end.qd)
-                .chain(&end.qdd)
-                .chain(&end.qddd)
-                .all(|&x| x == 0.0);
-            let t = if rest {
-                if a.to.len() != a.from.len() {
-                    return Err(CliError(format!(
-                        "--to has {} values, --from has {}",
-                        a.to.len(),
-                        a.from.len()
-                    )));
-                }
-                min_duration_rest_to_rest(degree, &a.from, &a.to, &l)?
-            } else {
-                min_duration(degree, &start, &end, &l)?
-            };
-            if t == 0.0 {
-                return Err(CliError(
-                    "--from equals --to and the move is at rest: nothing to do".into(),
-                ));
-            }
+            let (t, l) = shortest(a, degree, &start, &end)?;
             (t, Some(l))
         }
     };

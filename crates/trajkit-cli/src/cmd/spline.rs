@@ -101,23 +101,10 @@ fn curve_name(c: Curve) -> String {
         .unwrap_or_default()
 }
 
-/// Runs `trajkit spline`.
-pub fn run(a: &SplineArgs) -> CliResult<u8> {
-    let w = Waypoints::from_file(&a.points)?;
-    let src = a.points.display().to_string();
-    let (n, dim) = (w.len(), w.dof());
-    let y = w.points();
-    let cr = matches!(
-        a.curve,
-        Curve::CatmullRomUniform | Curve::CatmullRomCentripetal | Curve::CatmullRomChordal
-    );
-    if cr && (!a.times.is_empty() || a.duration.is_some()) {
-        return Err(CliError(
-            "--times/--duration do not apply to Catmull-Rom: its parameter comes from the points"
-                .into(),
-        ));
-    }
-    let x: Vec<f64> = if !a.times.is_empty() {
+/// The curve parameters of the `n` points of `src`: `--times`, else spread over
+/// `--duration`, else 0, 1, 2, …
+fn parameters(a: &SplineArgs, n: usize, src: &str) -> CliResult<Vec<f64>> {
+    Ok(if !a.times.is_empty() {
         finite_list("times", &a.times)?;
         if a.times.len() != n {
             return Err(CliError(format!(
@@ -144,7 +131,47 @@ pub fn run(a: &SplineArgs) -> CliResult<u8> {
             .collect()
     } else {
         (0..n).map(|i| i as f64).collect()
-    };
+    })
+}
+
+/// The curve sampled over its own parameter (the times of the points), ends included, with
+/// every derivative.
+fn sample_curve(curve: &dyn Path, dim: usize, rate: f64) -> CliResult<trajkit::SampleTable> {
+    let (s0, s1) = curve.interval();
+    // Sample over the curve's own parameter (the times of the points), ends included.
+    let mut ts: Vec<f64> = trajkit::sample::sample_times(s1 - s0, rate)?
+        .into_iter()
+        .map(|t| (s0 + t).min(s1))
+        .collect();
+    ts.dedup();
+    let mut data: [Option<Vec<f64>>; 4] = Default::default();
+    for (k, col) in data.iter_mut().enumerate() {
+        let mut m = vec![0.0; ts.len() * dim];
+        for (i, &t) in ts.iter().enumerate() {
+            curve.eval(t, k, &mut m[i * dim..(i + 1) * dim]);
+        }
+        *col = Some(m);
+    }
+    Ok(trajkit::SampleTable::new(dim, ts, data)?)
+}
+
+/// Runs `trajkit spline`.
+pub fn run(a: &SplineArgs) -> CliResult<u8> {
+    let w = Waypoints::from_file(&a.points)?;
+    let src = a.points.display().to_string();
+    let (n, dim) = (w.len(), w.dof());
+    let y = w.points();
+    let cr = matches!(
+        a.curve,
+        Curve::CatmullRomUniform | Curve::CatmullRomCentripetal | Curve::CatmullRomChordal
+    );
+    if cr && (!a.times.is_empty() || a.duration.is_some()) {
+        return Err(CliError(
+            "--times/--duration do not apply to Catmull-Rom: its parameter comes from the points"
+                .into(),
+        ));
+    }
+    let x = parameters(a, n, &src)?;
     let v0 = or_zero(&a.start_velocity, dim, "start-velocity")?;
     let v1 = or_zero(&a.end_velocity, dim, "end-velocity")?;
     let z = vec![0.0; dim];
@@ -176,21 +203,7 @@ pub fn run(a: &SplineArgs) -> CliResult<u8> {
         }
     };
     let (s0, s1) = curve.interval();
-    // Sample over the curve's own parameter (the times of the points), ends included.
-    let mut ts: Vec<f64> = trajkit::sample::sample_times(s1 - s0, a.output.rate)?
-        .into_iter()
-        .map(|t| (s0 + t).min(s1))
-        .collect();
-    ts.dedup();
-    let mut data: [Option<Vec<f64>>; 4] = Default::default();
-    for (k, col) in data.iter_mut().enumerate() {
-        let mut m = vec![0.0; ts.len() * dim];
-        for (i, &t) in ts.iter().enumerate() {
-            curve.eval(t, k, &mut m[i * dim..(i + 1) * dim]);
-        }
-        *col = Some(m);
-    }
-    let table = trajkit::SampleTable::new(dim, ts, data)?;
+    let table = sample_curve(&*curve, dim, a.output.rate)?;
     let table = table.with_names(w.names().to_vec())?;
     let mut outputs = Outputs::default();
     outputs.add(&a.out, a.output.render(&table, &a.out));

@@ -97,13 +97,10 @@ fn format_of(file: &FileIn, format: Option<LimitsFormat>) -> ApiResult<LimitsFor
 }
 
 impl LimitsIn {
-    /// Loads and adjusts the limits for data whose joints are `names` (matched by name when
-    /// both sides name their joints, as `trajkit plan` does; overrides then apply per data
-    /// column), keeping track of what was given ([`PartialLimits::complete`] refuses what a
-    /// method needs and no source gave). Returns the limits and the limit joints left out.
-    pub fn load(&self, names: Option<&[String]>) -> ApiResult<(PartialLimits, Vec<String>)> {
+    /// The limits of `preset` or `file` (exactly one), before any adjustment.
+    fn source(&self) -> ApiResult<PartialLimits> {
         let lib = |field: &'static str| move |e| ApiError::from_lib(field, e);
-        let source: PartialLimits = match (&self.preset, &self.file) {
+        Ok(match (&self.preset, &self.file) {
             (Some(p), None) => Limits::preset(p).map_err(lib("limits.preset"))?.into(),
             (None, Some(f)) => {
                 caps::count(
@@ -133,7 +130,16 @@ impl LimitsIn {
                     "is not allowed: give exactly one of limits.preset and limits.file",
                 ))
             }
-        };
+        })
+    }
+
+    /// Loads and adjusts the limits for data whose joints are `names` (matched by name when
+    /// both sides name their joints, as `trajkit plan` does; overrides then apply per data
+    /// column), keeping track of what was given ([`PartialLimits::complete`] refuses what a
+    /// method needs and no source gave). Returns the limits and the limit joints left out.
+    pub fn load(&self, names: Option<&[String]>) -> ApiResult<(PartialLimits, Vec<String>)> {
+        let lib = |field: &'static str| move |e| ApiError::from_lib(field, e);
+        let source = self.source()?;
         caps::count("limits (joint count)", source.dof(), 1, caps::MAX_JOINTS)?;
         for (values, field) in [
             (&self.max_velocity, "limits.max_velocity"),
