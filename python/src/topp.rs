@@ -16,7 +16,7 @@ use trajkit::limits::Needs;
 use trajkit::topp::messy::{plan_waypoints as plan_pieces, PathKind, PieceSolver, PlanOptions};
 use trajkit::topp::{
     ni, plan_totg, Discretization, Gridpoints, JointAcceleration, JointVelocity, LinearPath,
-    Options, Toppra, TotgOptions,
+    Toppra, ToppraOptions, TotgOptions,
 };
 
 use crate::convert::{bad, obj, table, values, vector, Floats, IntoPy};
@@ -150,7 +150,7 @@ impl PyAcc {
 struct Problem {
     path: PathRef,
     constraints: Vec<(Kind, Vec<f64>, Vec<f64>)>,
-    options: Options,
+    options: ToppraOptions,
 }
 
 impl Problem {
@@ -168,8 +168,8 @@ impl Problem {
 
 fn gridpoints(g: Option<&Bound<'_, PyAny>>) -> PyResult<Gridpoints> {
     match g {
-        None => Ok(Options::default().gridpoints),
-        Some(g) if g.is_none() => Ok(Options::default().gridpoints),
+        None => Ok(ToppraOptions::default().gridpoints),
+        Some(g) if g.is_none() => Ok(ToppraOptions::default().gridpoints),
         Some(g) => {
             if let Ok(n) = g.extract::<usize>() {
                 return Ok(Gridpoints::Uniform(n));
@@ -199,7 +199,7 @@ fn parameterizer<'py>(
     refine: bool,
     ni: bool,
 ) -> PyResult<Parameterizer> {
-    let options = Options {
+    let options = ToppraOptions {
         gridpoints: gridpoints(gridpoints_.as_ref())?,
         discretization: match discretization {
             "interpolation" => Discretization::Interpolation,
@@ -211,7 +211,7 @@ fn parameterizer<'py>(
             }
         },
         refine,
-        ..Options::default()
+        ..ToppraOptions::default()
     };
     let constraints = constraint_list
         .iter()
@@ -392,9 +392,9 @@ pub fn piece_options(path: &str, solver: &str, gridpoints_: usize) -> PyResult<P
             "ni" => PieceSolver::Ni,
             other => return Err(bad(format!("solver = '{other}' is not 'toppra' or 'ni'"))),
         },
-        toppra: Options {
+        toppra: ToppraOptions {
             gridpoints: Gridpoints::Uniform(gridpoints_),
-            ..Options::default()
+            ..ToppraOptions::default()
         },
         ..PlanOptions::default()
     })

@@ -98,7 +98,7 @@ fn plan_with_torque_limits_holds_the_efforts() {
 
 /// Worst |τ| / effort recomputed from the written table's q, q̇, q̈ columns.
 fn sampled_torque_ratio(csv: &Path) -> f64 {
-    use trajkit::topp::constraint::InverseDynamics;
+    use trajkit::topp::InverseDynamics;
     let chain = trajkit::dynamics::SerialChain::from_urdf_str(ARM, "arm.urdf").unwrap();
     let effort = [24.0, 6.0];
     let table = std::fs::read_to_string(csv).unwrap();

@@ -15,7 +15,7 @@ use trajkit::rng::SplitMix64;
 use trajkit::spline::CubicSpline;
 use trajkit::topp::jerk::{limit_jerk, JerkOptions as FilterOptions};
 use trajkit::topp::jerk_optimal::JerkOptimal;
-use trajkit::topp::{Gridpoints, Options, Toppra};
+use trajkit::topp::{Gridpoints, Toppra, ToppraOptions};
 use trajkit::{Limits, Trajectory};
 
 fn standard_path() -> CubicSpline {
@@ -61,10 +61,10 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             let raw = Toppra::with_limits(&path, &limits)
                 .unwrap()
-                .options(Options {
+                .options(ToppraOptions {
                     gridpoints: Gridpoints::Uniform(1000),
                     refine: false,
-                    ..Options::default()
+                    ..ToppraOptions::default()
                 })
                 .solve()
                 .unwrap();

@@ -6,9 +6,9 @@
 //!   toppra's guarantee);
 //! - `toppra_solve_refined/1000`: 1000 uniform intervals, limits guaranteed between gridpoints
 //!   (the default `refine`);
-//! - `toppra_solve_default`: `Options::default()` (grid chosen from the 1e-4 duration
+//! - `toppra_solve_default`: `ToppraOptions::default()` (grid chosen from the 1e-4 duration
 //!   tolerance, limits guaranteed between gridpoints);
-//! - `toppra_scaling/W`: `Options::default()` on natural splines through W seeded random Panda
+//! - `toppra_scaling/W`: `ToppraOptions::default()` on natural splines through W seeded random Panda
 //!   waypoints (W = 10, 100, 1000): the cost per waypoint should stay flat.
 //!
 //! Run: `cargo bench -p trajkit --bench topp`.
@@ -19,7 +19,7 @@ use criterion::{criterion_group, BenchmarkId, Criterion};
 use std::hint::black_box;
 use trajkit::rng::SplitMix64;
 use trajkit::spline::CubicSpline;
-use trajkit::topp::{Gridpoints, Options, Toppra};
+use trajkit::topp::{Gridpoints, Toppra, ToppraOptions};
 use trajkit::{Limits, Order, Trajectory};
 
 fn standard_path() -> CubicSpline {
@@ -53,10 +53,10 @@ fn bench(c: &mut Criterion) {
             b.iter(|| {
                 let prob = Toppra::with_limits(&path, &limits)
                     .unwrap()
-                    .options(Options {
+                    .options(ToppraOptions {
                         gridpoints: Gridpoints::Uniform(n),
                         refine: false,
-                        ..Options::default()
+                        ..ToppraOptions::default()
                     });
                 black_box(prob.solve_profile().unwrap().duration())
             })
@@ -93,9 +93,9 @@ fn bench(c: &mut Criterion) {
     g.finish();
     let traj = Toppra::with_limits(&path, &limits)
         .unwrap()
-        .options(Options {
+        .options(ToppraOptions {
             refine: false,
-            ..Options::default()
+            ..ToppraOptions::default()
         })
         .solve()
         .unwrap();
@@ -127,10 +127,10 @@ fn plain_timing() {
                 let t0 = std::time::Instant::now();
                 let prob = Toppra::with_limits(&path, &limits)
                     .unwrap()
-                    .options(Options {
+                    .options(ToppraOptions {
                         gridpoints: Gridpoints::Uniform(n),
                         refine: false,
-                        ..Options::default()
+                        ..ToppraOptions::default()
                     });
                 black_box(prob.solve_profile().unwrap().duration());
                 t0.elapsed().as_secs_f64()
@@ -145,7 +145,7 @@ fn plain_timing() {
     }
     for (name, grid) in [
         ("toppra_solve_refined/1000", Gridpoints::Uniform(1000)),
-        ("toppra_solve_default", Options::default().gridpoints),
+        ("toppra_solve_default", ToppraOptions::default().gridpoints),
     ] {
         let reps = 200;
         let mut times: Vec<f64> = (0..reps)

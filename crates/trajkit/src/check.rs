@@ -38,6 +38,7 @@ use crate::error::{Error, Result};
 use crate::limits::{JointLimits, Limits};
 use crate::sample::SampleTable;
 use crate::traj::{Order, Trajectory};
+#[cfg(feature = "serde")]
 use serde_json::{json, Value};
 
 /// The largest use of a limit found in one series of values.
@@ -312,6 +313,7 @@ impl LimitReport {
     /// position: {min, max, excursion, time}, velocity|acceleration|jerk: {pointwise,
     /// finite_difference}}]}` where each peak is `{ratio, value, time}` or `null`.
     /// Non-finite numbers become `null`.
+    #[cfg(feature = "serde")]
     pub fn to_json(&self) -> Value {
         let peak = |p: Option<Peak>| match p {
             Some(p) => json!({"ratio": p.ratio, "value": p.value, "time": p.time}),
@@ -621,16 +623,19 @@ mod tests {
         assert!((fd.ratio - 0.5).abs() < 1e-6);
         let text = r.to_text();
         assert!(text.contains("- / 0.5"), "{text}");
-        let js = r.to_json();
-        assert!(js["joints"][0]["jerk"]["pointwise"].is_null());
-        assert!(
-            (js["joints"][0]["jerk"]["finite_difference"]["ratio"]
-                .as_f64()
-                .unwrap()
-                - 0.5)
-                .abs()
-                < 1e-6
-        );
+        #[cfg(feature = "serde")]
+        {
+            let js = r.to_json();
+            assert!(js["joints"][0]["jerk"]["pointwise"].is_null());
+            assert!(
+                (js["joints"][0]["jerk"]["finite_difference"]["ratio"]
+                    .as_f64()
+                    .unwrap()
+                    - 0.5)
+                    .abs()
+                    < 1e-6
+            );
+        }
     }
 
     #[test]

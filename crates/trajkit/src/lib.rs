@@ -30,6 +30,7 @@
 //!   multi-waypoint piecewise polynomials.
 //! - [`otg`]: online jerk-limited generation, any state to any state, synchronized DOFs.
 //! - [`linalg`]: small dense solvers (Cholesky, LU) on row-major slices.
+//! - [`roots`]: real roots of polynomials on an interval (extrema of polynomials).
 //! - [`sample`], [`check`], [`plot`], [`io`]: sampling into tables, limit checking, SVG plots,
 //!   CSV/JSON reading and writing.
 //!
@@ -50,8 +51,10 @@
 extern crate self as trajkit;
 
 pub mod check;
+#[cfg(feature = "urdf")]
 pub mod dynamics;
 pub mod error;
+mod inverse_dynamics;
 pub mod io;
 pub mod limits;
 pub mod linalg;
@@ -62,13 +65,17 @@ pub mod plot;
 pub mod poly;
 pub mod primitives;
 pub mod rng;
+pub mod roots;
 pub mod sample;
 pub mod size;
 pub mod spline;
 pub mod topp;
 pub mod traj;
+#[cfg(feature = "urdf")]
+pub mod urdf;
 
 pub use error::{Error, Result};
+pub use inverse_dynamics::InverseDynamics;
 pub use limits::{JointLimits, Limits};
 pub use path::{Path, PathAsTrajectory};
 pub use plan::{plan, Plan, PlanOptions};

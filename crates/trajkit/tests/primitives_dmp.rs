@@ -560,27 +560,29 @@ fn phase_stopping_waits_for_a_blocked_robot() {
 
 #[test]
 fn quaternion_dmp_reproduces_and_reaches_new_goals() {
-    use trajkit::primitives::{quat_exp, quat_log, quat_mul, QuaternionDmp};
+    use trajkit::primitives::QuaternionDmp;
+    use trajkit::spline::Quat;
     // A smooth rotation: rotation vector r(s) = mj(s)·(0.8, −0.5, 1.2) + bump, start at q0.
-    let q0 = quat_exp(&[0.1, 0.2, -0.3]);
+    let q0 = Quat::exp([0.2, 0.4, -0.6]);
     let rot = |s: f64| {
         let mj = 10.0 * s.powi(3) - 15.0 * s.powi(4) + 6.0 * s.powi(5);
         let b = 0.3 * (std::f64::consts::PI * s).sin().powi(2);
         let r = [0.8 * mj + b, -0.5 * mj, 1.2 * mj - b];
-        quat_mul(&quat_exp(&[0.5 * r[0], 0.5 * r[1], 0.5 * r[2]]), &q0)
+        Quat::exp(r) * q0
     };
     let n = 1001;
     let t: Vec<f64> = (0..n).map(|k| k as f64 / (n - 1) as f64).collect();
-    let q: Vec<f64> = t.iter().flat_map(|&s| rot(s)).collect();
+    let q: Vec<f64> = t.iter().flat_map(|&s| rot(s).to_array()).collect();
     let dmp = QuaternionDmp::fit(&t, &q).unwrap();
     let roll = dmp.rollout(None, None, None).unwrap();
-    let angle = |a: &[f64; 4], b: &[f64; 4]| {
-        let l = quat_log(&quat_mul(a, &[b[0], -b[1], -b[2], -b[3]]));
-        2.0 * (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt()
+    // The rotation angle between two orientations: ‖log(a ∗ b̄)‖.
+    let angle = |a: Quat, b: Quat| {
+        let l = (a * b.conj()).log();
+        (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt()
     };
     let mut se = 0.0;
     for &s in &t {
-        se += angle(&roll.orientation(s), &rot(s)).powi(2);
+        se += angle(roll.orientation(s), rot(s)).powi(2);
     }
     let rms = (se / n as f64).sqrt();
     assert!(rms < 1e-4, "orientation RMS {rms} rad");
@@ -588,19 +590,19 @@ fn quaternion_dmp_reproduces_and_reaches_new_goals() {
     let fine = dmp.rollout_steps(None, None, None, 4000).unwrap();
     for k in 0..=20 {
         let s = k as f64 / 20.0;
-        let d = angle(&roll.orientation(s), &fine.orientation(s));
+        let d = angle(roll.orientation(s), fine.orientation(s));
         assert!(d < 1e-10, "s={s}: {d}");
     }
     let mut v = [0.0; 4];
     roll.eval(0.37, Order::Position, &mut v);
     assert!((v.iter().map(|x| x * x).sum::<f64>() - 1.0).abs() < 1e-12);
     // New goal (and goal = start) stay bounded and converge.
-    let g = quat_exp(&[0.0, 0.7, 0.0]);
-    let r2 = dmp.rollout(None, Some(&g), Some(1.5)).unwrap();
-    assert!(angle(&r2.orientation(1.5), &g) < 2e-2);
-    let r3 = dmp.rollout(Some(&q0), Some(&q0), None).unwrap();
+    let g = Quat::exp([0.0, 1.4, 0.0]);
+    let r2 = dmp.rollout(None, Some(g), Some(1.5)).unwrap();
+    assert!(angle(r2.orientation(1.5), g) < 2e-2);
+    let r3 = dmp.rollout(Some(q0), Some(q0), None).unwrap();
     for k in 0..=10 {
-        assert!(angle(&r3.orientation(k as f64 / 10.0), &q0) < 2.5);
+        assert!(angle(r3.orientation(k as f64 / 10.0), q0) < 2.5);
     }
     assert!(QuaternionDmp::fit(&t, &vec![0.0; 4 * n]).is_err());
 }

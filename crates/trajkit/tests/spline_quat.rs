@@ -252,3 +252,65 @@ fn sharply_turning_keyframes_are_refused_with_a_typed_error() {
         .collect();
     assert!(SO3Spline::interpolate_uniform(0.0, 1.0, &keys).is_ok());
 }
+
+#[test]
+fn quaternion_derivatives_match_differences_along_a_spline() {
+    // q̇ = ½ ω ∗ q and q̈ = ½ (ω̇ ∗ q + ω ∗ q̇) with the spline's own ω, ω̇ against central
+    // differences of its quaternion components; products and log/exp against their
+    // definitions.
+    let mut r = SplitMix64::new(33);
+    let keys: Vec<Quat> = (0..6).map(|_| random_quat(&mut r)).collect();
+    let mut keys_near = vec![keys[0]];
+    for i in 1..6 {
+        let step = [0.6 * keys[i].x, -0.5 * keys[i].y, 0.7 * keys[i].z];
+        keys_near.push(keys_near[i - 1].mul(Quat::exp(step)));
+    }
+    let sp = SO3Spline::interpolate_uniform(0.0, 0.5, &keys_near).unwrap();
+    let h = 1e-5;
+    for k in 1..50 {
+        let t = 2.5 * k as f64 / 50.0;
+        let (q, w, dw) = sp.eval_all(t);
+        let (qm, qp) = (sp.eval(t - h).to_array(), sp.eval(t + h).to_array());
+        let q0 = q.to_array();
+        let d1 = q.derivative(w);
+        let d2 = q.second_derivative(w, dw);
+        for c in 0..4 {
+            let fd1 = (qp[c] - qm[c]) / (2.0 * h);
+            let fd2 = (qp[c] - 2.0 * q0[c] + qm[c]) / (h * h);
+            assert!(
+                (d1[c] - fd1).abs() < 1e-8,
+                "t={t} q̇[{c}]: {} vs {fd1}",
+                d1[c]
+            );
+            assert!(
+                (d2[c] - fd2).abs() < 2e-4,
+                "t={t} q̈[{c}]: {} vs {fd2}",
+                d2[c]
+            );
+        }
+        // q̇ is tangent to the unit sphere: q · q̇ = 0.
+        let dot: f64 = (0..4).map(|c| q0[c] * d1[c]).sum();
+        assert!(dot.abs() < 1e-14, "{dot}");
+    }
+    // A constant rate about a fixed axis: q(t) = exp(ωt) q₀, so q̇(0) = ½ ω ∗ q₀ exactly and
+    // q̈(0) = −¼ ‖ω‖² q₀.
+    let q0 = random_quat(&mut r);
+    let w = [0.3, -1.1, 0.4];
+    let d2 = q0.second_derivative(w, [0.0; 3]);
+    let w2 = 0.3 * 0.3 + 1.1 * 1.1 + 0.4 * 0.4;
+    for (c, v) in q0.to_array().iter().enumerate() {
+        assert!((d2[c] + 0.25 * w2 * v).abs() < 1e-15);
+    }
+    let step = Quat::exp([0.3e-7, -1.1e-7, 0.4e-7]).mul(q0).to_array();
+    let d1 = q0.derivative(w);
+    for c in 0..4 {
+        assert!((d1[c] - (step[c] - q0.to_array()[c]) / 1e-7).abs() < 1e-6);
+    }
+    // exp of a rotation vector about z is (cos θ/2, 0, 0, sin θ/2); log inverts it; the
+    // product composes angles about one axis.
+    let a = Quat::exp([0.0, 0.0, 0.8]);
+    assert!((a.w - 0.4f64.cos()).abs() < 1e-16 && (a.z - 0.4f64.sin()).abs() < 1e-16);
+    assert!((a.log()[2] - 0.8).abs() < 1e-15);
+    let b = a.mul(Quat::exp([0.0, 0.0, 0.5]));
+    assert!((b.log()[2] - 1.3).abs() < 1e-15 && b.log()[0].abs() < 1e-16);
+}

@@ -11,7 +11,7 @@ use trajkit::rng::SplitMix64;
 use trajkit::spline::{CubicSpline, PchipSpline};
 use trajkit::topp::{
     Constraint, ConstraintRows, CubicPiece, Discretization, Gridpoints, JointAcceleration,
-    JointVelocity, LinearPath, Options, Toppra,
+    JointVelocity, LinearPath, Toppra, ToppraOptions,
 };
 use trajkit::{Limits, Order, Path, Trajectory};
 
@@ -237,7 +237,7 @@ fn continuous_suite(cases: u64, dt: f64) {
         let n = 3 + (case as usize % 5);
         let wp = random_waypoints(2000 + case, n, &lim);
         let ss: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
-        let solve = |path: &dyn Path, opts: Options| {
+        let solve = |path: &dyn Path, opts: ToppraOptions| {
             Toppra::with_limits(path, &lim)
                 .unwrap()
                 .options(opts)
@@ -258,9 +258,9 @@ fn continuous_suite(cases: u64, dt: f64) {
         );
         // A C¹ spline: σ″ jumps at the breakpoints (checked exactly there).
         let pchip = PchipSpline::new(&ss, &wp, 7).unwrap();
-        let opts = Options {
+        let opts = ToppraOptions {
             gridpoints: Gridpoints::Uniform(300),
-            ..Options::default()
+            ..ToppraOptions::default()
         };
         let traj = Toppra::with_limits(&pchip, &lim)
             .unwrap()
@@ -271,7 +271,7 @@ fn continuous_suite(cases: u64, dt: f64) {
         // Collocation: no rows at the interval's end, every interval verified exactly.
         let law = solve(
             &natural,
-            Options {
+            ToppraOptions {
                 discretization: Discretization::Collocation,
                 ..opts.clone()
             },
@@ -282,9 +282,9 @@ fn continuous_suite(cases: u64, dt: f64) {
         let given: Vec<f64> = (0..=250).map(|k| k as f64 / 250.0 + 0.0).collect();
         let law = solve(
             &natural,
-            Options {
+            ToppraOptions {
                 gridpoints: Gridpoints::Given(given),
-                ..Options::default()
+                ..ToppraOptions::default()
             },
         );
         let traj = trajkit::topp::Retimed::new(&natural, law).unwrap();

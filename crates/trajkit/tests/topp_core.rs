@@ -8,7 +8,7 @@ use trajkit::rng::SplitMix64;
 use trajkit::spline::CubicSpline;
 use trajkit::topp::{
     Discretization, EndEffectorSpeed, Gridpoints, InverseDynamics, Jacobian, JointAcceleration,
-    JointTorque, JointVelocity, LinearPath, Options, Toppra,
+    JointTorque, JointVelocity, LinearPath, Toppra, ToppraOptions,
 };
 use trajkit::{Limits, Order, Path, Trajectory};
 
@@ -16,10 +16,10 @@ fn line(d: f64) -> LinearPath {
     LinearPath::new(&[0.0, d], 1).unwrap()
 }
 
-fn opts(n: usize) -> Options {
-    Options {
+fn opts(n: usize) -> ToppraOptions {
+    ToppraOptions {
         gridpoints: Gridpoints::Uniform(n),
-        ..Options::default()
+        ..ToppraOptions::default()
     }
 }
 
@@ -128,7 +128,7 @@ fn duration_converges_with_the_grid() {
     for n in [100, 1000, 10000] {
         let prof = Toppra::with_limits(&path, &lim)
             .unwrap()
-            .options(Options {
+            .options(ToppraOptions {
                 refine: false,
                 ..opts(n)
             })
@@ -150,7 +150,7 @@ fn collocation_is_selectable() {
     let t = |disc| {
         Toppra::with_limits(&path, &lim)
             .unwrap()
-            .options(Options {
+            .options(ToppraOptions {
                 discretization: disc,
                 refine: false,
                 ..opts(300)
@@ -319,7 +319,7 @@ fn coulomb_friction_costs_time() {
                     .unwrap(),
             )
             .unwrap()
-            .options(Options {
+            .options(ToppraOptions {
                 refine: false,
                 ..opts(200)
             })
@@ -435,7 +435,7 @@ fn without_refinement_the_excess_between_gridpoints_shrinks_with_n() {
     let excess = |n: usize| {
         let traj = Toppra::with_limits(&path, &lim)
             .unwrap()
-            .options(Options {
+            .options(ToppraOptions {
                 refine: false,
                 ..opts(n)
             })

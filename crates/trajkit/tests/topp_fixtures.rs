@@ -4,7 +4,7 @@
 mod topp_common;
 
 use topp_common::*;
-use trajkit::topp::{Gridpoints, JointAcceleration, JointVelocity, Options, Toppra};
+use trajkit::topp::{Gridpoints, JointAcceleration, JointVelocity, Toppra, ToppraOptions};
 use trajkit::Trajectory;
 
 fn problem(
@@ -19,12 +19,12 @@ fn problem(
             &floats(&p["amin"]),
             &floats(&p["amax"]),
         )?)?
-        .options(Options {
+        .options(ToppraOptions {
             gridpoints: Gridpoints::Given(floats(&p["gridpoints"])),
             start_velocity: p["sd_start"].as_f64().unwrap(),
             end_velocity: p["sd_end"].as_f64().unwrap(),
             refine,
-            ..Options::default()
+            ..ToppraOptions::default()
         })
         .solve()
 }

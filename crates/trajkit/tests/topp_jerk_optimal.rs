@@ -12,11 +12,11 @@ use serde_json::Value;
 use trajkit::dynamics::SerialChain;
 use trajkit::rng::SplitMix64;
 use trajkit::spline::CubicSpline;
-use trajkit::topp::constraint::InverseDynamics;
 use trajkit::topp::jerk::{limit_jerk, JerkOptions as FilterOptions};
 use trajkit::topp::jerk_optimal::{plan_sequence, JerkOptimal, JerkOptions};
 use trajkit::topp::messy::{stop_indices, TorqueModel};
-use trajkit::topp::{Gridpoints, LinearPath, Options, Toppra};
+use trajkit::topp::InverseDynamics;
+use trajkit::topp::{Gridpoints, LinearPath, Toppra, ToppraOptions};
 use trajkit::{Limits, Order, Path, Trajectory};
 
 fn opts(steps: usize) -> JerkOptions {
@@ -108,10 +108,10 @@ fn random_path(seed: u64, count: usize) -> CubicSpline {
 fn raw_and_filter<P: Path + Clone>(path: &P, limits: &Limits) -> (f64, f64) {
     let raw = Toppra::with_limits(path.clone(), limits)
         .unwrap()
-        .options(Options {
+        .options(ToppraOptions {
             gridpoints: Gridpoints::Uniform(1000),
             refine: false,
-            ..Options::default()
+            ..ToppraOptions::default()
         })
         .solve()
         .unwrap();

@@ -6,8 +6,8 @@ use std::time::Instant;
 use topp_common::worst_for;
 use trajkit::topp::messy::{plan_waypoints, PathKind, PlanOptions};
 use trajkit::topp::{
-    Gridpoints, InverseDynamics, JointAcceleration, JointTorque, JointVelocity, LinearPath,
-    Options, Toppra,
+    Gridpoints, InverseDynamics, JointAcceleration, JointTorque, JointVelocity, LinearPath, Toppra,
+    ToppraOptions,
 };
 use trajkit::{Error, Limits, Order, Trajectory};
 
@@ -33,9 +33,9 @@ fn duplicates_and_exact_reversal_give_rest_to_rest_pieces() {
     ];
     let lim = limits3();
     let opts = PlanOptions {
-        toppra: Options {
+        toppra: ToppraOptions {
             gridpoints: Gridpoints::Uniform(200),
-            ..Options::default()
+            ..ToppraOptions::default()
         },
         ..PlanOptions::default()
     };
@@ -62,9 +62,9 @@ fn polyline_stops_at_every_corner_only() {
     let lim = limits3();
     let opts = PlanOptions {
         kind: PathKind::Linear,
-        toppra: Options {
+        toppra: ToppraOptions {
             gridpoints: Gridpoints::Uniform(100),
-            ..Options::default()
+            ..ToppraOptions::default()
         },
         ..PlanOptions::default()
     };
@@ -250,9 +250,9 @@ fn messy_suite(cases: u64) {
         }
         let flat: Vec<f64> = w.concat();
         let opts = PlanOptions {
-            toppra: Options {
+            toppra: ToppraOptions {
                 gridpoints: Gridpoints::Uniform(60),
-                ..Options::default()
+                ..ToppraOptions::default()
             },
             ..PlanOptions::default()
         };

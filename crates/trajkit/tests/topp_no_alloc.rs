@@ -6,7 +6,7 @@ use alloc_counter::{allocations, exercise};
 
 use trajkit::spline::CubicSpline;
 use trajkit::topp::messy::{plan_waypoints, PlanOptions};
-use trajkit::topp::{Gridpoints, Options, QuinticLaw, Retimed, Scaled, Toppra};
+use trajkit::topp::{Gridpoints, QuinticLaw, Retimed, Scaled, Toppra, ToppraOptions};
 use trajkit::{Limits, Trajectory};
 
 #[test]
@@ -23,10 +23,10 @@ fn topp_outputs_evaluate_without_allocating() {
         .collect();
     let ss: Vec<f64> = (0..5).map(|i| i as f64 / 4.0).collect();
     let path = CubicSpline::natural(&ss, &wp, 7).unwrap();
-    let opts = Options {
+    let opts = ToppraOptions {
         gridpoints: Gridpoints::Uniform(100),
         refine: false,
-        ..Options::default()
+        ..ToppraOptions::default()
     };
     let traj = Toppra::with_limits(&path, &lim)
         .unwrap()

@@ -5,8 +5,8 @@ mod topp_common;
 use topp_common::ARM;
 
 use trajkit::dynamics::SerialChain;
-use trajkit::topp::constraint::InverseDynamics;
 use trajkit::topp::messy::{plan_waypoints, PlanOptions, TorqueModel};
+use trajkit::topp::InverseDynamics;
 use trajkit::{Limits, Order, Trajectory};
 
 fn limits() -> Limits {

@@ -65,7 +65,7 @@ fn batch(path: &Path, out: &Path, profiles: bool) -> CliResult<u8> {
                     error_record(k + 1, &e)
                 }
                 Ok(tr) => {
-                    let c = trajkit::otg::check::check(&p.input, &tr);
+                    let c = trajkit::otg::check(&p.input, &tr);
                     let e = c.final_error;
                     let mut r = json!({
                         "line": k + 1,

@@ -22,44 +22,46 @@ pub mod presets;
 pub use partial::{match_names, FillBy, Given, Needs, PartialLimits};
 
 use crate::error::{Error, Result};
-use serde::{Deserialize, Serialize};
 
 /// Limits of one joint. Units are the joint's (rad or m) per second, per second², per second³.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct JointLimits {
     /// Joint name (from a URDF or a preset); may be empty.
-    #[serde(default)]
+    #[cfg_attr(feature = "serde", serde(default))]
     pub name: String,
     /// Lowest position; `-inf` when unbounded.
-    #[serde(default = "neg_inf")]
+    #[cfg_attr(feature = "serde", serde(default = "neg_inf"))]
     pub position_min: f64,
     /// Highest position; `+inf` when unbounded.
-    #[serde(default = "pos_inf")]
+    #[cfg_attr(feature = "serde", serde(default = "pos_inf"))]
     pub position_max: f64,
     /// Largest velocity (> 0); `inf` when unlimited.
-    #[serde(default = "pos_inf")]
+    #[cfg_attr(feature = "serde", serde(default = "pos_inf"))]
     pub velocity: f64,
     /// Largest acceleration (> 0); `inf` when unlimited.
-    #[serde(default = "pos_inf")]
+    #[cfg_attr(feature = "serde", serde(default = "pos_inf"))]
     pub acceleration: f64,
     /// Largest jerk (> 0); `inf` when unlimited.
-    #[serde(default = "pos_inf")]
+    #[cfg_attr(feature = "serde", serde(default = "pos_inf"))]
     pub jerk: f64,
     /// Most negative velocity allowed (< 0); `None` means `-velocity`.
-    #[serde(default)]
+    #[cfg_attr(feature = "serde", serde(default))]
     pub min_velocity: Option<f64>,
     /// Most negative acceleration allowed (< 0); `None` means `-acceleration`.
-    #[serde(default)]
+    #[cfg_attr(feature = "serde", serde(default))]
     pub min_acceleration: Option<f64>,
     /// Largest joint torque or force (> 0), when known (URDF `effort`); informational here,
     /// used by torque-constrained time parameterization.
-    #[serde(default)]
+    #[cfg_attr(feature = "serde", serde(default))]
     pub effort: Option<f64>,
 }
 
+#[cfg(feature = "serde")]
 fn neg_inf() -> f64 {
     f64::NEG_INFINITY
 }
+#[cfg(feature = "serde")]
 fn pos_inf() -> f64 {
     f64::INFINITY
 }
@@ -224,7 +226,8 @@ pub(crate) fn per_joint<T: Copy>(values: &[T], dof: usize, what: &str) -> Result
 /// assert_eq!(panda.joint(0).velocity, 2.175);
 /// # Ok::<(), trajkit::Error>(())
 /// ```
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Limits {
     joints: Vec<JointLimits>,
 }

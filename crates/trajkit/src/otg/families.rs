@@ -7,7 +7,7 @@
 //! `tools/otg_coefficients.py` (A + w·B, and P = A² − W·B² with the square root eliminated;
 //! degree ≤ 4 for every step-1 family, ≤ 6 for two velocity changes in opposite directions
 //! with a prescribed duration). [`Resid::roots`] solves P on the family's parameter window with
-//! [`super::roots::poly_roots`] and [`Resid::w_at`] recovers w with its sign.
+//! [`crate::roots::poly_roots`] and [`Resid::w_at`] recovers w with its sign.
 //!
 //! Precision: a root is a root of P to a few ulp of its parameter; every candidate profile
 //! built from it is still checked against the target and the limits, and the bracketing
@@ -16,7 +16,7 @@
 use super::families_gen::{two_nn, two_nn_t, two_np, two_np_t, two_pn, two_pn_t, two_pp, two_pp_t};
 use super::problem::Dof1;
 use super::profile::{Profile, State1};
-use super::roots::{poly_roots, MAX_POLY};
+use crate::roots::{poly_roots, MAX_POLY};
 
 /// A family's position residual r(s) = A(s) + w·B(s) with w² = W(s), and P(s) = A² − W·B²
 /// (P = A when the family has no w).
@@ -43,8 +43,8 @@ impl Resid {
     pub fn w_at(&self, s: f64) -> f64 {
         let ww = self.w[0] + s * (self.w[1] + s * self.w[2]);
         let m = ww.max(0.0).sqrt();
-        let a = super::roots::horner_d(&self.a[..self.na], s).0;
-        let b = super::roots::horner_d(&self.b[..self.nb], s).0;
+        let a = crate::roots::horner_d(&self.a[..self.na], s).0;
+        let b = crate::roots::horner_d(&self.b[..self.nb], s).0;
         if (a + m * b).abs() <= (a - m * b).abs() {
             m
         } else {
@@ -65,9 +65,10 @@ type TwoTimed = fn(f64, f64, f64, f64, f64, f64, f64, f64, f64, f64, f64) -> Res
 /// four plateau variants the position residual is a polynomial in one parameter; every root
 /// that gives non-negative durations becomes a profile handed to `take`, which returns true to
 /// stop. `vlo`/`vhi` bound v_c (velocity limits or caps). The variants go from the cheapest
-/// polynomial (both plateaus, quadratic) to the dearest (no plateau, sextic); a variant whose
-/// plateau duration is clearly negative over its whole window, or whose velocity continuity
-/// cannot hold there, is skipped.
+/// polynomial (both plateaus, quadratic) to the dearest (no plateau, sextic): with a
+/// prescribed duration the first valid profile ends the search, and the plateau variants are
+/// the common ones at moderate limits. A variant whose plateau duration is clearly negative
+/// over its whole window, or whose velocity continuity cannot hold there, is skipped.
 pub(crate) fn two_changes(
     q: &Dof1,
     d1: f64,
@@ -77,46 +78,122 @@ pub(crate) fn two_changes(
     vhi: f64,
     take: &mut impl FnMut(&Profile) -> bool,
 ) -> bool {
-    let (a0, af, v0, vf, j) = (q.a0, q.af, q.v0, q.vf, q.jmax);
-    let d = q.pf - q.p0;
     let al1 = if d1 > 0.0 { q.amax } else { q.amin };
     let al2 = if d2 > 0.0 { q.amax } else { q.amin };
-    if !(al1.is_finite() && al2.is_finite() && j.is_finite()) {
+    if !(al1.is_finite() && al2.is_finite() && q.jmax.is_finite()) {
         return false;
     }
-    let tol = 1e-12 * (q.amax - q.amin);
-    // Peak windows: α between the start acceleration (or 0) and the limit, β likewise.
-    let win = |dk: f64, a: f64, lim: f64| {
-        if dk > 0.0 {
-            (a.max(0.0) - tol, lim + tol)
-        } else {
-            (lim - tol, a.min(0.0) + tol)
-        }
+    let tc = TwoChanges {
+        q,
+        d1,
+        d2,
+        al1,
+        al2,
+        t,
+        vlo,
+        vhi,
+        tol: 1e-12 * (q.amax - q.amin),
     };
-    let (alo, ahi) = win(d1, a0, al1);
-    let (blo, bhi) = win(d2, af, al2);
-    let vc_of_alpha = |x: f64| v0 + d1 * (2.0 * x * x - a0 * a0) / (2.0 * j);
-    let vc_of_beta = |x: f64| vf - d2 * (2.0 * x * x - af * af) / (2.0 * j);
-    let tau1_of = |vc: f64| (vc - v0 - d1 * (2.0 * al1 * al1 - a0 * a0) / (2.0 * j)) / al1;
-    let tau2_of = |vc: f64| (vf - vc - d2 * (2.0 * al2 * al2 - af * af) / (2.0 * j)) / al2;
-    // Builds and offers the profile for (α, τ₁, β, τ₂); false when a duration is negative.
-    // (One buffer, emptied for each candidate.)
     let mut buf: Option<Profile> = None;
-    let mut offer = |alpha: f64, tau1: f64, beta: f64, tau2: f64, vc: f64| -> bool {
+    let mut roots = [0.0; MAX_POLY];
+    tc.both_plateaus(&mut buf, &mut roots, take)
+        || tc.plateau_first(&mut buf, &mut roots, take)
+        || tc.plateau_second(&mut buf, &mut roots, take)
+        || tc.no_plateau(&mut buf, &mut roots, take)
+}
+
+/// The data of one [`two_changes`] call.
+struct TwoChanges<'q> {
+    q: &'q Dof1,
+    d1: f64,
+    d2: f64,
+    /// The acceleration limit of each change's direction.
+    al1: f64,
+    al2: f64,
+    t: Option<f64>,
+    vlo: f64,
+    vhi: f64,
+    tol: f64,
+}
+
+impl TwoChanges<'_> {
+    /// Peak window of a change: between the boundary acceleration (or 0) and the limit.
+    fn window(&self, dk: f64, a: f64, lim: f64) -> (f64, f64) {
+        if dk > 0.0 {
+            (a.max(0.0) - self.tol, lim + self.tol)
+        } else {
+            (lim - self.tol, a.min(0.0) + self.tol)
+        }
+    }
+
+    fn vc_of_alpha(&self, x: f64) -> f64 {
+        let q = self.q;
+        q.v0 + self.d1 * (2.0 * x * x - q.a0 * q.a0) / (2.0 * q.jmax)
+    }
+
+    fn vc_of_beta(&self, x: f64) -> f64 {
+        let q = self.q;
+        q.vf - self.d2 * (2.0 * x * x - q.af * q.af) / (2.0 * q.jmax)
+    }
+
+    fn tau1_of(&self, vc: f64) -> f64 {
+        let (q, al1) = (self.q, self.al1);
+        (vc - q.v0 - self.d1 * (2.0 * al1 * al1 - q.a0 * q.a0) / (2.0 * q.jmax)) / al1
+    }
+
+    fn tau2_of(&self, vc: f64) -> f64 {
+        let (q, al2) = (self.q, self.al2);
+        (q.vf - vc - self.d2 * (2.0 * al2 * al2 - q.af * q.af) / (2.0 * q.jmax)) / al2
+    }
+
+    /// The residual's coefficients of a variant (with or without a prescribed duration).
+    fn pick(&self, f: TwoFree, g: TwoTimed) -> Resid {
+        let q = self.q;
+        let (a, b, c, e, h, k) = (q.a0, q.af, q.v0, q.vf, q.pf - q.p0, q.jmax);
+        let (l, m, n, o) = (self.d1, self.d2, self.al1, self.al2);
+        match self.t {
+            Some(t) => g(a, b, c, e, h, k, l, m, n, o, t),
+            None => f(a, b, c, e, h, k, l, m, n, o),
+        }
+    }
+
+    /// Whether a plateau duration `f` is clearly negative over the whole window `[lo, hi]`
+    /// (far beyond the tolerance of [`TwoChanges::offer`]). The durations are linear in v_c,
+    /// and v_c is a parabola in α or β with its vertex at 0: the largest value is at an end of
+    /// the window or at 0.
+    fn hopeless(&self, f: &dyn Fn(f64) -> f64, lo: f64, hi: f64) -> bool {
+        let q = self.q;
+        let size = self.t.unwrap_or(0.0)
+            + (self.vlo.abs() + self.vhi.abs() + q.v0.abs() + q.vf.abs())
+                / self.al1.abs().min(self.al2.abs())
+            + (q.a0.abs() + q.af.abs() + self.al1.abs() + self.al2.abs()) / q.jmax;
+        let neg = |x: f64| f(x) < -1e-6 * size;
+        neg(lo) && neg(hi) && (!(lo < 0.0 && hi > 0.0) || neg(0.0))
+    }
+
+    /// Builds the profile for (α, τ₁, β, τ₂) in `buf` and hands it to `take`; false when a
+    /// duration is negative (or `take` declines).
+    fn offer(
+        &self,
+        buf: &mut Option<Profile>,
+        take: &mut impl FnMut(&Profile) -> bool,
+        (alpha, tau1, beta, tau2, vc): (f64, f64, f64, f64, f64),
+    ) -> bool {
+        let (q, d1, d2, j) = (self.q, self.d1, self.d2, self.q.jmax);
         let segs = [
-            ((alpha - a0) * d1 / j, d1 * j),
+            ((alpha - q.a0) * d1 / j, d1 * j),
             (tau1, 0.0),
             (alpha * d1 / j, -d1 * j),
             (beta * d2 / j, d2 * j),
             (tau2, 0.0),
-            ((beta - af) * d2 / j, -d2 * j),
+            ((beta - q.af) * d2 / j, -d2 * j),
         ];
-        let scale = 1e-12 * (segs.iter().map(|s| s.0.abs()).sum::<f64>() + t.unwrap_or(0.0));
+        let scale = 1e-12 * (segs.iter().map(|s| s.0.abs()).sum::<f64>() + self.t.unwrap_or(0.0));
         if segs.iter().any(|s| s.0.is_nan() || s.0 < -scale) {
             return false;
         }
         let busy: f64 = segs.iter().map(|s| s.0.max(0.0)).sum();
-        let tau = match t {
+        let tau = match self.t {
             Some(t) => {
                 let tau = t - busy;
                 if tau < -scale {
@@ -129,8 +206,8 @@ pub(crate) fn two_changes(
         let pr = buf.get_or_insert_with(Profile::default);
         pr.reset(State1 {
             p: q.p0,
-            v: v0,
-            a: a0,
+            v: q.v0,
+            a: q.a0,
         });
         for s in &segs[..3] {
             pr.push(s.0.max(0.0), s.1);
@@ -141,99 +218,106 @@ pub(crate) fn two_changes(
             pr.push(s.0.max(0.0), s.1);
         }
         take(pr)
-    };
-    let mut roots = [0.0; MAX_POLY];
-    let args = (a0, af, v0, vf, d, j, d1, d2, al1, al2);
-    let pick = |f: TwoFree, g: TwoTimed| {
-        let (a, b, c, e, h, k, l, m, n, o) = args;
-        match t {
-            Some(t) => g(a, b, c, e, h, k, l, m, n, o, t),
-            None => f(a, b, c, e, h, k, l, m, n, o),
-        }
-    };
-    // Cheapest polynomial first (both plateaus: quadratic; one plateau: quartic; none:
-    // sextic): with a prescribed duration the first valid profile ends the search, and the
-    // plateau variants are the common ones at moderate limits.
-    // A plateau variant whose plateau duration is clearly negative over its whole parameter
-    // window (far beyond the tolerance of `offer`) is skipped. The durations are linear in
-    // v_c, and v_c is a parabola in α or β with its vertex at 0: the largest value is at an
-    // end of the window or at 0.
-    let size = t.unwrap_or(0.0)
-        + (vlo.abs() + vhi.abs() + v0.abs() + vf.abs()) / al1.abs().min(al2.abs())
-        + (a0.abs() + af.abs() + al1.abs() + al2.abs()) / j;
-    let hopeless = |f: &dyn Fn(f64) -> f64, lo: f64, hi: f64| {
-        let neg = |x: f64| f(x) < -1e-6 * size;
-        neg(lo) && neg(hi) && (!(lo < 0.0 && hi > 0.0) || neg(0.0))
-    };
-    // Both plateaus: s = v_c.
-    let n = if hopeless(&tau1_of, vlo, vhi) || hopeless(&tau2_of, vlo, vhi) {
-        0
-    } else {
-        pick(two_pp, two_pp_t).roots(vlo, vhi, &mut roots)
-    };
-    for &vc in &roots[..n] {
-        if offer(al1, tau1_of(vc), al2, tau2_of(vc), vc) {
-            return true;
-        }
     }
-    // Plateau in change 1: s = β.
-    let n = if hopeless(&|x| tau1_of(vc_of_beta(x)), blo, bhi) {
-        0
-    } else {
-        pick(two_pn, two_pn_t).roots(blo, bhi, &mut roots)
-    };
-    for &x in &roots[..n] {
-        let vc = vc_of_beta(x);
-        if offer(al1, tau1_of(vc), x, 0.0, vc) {
-            return true;
+
+    /// Both plateaus: s = v_c (a quadratic).
+    fn both_plateaus(
+        &self,
+        buf: &mut Option<Profile>,
+        roots: &mut [f64; MAX_POLY],
+        take: &mut impl FnMut(&Profile) -> bool,
+    ) -> bool {
+        let (vlo, vhi) = (self.vlo, self.vhi);
+        if self.hopeless(&|v| self.tau1_of(v), vlo, vhi)
+            || self.hopeless(&|v| self.tau2_of(v), vlo, vhi)
+        {
+            return false;
         }
+        let n = self.pick(two_pp, two_pp_t).roots(vlo, vhi, roots);
+        roots[..n].iter().any(|&vc| {
+            let durations = (self.al1, self.tau1_of(vc), self.al2, self.tau2_of(vc), vc);
+            self.offer(buf, take, durations)
+        })
     }
-    // Plateau in change 2: s = α.
-    let n = if hopeless(&|x| tau2_of(vc_of_alpha(x)), alo, ahi) {
-        0
-    } else {
-        pick(two_np, two_np_t).roots(alo, ahi, &mut roots)
-    };
-    for &x in &roots[..n] {
-        let vc = vc_of_alpha(x);
-        if offer(x, 0.0, al2, tau2_of(vc), vc) {
-            return true;
+
+    /// Plateau in change 1: s = β (a quartic).
+    fn plateau_first(
+        &self,
+        buf: &mut Option<Profile>,
+        roots: &mut [f64; MAX_POLY],
+        take: &mut impl FnMut(&Profile) -> bool,
+    ) -> bool {
+        let (blo, bhi) = self.window(self.d2, self.q.af, self.al2);
+        if self.hopeless(&|x| self.tau1_of(self.vc_of_beta(x)), blo, bhi) {
+            return false;
         }
+        let n = self.pick(two_pn, two_pn_t).roots(blo, bhi, roots);
+        roots[..n].iter().any(|&x| {
+            let vc = self.vc_of_beta(x);
+            self.offer(buf, take, (self.al1, self.tau1_of(vc), x, 0.0, vc))
+        })
     }
-    // No plateau: s = α, β = ±√W. Both changes meet at v_c: d₁α² + d₂β² = K. When K lies
-    // clearly outside the range that α's and β's windows allow, the variant (a sextic) is
-    // skipped.
-    let squares = |lo: f64, hi: f64, dk: f64| {
-        let (a, b) = (lo * lo, hi * hi);
-        let mn = if lo <= 0.0 && hi >= 0.0 {
-            0.0
-        } else {
-            a.min(b)
+
+    /// Plateau in change 2: s = α (a quartic).
+    fn plateau_second(
+        &self,
+        buf: &mut Option<Profile>,
+        roots: &mut [f64; MAX_POLY],
+        take: &mut impl FnMut(&Profile) -> bool,
+    ) -> bool {
+        let (alo, ahi) = self.window(self.d1, self.q.a0, self.al1);
+        if self.hopeless(&|x| self.tau2_of(self.vc_of_alpha(x)), alo, ahi) {
+            return false;
+        }
+        let n = self.pick(two_np, two_np_t).roots(alo, ahi, roots);
+        roots[..n].iter().any(|&x| {
+            let vc = self.vc_of_alpha(x);
+            self.offer(buf, take, (x, 0.0, self.al2, self.tau2_of(vc), vc))
+        })
+    }
+
+    /// No plateau: s = α, β = ±√W (a sextic). Both changes meet at v_c: d₁α² + d₂β² = K.
+    /// When K lies clearly outside the range that α's and β's windows allow, the variant is
+    /// skipped.
+    fn no_plateau(
+        &self,
+        buf: &mut Option<Profile>,
+        roots: &mut [f64; MAX_POLY],
+        take: &mut impl FnMut(&Profile) -> bool,
+    ) -> bool {
+        let q = self.q;
+        let (alo, ahi) = self.window(self.d1, q.a0, self.al1);
+        let (blo, bhi) = self.window(self.d2, q.af, self.al2);
+        let squares = |lo: f64, hi: f64, dk: f64| {
+            let (a, b) = (lo * lo, hi * hi);
+            let mn = if lo <= 0.0 && hi >= 0.0 {
+                0.0
+            } else {
+                a.min(b)
+            };
+            let mx = a.max(b);
+            if dk > 0.0 {
+                (mn, mx)
+            } else {
+                (-mx, -mn)
+            }
         };
-        let mx = a.max(b);
-        if dk > 0.0 {
-            (mn, mx)
-        } else {
-            (-mx, -mn)
+        let (sa, ta) = squares(alo, ahi, self.d1);
+        let (sb, tb) = squares(blo, bhi, self.d2);
+        let kk = q.jmax * (q.vf - q.v0) + (self.d1 * q.a0 * q.a0 + self.d2 * q.af * q.af) / 2.0;
+        let margin = 1e-9 * (kk.abs() + ta.abs().max(sa.abs()) + tb.abs().max(sb.abs()));
+        // (Written so that NaN does not skip.)
+        if kk < sa + sb - margin || kk > ta + tb + margin {
+            return false;
         }
-    };
-    let (sa, ta) = squares(alo, ahi, d1);
-    let (sb, tb) = squares(blo, bhi, d2);
-    let kk = j * (vf - v0) + (d1 * a0 * a0 + d2 * af * af) / 2.0;
-    let margin = 1e-9 * (kk.abs() + ta.abs().max(sa.abs()) + tb.abs().max(sb.abs()));
-    // (Written so that NaN does not skip.)
-    if kk < sa + sb - margin || kk > ta + tb + margin {
-        return false;
+        let r = self.pick(two_nn, two_nn_t);
+        let n = r.roots(alo, ahi, roots);
+        roots[..n].iter().any(|&x| {
+            let beta = r.w_at(x);
+            beta * self.d2 >= -self.tol
+                && self.offer(buf, take, (x, 0.0, beta, 0.0, self.vc_of_alpha(x)))
+        })
     }
-    let r = pick(two_nn, two_nn_t);
-    let n = r.roots(alo, ahi, &mut roots);
-    for &x in &roots[..n] {
-        let beta = r.w_at(x);
-        if beta * d2 >= -tol && offer(x, 0.0, beta, 0.0, vc_of_alpha(x)) {
-            return true;
-        }
-    }
-    false
 }
 
 #[cfg(test)]
@@ -264,7 +348,7 @@ mod tests {
             &[((s - a0) / j, j), ((s - w) / j, -j), ((af - w) / j, j)],
         );
         assert!((v - vf).abs() < 1e-14 && (a - af).abs() < 1e-14);
-        let h = |c: &[f64]| crate::otg::roots::horner_d(c, s).0;
+        let h = |c: &[f64]| crate::roots::horner_d(c, s).0;
         let res = h(&r.a[..r.na]) + w * h(&r.b[..r.nb]);
         assert!((res - (p - d)).abs() < 1e-13, "{res} vs {}", p - d);
         let pp = h(&r.p[..r.np]);
@@ -291,7 +375,7 @@ mod tests {
         all[3] = (tau, 0.0);
         let (p, v, a) = displacement(v0, a0, &all);
         assert!((v - vf).abs() < 1e-12 && (a - af).abs() < 1e-12);
-        let res = crate::otg::roots::horner_d(&r.a[..r.na], vc).0;
+        let res = crate::roots::horner_d(&r.a[..r.na], vc).0;
         assert!((res - (p - d)).abs() < 1e-11, "{res} vs {}", p - d);
     }
 }

@@ -67,7 +67,7 @@ pub enum DurationDiscretization {
 /// the input).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 #[non_exhaustive]
-pub struct Options {
+pub struct OtgOptions {
     /// Time coordination.
     pub synchronization: Synchronization,
     /// Position or velocity target.
@@ -125,7 +125,7 @@ pub struct InputParameter<const DOF: usize> {
     /// `per_dof_control_interface`).
     pub per_dof_control_interface: Option<[ControlInterface; DOF]>,
     /// Options.
-    pub options: Options,
+    pub options: OtgOptions,
 }
 
 impl<const DOF: usize> Default for InputParameter<DOF> {
@@ -153,7 +153,7 @@ impl<const DOF: usize> InputParameter<DOF> {
             enabled: [true; DOF],
             per_dof_synchronization: None,
             per_dof_control_interface: None,
-            options: Options::default(),
+            options: OtgOptions::default(),
         }
     }
 
@@ -213,7 +213,7 @@ pub struct DynInputParameter {
     /// Per-DOF control interface (see [`InputParameter::per_dof_control_interface`]).
     pub per_dof_control_interface: Option<Vec<ControlInterface>>,
     /// Options.
-    pub options: Options,
+    pub options: OtgOptions,
 }
 
 impl DynInputParameter {
@@ -236,7 +236,7 @@ impl DynInputParameter {
             enabled: vec![true; dof],
             per_dof_synchronization: None,
             per_dof_control_interface: None,
-            options: Options::default(),
+            options: OtgOptions::default(),
         }
     }
 
@@ -352,7 +352,7 @@ pub(crate) struct InputView<'a> {
     pub enabled: &'a [bool],
     pub sync: Option<&'a [Synchronization]>,
     pub iface: Option<&'a [ControlInterface]>,
-    pub options: Options,
+    pub options: OtgOptions,
     /// Whether all vectors have the same length by construction (arrays of one compile-time
     /// size): then [`InputView::check_shape`] need not compare them.
     pub same_lengths: bool,

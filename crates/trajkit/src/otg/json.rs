@@ -162,11 +162,11 @@ impl Reader<'_> {
                 ));
             }
             if !KNOWN_FIELDS.contains(&key.as_str()) {
-                let near = closest(key);
-                return Err((self.fail)(
-                    key,
-                    format!("is not a known field (did you mean '{near}'?)"),
-                ));
+                let hint = match crate::error::closest_name(key, &KNOWN_FIELDS) {
+                    Some(near) => format!(" (did you mean '{near}'?)"),
+                    None => " (see the field table of `trajkit otg --help`)".into(),
+                };
+                return Err((self.fail)(key, format!("is not a known field{hint}")));
             }
         }
         let n = match self.obj.get("current_position") {
@@ -399,36 +399,6 @@ fn iface_word(w: &str) -> Option<ControlInterface> {
     })
 }
 
-/// The known field closest to `key` (edit distance).
-fn closest(key: &str) -> &'static str {
-    let mut best = (usize::MAX, KNOWN_FIELDS[0]);
-    for k in KNOWN_FIELDS {
-        let d = edit_distance(key, k);
-        if d < best.0 {
-            best = (d, k);
-        }
-    }
-    best.1
-}
-
-/// Levenshtein distance over bytes.
-fn edit_distance(a: &str, b: &str) -> usize {
-    let (a, b) = (a.as_bytes(), b.as_bytes());
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for i in 1..=a.len() {
-        let mut diag = row[0];
-        row[0] = i;
-        for j in 1..=b.len() {
-            let up = row[j];
-            row[j] = (up + 1)
-                .min(row[j - 1] + 1)
-                .min(diag + usize::from(a[i - 1] != b[j - 1]));
-            diag = up;
-        }
-    }
-    row[b.len()]
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -507,8 +477,8 @@ mod tests {
 
     #[test]
     fn closest_field_by_edit_distance() {
-        assert_eq!(closest("current_positon"), "current_position");
-        assert_eq!(closest("synchronisation"), "synchronization");
-        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert!(message(r#""current_positon":[0,0]"#).contains("did you mean 'current_position'"));
+        assert!(message(r#""synchronisation":"time""#).contains("did you mean 'synchronization'"));
+        assert!(message(r#""colour":"red""#).contains("is not a known field (see the field table"));
     }
 }

@@ -35,56 +35,66 @@
 //! the target state (exactly) gives a trajectory of duration 0.
 //!
 //! # Files (one per step)
-//! [`json`] the Ruckig-style JSON reader · [`input`] validation · [`profile`] the segment list
-//! of one DOF · [`velocity_change`] fastest velocity changes · [`brake`] the brake
-//! pre-profile · [`zero`] zero limits · [`step1`] time-optimal profile families · [`step2`]
-//! profiles of a given duration · [`sync`] the common duration · `phase` Ruckig's phase
-//! synchronization and the straight-line mode · [`roots`] polynomial and scalar root
-//! finding · [`result`], [`trajectory`], [`generator`].
+//! `json.rs` the Ruckig-style JSON reader (public: [`json`]) · `input.rs` the input types
+//! and their validation · `problem.rs` one DOF's problem · `profile.rs` the segment list of
+//! one DOF · `velocity_change.rs` fastest velocity changes · `brake.rs` the brake
+//! pre-profile · `zero.rs` zero limits · `step1/` time-optimal profile families (the
+//! collector, verification, the rest-to-rest closed form, the closed-form and fallback
+//! families) · `families.rs` + `families_gen.rs` the families' position polynomials ·
+//! `step2.rs` profiles of a given duration · `sync.rs` the common duration · `phase.rs`
+//! Ruckig's phase synchronization and the straight-line mode · `result.rs`, `trajectory.rs`,
+//! `generator.rs`, `check.rs`. Polynomial and scalar roots come from [`crate::roots`].
+//!
+//! # Public API
+//! Everything a user needs is re-exported here; the files are private.
 
-pub mod brake;
-pub mod check;
+mod brake;
+mod check;
 mod families;
 mod families_gen;
-pub mod generator;
-pub mod input;
+mod generator;
+mod input;
+#[cfg(feature = "serde")]
 pub mod json;
 mod phase;
-pub mod problem;
-pub mod profile;
-pub mod result;
-pub mod roots;
-pub mod step1;
-#[cfg(test)]
-mod step1_modes_tests;
-pub mod step2;
-pub mod sync;
-pub mod trajectory;
-pub mod velocity_change;
-pub mod zero;
+mod problem;
+mod profile;
+mod result;
+mod step1;
+mod step2;
+mod sync;
+mod trajectory;
+mod velocity_change;
+mod zero;
 
+pub use check::{check, SolutionCheck};
 pub use generator::{calculate_dyn, Otg, OutputParameter};
 pub use input::{
-    ControlInterface, DurationDiscretization, DynInputParameter, InputParameter, Options,
+    ControlInterface, DurationDiscretization, DynInputParameter, InputParameter, OtgOptions,
     Synchronization,
 };
-pub use problem::{Dof1, ProfileOrder};
-pub use profile::{Profile, State1};
-pub use result::{OtgError, OtgResult};
+pub use profile::{Profile, State1, MAX_SEGMENTS};
+pub use result::{FieldName, OtgError, OtgResult};
+pub use step1::{TOL_LIMIT, TOL_POSITION, TOL_VELOCITY};
 pub use trajectory::{DofTrajectory, DynTrajectory, FixedTrajectory, OtgTrajectory};
 
+#[cfg(test)]
+use problem::Dof1;
+
+#[cfg(test)]
 /// Time-optimal profile of one degree of freedom (brake pre-profile included), or `None` when
 /// the solver finds no valid profile.
-pub fn time_optimal(dof: &Dof1) -> Option<Profile> {
+pub(crate) fn time_optimal(dof: &Dof1) -> Option<Profile> {
     let mut pr = Profile::default();
     step1::step1_fastest_into(dof, &mut pr, &mut None)?;
     Some(pr)
 }
 
+#[cfg(test)]
 /// A profile of one degree of freedom lasting exactly `duration` seconds (brake pre-profile
 /// included), or `None` when `duration` is shorter than the minimum, inside a blocked interval,
 /// or not found by the step-2 families.
-pub fn with_duration(dof: &Dof1, duration: f64) -> Option<Profile> {
+pub(crate) fn with_duration(dof: &Dof1, duration: f64) -> Option<Profile> {
     let mut pr = Profile::new(State1 {
         p: dof.p0,
         v: dof.v0,

@@ -207,114 +207,12 @@ pub(crate) fn straight_line(
     if view.options.control_interface != ControlInterface::Position {
         return Ok(false);
     }
-    // Reference direction: the displacement.
-    let mut norm = 0.0f64;
-    for i in 0..n {
-        if view.enabled[i] {
-            let d = &scratch[i].dof;
-            norm = norm.max((d.pf - d.p0).abs());
-        }
-    }
-    if norm == 0.0 {
-        return Ok(false);
-    }
-    // Collinearity: each boundary vector must be λ·u with one λ for all DOFs.
-    let mut lam = [0.0f64; 4];
-    let mut lam_set = [false; 4];
-    let mut lead = usize::MAX;
-    for i in 0..n {
-        if !view.enabled[i] {
-            continue;
-        }
-        let d = &scratch[i].dof;
-        let u = d.pf - d.p0;
-        if lead == usize::MAX || u.abs() > (scratch[lead].dof.pf - scratch[lead].dof.p0).abs() {
-            lead = i;
-        }
-        for (k, x) in [d.v0, d.a0, d.vf, d.af].into_iter().enumerate() {
-            if u == 0.0 {
-                if x != 0.0 {
-                    return Ok(false);
-                }
-                continue;
-            }
-            let l = x / u;
-            if lam_set[k] {
-                if (l - lam[k]).abs() > 1e-12 * (l.abs().max(lam[k].abs())).max(1e-300) {
-                    return Ok(false);
-                }
-            } else {
-                lam[k] = l;
-                lam_set[k] = true;
-            }
-        }
-    }
-    // The path-coordinate problem s: 0 → 1 (displacement u_i = pf_i − p0_i).
-    let (mut vmax, mut vmin, mut amax, mut amin, mut jmax) = (
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::INFINITY,
-    );
-    for i in 0..n {
-        let d = &scratch[i].dof;
-        let u = d.pf - d.p0;
-        if !view.enabled[i] || u == 0.0 {
-            continue;
-        }
-        let (vp, vn, ap, an) = if u > 0.0 {
-            (d.vmax / u, d.vmin / u, d.amax / u, d.amin / u)
-        } else {
-            (d.vmin / u, d.vmax / u, d.amin / u, d.amax / u)
-        };
-        vmax = vmax.min(vp);
-        vmin = vmin.max(vn);
-        amax = amax.min(ap);
-        amin = amin.max(an);
-        jmax = jmax.min(d.jmax / u.abs());
-    }
-    let s = Dof1 {
-        p0: 0.0,
-        v0: lam[0],
-        a0: lam[1],
-        pf: 1.0,
-        vf: lam[2],
-        af: lam[3],
-        vmax,
-        vmin,
-        amax,
-        amin,
-        jmax,
-        interface: ControlInterface::Position,
-    };
-    let Some(s1) = step1(&s) else {
+    let Some(lam) = line_scales(view, scratch) else {
         return Ok(false);
     };
-    let discrete = view.options.duration_discretization == DurationDiscretization::Discrete;
-    let mut t = s1.t_min().max(view.options.minimum_duration.unwrap_or(0.0));
-    if discrete {
-        t = (t / delta_time - 1e-9).ceil().max(0.0) * delta_time;
-    }
-    let mut sc = Scratch {
-        dof: s,
-        cand: s1.cand,
-        ncand: s1.ncand,
-        t_min: s1.t_min(),
-        sync: true,
-        solved: Solved::Full,
-        step1_in_out: false,
-        step1_kept: true,
-        brake: s1.profile.brake_duration() != 0.0,
-        bound: f64::INFINITY,
+    let Some(sp) = path_profile(view, delta_time, &path_problem(view, scratch, lam)) else {
+        return Ok(false);
     };
-    let mut sp = Profile::default();
-    if !replan_into(&mut sc, &mut Some(s1.profile), t, &mut sp) {
-        return Ok(false);
-    }
-    if sp.brake_duration() > 0.0 {
-        return Ok(false);
-    }
     // Scale onto every DOF and verify each.
     for i in 0..n {
         if !view.enabled[i] {
@@ -332,4 +230,110 @@ pub(crate) fn straight_line(
         }
     }
     Ok(true)
+}
+
+/// The boundary vectors of the enabled DOFs as multiples λ of their displacement u (v₀, a₀,
+/// v_f, a_f = λ·u, one λ each for all DOFs), or `None` when they are not collinear or nothing
+/// moves.
+fn line_scales(view: &InputView<'_>, scratch: &[Scratch]) -> Option<[f64; 4]> {
+    let n = view.dof();
+    let moves = (0..n).any(|i| view.enabled[i] && scratch[i].dof.pf != scratch[i].dof.p0);
+    if !moves {
+        return None;
+    }
+    let mut lam = [0.0f64; 4];
+    let mut lam_set = [false; 4];
+    for i in (0..n).filter(|&i| view.enabled[i]) {
+        let d = &scratch[i].dof;
+        let u = d.pf - d.p0;
+        for (k, x) in [d.v0, d.a0, d.vf, d.af].into_iter().enumerate() {
+            if u == 0.0 {
+                if x != 0.0 {
+                    return None;
+                }
+                continue;
+            }
+            let l = x / u;
+            if lam_set[k] {
+                if (l - lam[k]).abs() > 1e-12 * (l.abs().max(lam[k].abs())).max(1e-300) {
+                    return None;
+                }
+            } else {
+                lam[k] = l;
+                lam_set[k] = true;
+            }
+        }
+    }
+    Some(lam)
+}
+
+/// The path-coordinate problem s: 0 → 1 (displacement u_i = pf_i − p0_i of each DOF): the
+/// tightest of the joints' limits divided by their displacements, boundary states `lam`.
+fn path_problem(view: &InputView<'_>, scratch: &[Scratch], lam: [f64; 4]) -> Dof1 {
+    let (mut vmax, mut vmin, mut amax, mut amin, mut jmax) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+    );
+    for i in 0..view.dof() {
+        let d = &scratch[i].dof;
+        let u = d.pf - d.p0;
+        if !view.enabled[i] || u == 0.0 {
+            continue;
+        }
+        let (vp, vn, ap, an) = if u > 0.0 {
+            (d.vmax / u, d.vmin / u, d.amax / u, d.amin / u)
+        } else {
+            (d.vmin / u, d.vmax / u, d.amin / u, d.amax / u)
+        };
+        vmax = vmax.min(vp);
+        vmin = vmin.max(vn);
+        amax = amax.min(ap);
+        amin = amin.max(an);
+        jmax = jmax.min(d.jmax / u.abs());
+    }
+    Dof1 {
+        p0: 0.0,
+        v0: lam[0],
+        a0: lam[1],
+        pf: 1.0,
+        vf: lam[2],
+        af: lam[3],
+        vmax,
+        vmin,
+        amax,
+        amin,
+        jmax,
+        interface: ControlInterface::Position,
+    }
+}
+
+/// The path coordinate's profile: time-optimal, or of the minimum or discretized duration
+/// the options ask for; `None` when there is none or it starts with a brake.
+fn path_profile(view: &InputView<'_>, delta_time: f64, s: &Dof1) -> Option<Profile> {
+    let s1 = step1(s)?;
+    let discrete = view.options.duration_discretization == DurationDiscretization::Discrete;
+    let mut t = s1.t_min().max(view.options.minimum_duration.unwrap_or(0.0));
+    if discrete {
+        t = (t / delta_time - 1e-9).ceil().max(0.0) * delta_time;
+    }
+    let mut sc = Scratch {
+        dof: *s,
+        cand: s1.cand,
+        ncand: s1.ncand,
+        t_min: s1.t_min(),
+        sync: true,
+        solved: Solved::Full,
+        step1_in_out: false,
+        step1_kept: true,
+        brake: s1.profile.brake_duration() != 0.0,
+        bound: f64::INFINITY,
+    };
+    let mut sp = Profile::default();
+    if !replan_into(&mut sc, &mut Some(s1.profile), t, &mut sp) || sp.brake_duration() > 0.0 {
+        return None;
+    }
+    Some(sp)
 }

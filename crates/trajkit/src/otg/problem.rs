@@ -9,7 +9,7 @@
 
 /// Which derivative the profile's piecewise-constant input is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ProfileOrder {
+pub(crate) enum ProfileOrder {
     /// Piecewise-constant velocity (velocity limit only).
     First,
     /// Piecewise-constant acceleration (trapezoidal velocity, infinite jerk).
@@ -30,7 +30,7 @@ pub enum ControlInterface {
 
 /// The problem for one degree of freedom.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Dof1 {
+pub(crate) struct Dof1 {
     /// Current position.
     pub p0: f64,
     /// Current velocity.
@@ -59,7 +59,7 @@ pub struct Dof1 {
 
 impl Dof1 {
     /// A rest-to-rest problem with symmetric limits.
-    pub fn rest_to_rest(p0: f64, pf: f64, vmax: f64, amax: f64, jmax: f64) -> Dof1 {
+    pub(crate) fn rest_to_rest(p0: f64, pf: f64, vmax: f64, amax: f64, jmax: f64) -> Dof1 {
         Dof1 {
             p0,
             v0: 0.0,
@@ -77,7 +77,7 @@ impl Dof1 {
     }
 
     /// The order of the profiles this problem gets.
-    pub fn order(&self) -> ProfileOrder {
+    pub(crate) fn order(&self) -> ProfileOrder {
         if self.amax.is_infinite() || self.amin.is_infinite() {
             ProfileOrder::First
         } else if self.jmax.is_infinite() {

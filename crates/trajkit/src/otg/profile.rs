@@ -78,12 +78,12 @@ impl Default for Profile {
 
 impl Profile {
     /// A profile of zero duration standing at `p`.
-    pub fn at_rest(p: f64) -> Profile {
+    pub(crate) fn at_rest(p: f64) -> Profile {
         Profile::new(State1 { p, v: 0.0, a: 0.0 })
     }
 
     /// An empty profile (duration 0) that starts, and stays, in `s`.
-    pub fn new(s: State1) -> Profile {
+    pub(crate) fn new(s: State1) -> Profile {
         let mut pr = Profile {
             n: 0,
             brake: 0,
@@ -115,7 +115,7 @@ impl Profile {
     /// Appends a segment of `duration` seconds with constant `jerk`, continuing from the current
     /// end state. Returns false (and changes nothing) when the profile is full or the duration
     /// is negative or not finite. Zero durations are skipped.
-    pub fn push(&mut self, duration: f64, jerk: f64) -> bool {
+    pub(crate) fn push(&mut self, duration: f64, jerk: f64) -> bool {
         let (v, a) = (self.v[self.n], self.a[self.n]);
         self.push_with(duration, v, a, jerk)
     }
@@ -123,7 +123,7 @@ impl Profile {
     /// Appends a segment that starts with velocity `v` and acceleration `a` (a jump when they
     /// differ from the current end state: second- and first-order profiles) and constant
     /// `jerk`.
-    pub fn push_with(&mut self, duration: f64, v: f64, a: f64, jerk: f64) -> bool {
+    pub(crate) fn push_with(&mut self, duration: f64, v: f64, a: f64, jerk: f64) -> bool {
         // (A range check compiles to two comparisons; NaN, negative and infinite durations
         // fail it.)
         if !(0.0..=f64::MAX).contains(&duration) || self.n >= MAX_SEGMENTS {
@@ -526,8 +526,8 @@ fn quad_roots(a: f64, b: f64, c: f64, lo: f64, hi: f64, out: &mut [f64; 2]) -> u
 
 /// Real roots of the cubic `c0 + c1 x + c2 x² + c3 x³` in `[lo, hi]`, increasing.
 fn cubic_roots_in(c: [f64; 4], lo: f64, hi: f64, out: &mut [f64; 3]) -> usize {
-    let mut buf = [0.0; crate::poly::roots::MAX_DEGREE];
-    let m = crate::poly::roots::roots_in(&c, lo, hi, &mut buf).min(3);
+    let mut buf = [0.0; crate::roots::MAX_DEGREE];
+    let m = crate::roots::roots_in(&c, lo, hi, &mut buf).min(3);
     out[..m].copy_from_slice(&buf[..m]);
     m
 }

@@ -18,11 +18,10 @@
 use super::families::two_changes;
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
-use super::roots::{find_roots, find_roots_coarse, MAX_ROOTS};
-use super::step1::{
-    for_each_piece, kink, push_change, velocity_cap, velocity_window, verify, RestShape,
-};
-use super::velocity_change::{fastest, VelChange};
+use super::step1::{velocity_cap, velocity_window, verify, RestShape};
+use super::velocity_change::{fastest, kink, push_change, VelChange};
+use crate::roots::for_each_piece;
+use crate::roots::{find_roots, find_roots_coarse, MAX_ROOTS};
 
 /// A verified profile for `dof` (whose start state is safe) lasting `t` seconds, if one of the
 /// step-2 families has one.
@@ -171,8 +170,8 @@ fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool, pr: &mut Pro
                 // (2/√j)·s³ − t·s² + D = 0 for s = √v_c on [0, min(t√j/4, a/√j)]; r = s/√j.
                 let sj = j.sqrt();
                 let hi = (t * sj / 4.0).min(a / sj);
-                let mut roots = [0.0; crate::poly::roots::MAX_DEGREE];
-                let n = crate::poly::roots::roots_in(&[d, 0.0, -t, 2.0 / sj], 0.0, hi, &mut roots);
+                let mut roots = [0.0; crate::roots::MAX_DEGREE];
+                let n = crate::roots::roots_in(&[d, 0.0, -t, 2.0 / sj], 0.0, hi, &mut roots);
                 if n == 0 {
                     return false;
                 }

@@ -37,7 +37,7 @@ use super::zero::{at_rest, coasts, has_zero_limit};
 /// the time-optimal profile is copied to before step 2 overwrites the output (see
 /// `Scratch::step1_in_out`). Kept apart from [`Scratch`] and created on first use, so that a
 /// calculation that never needs it neither initialises nor copies 700 bytes per DOF.
-pub type Spare = Option<Profile>;
+pub(crate) type Spare = Option<Profile>;
 
 /// How much of step 1 a degree of freedom has run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -54,7 +54,7 @@ pub(crate) enum Solved {
 /// Per-DOF scratch space of the calculation (kept by the caller so that a compile-time number
 /// of degrees of freedom needs no allocation).
 #[derive(Debug, Clone, Copy)]
-pub struct Scratch {
+pub(crate) struct Scratch {
     pub(crate) dof: Dof1,
     pub(crate) cand: [f64; MAX_CANDIDATES],
     pub(crate) ncand: usize,
@@ -303,6 +303,9 @@ fn zero_limits_error(e: OtgError, scratch: &[Scratch], view: &InputView<'_>) -> 
     }
 }
 
+/// [`calculate`] without the error translation: validation, the single-DOF shortcut, step 1
+/// where it is needed ([`Planner::prepare`]), the straight-line mode, the DOFs that are not
+/// synchronized, and the search for the common duration ([`Planner::synchronize`]).
 fn calculate_profiles(
     view: &InputView<'_>,
     delta_time: f64,
@@ -337,137 +340,205 @@ fn calculate_profiles(
         }
         return Ok(sc.t_min);
     }
-    let discrete = opts.duration_discretization == DurationDiscretization::Discrete;
-    let disc = |t: f64| {
-        if discrete {
-            (t / delta_time - 1e-9).ceil().max(0.0) * delta_time
+    let mut p = Planner {
+        view,
+        delta_time,
+        out,
+        scratch,
+        spare,
+        n,
+        discrete: opts.duration_discretization == DurationDiscretization::Discrete,
+        min_dur: opts.minimum_duration.unwrap_or(0.0),
+    };
+    let (t_lead, lazy) = p.prepare()?;
+    if opts.synchronization == Synchronization::StraightLine
+        && straight_line(view, delta_time, p.out, p.scratch)?
+    {
+        return Ok(duration_of(&p.out[..n]));
+    }
+    p.finish_unsynchronized()?;
+    if p.scratch[..n].iter().any(|s| s.sync) {
+        return p.synchronize(t_lead, lazy);
+    }
+    Ok(duration_of(&p.out[..n]))
+}
+
+/// The state of one synchronized calculation.
+struct Planner<'a, 'v> {
+    view: &'a InputView<'v>,
+    delta_time: f64,
+    out: &'a mut [DofTrajectory],
+    scratch: &'a mut [Scratch],
+    spare: &'a mut [Spare],
+    n: usize,
+    discrete: bool,
+    min_dur: f64,
+}
+
+impl Planner<'_, '_> {
+    /// `t` rounded up to a multiple of the control period when durations are discrete.
+    #[inline]
+    fn disc(&self, t: f64) -> f64 {
+        if self.discrete {
+            (t / self.delta_time - 1e-9).ceil().max(0.0) * self.delta_time
         } else {
             t
         }
-    };
-    let min_dur = opts.minimum_duration.unwrap_or(0.0);
+    }
 
-    // Step 1 for every enabled DOF that is not synchronized or starts with a brake; the other
-    // synchronized DOFs wait until synchronization needs them.
-    let mut t_lead = 0.0f64;
-    let mut lazy = 0usize;
-    for i in 0..n {
-        let d = scratch[i].dof;
-        let start = State1 {
-            p: d.p0,
-            v: d.v0,
-            a: d.a0,
-        };
-        if !view.enabled[i] {
-            out[i] = DofTrajectory {
-                profile: Profile::new(start),
-                min_duration: 0.0,
-                problem: None,
+    /// Step 1 for every enabled DOF that is not synchronized or starts with a brake; the
+    /// other synchronized DOFs wait until synchronization needs them. Returns the largest
+    /// minimum duration found and how many DOFs wait.
+    #[inline]
+    fn prepare(&mut self) -> Result<(f64, usize), OtgError> {
+        let mut t_lead = 0.0f64;
+        let mut lazy = 0usize;
+        for i in 0..self.n {
+            let d = self.scratch[i].dof;
+            if !self.view.enabled[i] {
+                self.out[i] = DofTrajectory {
+                    profile: Profile::new(State1 {
+                        p: d.p0,
+                        v: d.v0,
+                        a: d.a0,
+                    }),
+                    min_duration: 0.0,
+                    problem: None,
+                };
+                self.scratch[i].sync = false;
+                self.scratch[i].solved = Solved::Full;
+                continue;
+            }
+            let sc = &mut self.scratch[i];
+            let mode = self.view.sync_of(i);
+            sc.sync = match mode {
+                Synchronization::Time | Synchronization::Phase | Synchronization::StraightLine => {
+                    true
+                }
+                Synchronization::TimeIfNecessary => d.vf != 0.0 || d.af != 0.0,
+                Synchronization::None => false,
             };
-            scratch[i].sync = false;
-            scratch[i].solved = Solved::Full;
-            continue;
+            // Phase synchronization needs every minimum duration (the limiting DOF).
+            if sc.sync && mode != Synchronization::Phase && starts_safe(&d) && !has_zero_limit(&d) {
+                sc.solved = Solved::No;
+                sc.ncand = 0;
+                sc.step1_in_out = false;
+                sc.step1_kept = false;
+                sc.brake = false;
+                lazy += 1;
+                continue;
+            }
+            if !solve(sc, &mut self.spare[i], &mut self.out[i].profile, false) {
+                return Err(OtgError::CalculationFailed { dof: i });
+            }
+            t_lead = t_lead.max(sc.t_min);
         }
-        let sc = &mut scratch[i];
-        let mode = view.sync_of(i);
-        sc.sync = match mode {
-            Synchronization::Time | Synchronization::Phase | Synchronization::StraightLine => true,
-            Synchronization::TimeIfNecessary => d.vf != 0.0 || d.af != 0.0,
-            Synchronization::None => false,
+        Ok((t_lead, lazy))
+    }
+
+    /// Degrees of freedom that are not synchronized still honour the minimum duration and
+    /// the discretization on their own.
+    #[inline]
+    fn finish_unsynchronized(&mut self) -> Result<(), OtgError> {
+        for i in 0..self.n {
+            if self.view.enabled[i] && !self.scratch[i].sync {
+                let t = self.disc(self.scratch[i].t_min.max(self.min_dur));
+                if t > self.scratch[i].t_min
+                    && !replan_into(
+                        &mut self.scratch[i],
+                        &mut self.spare[i],
+                        t,
+                        &mut self.out[i].profile,
+                    )
+                {
+                    return Err(OtgError::SynchronizationFailed {
+                        dof: Some(i),
+                        duration: t,
+                    });
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The common duration of the synchronized DOFs and their profiles at it.
+    #[inline]
+    fn synchronize(&mut self, t_lead: f64, lazy: usize) -> Result<f64, OtgError> {
+        let t_lead = if lazy > 0 {
+            self.lead_step1(t_lead, lazy == 1)?
+        } else {
+            t_lead
         };
-        // Phase synchronization needs every minimum duration (the limiting DOF).
-        if sc.sync && mode != Synchronization::Phase && starts_safe(&d) && !has_zero_limit(&d) {
-            sc.solved = Solved::No;
-            sc.ncand = 0;
-            sc.step1_in_out = false;
-            sc.step1_kept = false;
-            sc.brake = false;
-            lazy += 1;
-            continue;
-        }
-        if !solve(sc, &mut spare[i], &mut out[i].profile, false) {
-            return Err(OtgError::CalculationFailed { dof: i });
-        }
-        t_lead = t_lead.max(sc.t_min);
-    }
-
-    if opts.synchronization == Synchronization::StraightLine
-        && straight_line(view, delta_time, out, scratch)?
-    {
-        return Ok(duration_of(&out[..n]));
-    }
-
-    // Degrees of freedom that are not synchronized still honour the minimum duration and the
-    // discretization on their own.
-    for i in 0..n {
-        if view.enabled[i] && !scratch[i].sync {
-            let t = disc(scratch[i].t_min.max(min_dur));
-            if t > scratch[i].t_min
-                && !replan_into(&mut scratch[i], &mut spare[i], t, &mut out[i].profile)
-            {
-                return Err(OtgError::SynchronizationFailed {
-                    dof: Some(i),
-                    duration: t,
-                });
-            }
-        }
-    }
-
-    if scratch[..n].iter().any(|s| s.sync) {
-        // The waiting DOF most likely to set the duration (the largest bound) runs step 1
-        // now, unless a solved DOF already needs at least as long.
-        if lazy > 0 {
-            let mut lead = usize::MAX;
-            let mut b_max = f64::NEG_INFINITY;
-            for i in 0..n {
-                let sc = &mut scratch[i];
-                if sc.sync && sc.solved == Solved::No {
-                    sc.bound = if lazy == 1 {
-                        f64::INFINITY
-                    } else {
-                        duration_bound(&sc.dof)
-                    };
-                    if lead == usize::MAX || sc.bound > b_max {
-                        (lead, b_max) = (i, sc.bound);
-                    }
-                }
-            }
-            if b_max > t_lead {
-                if !solve(
-                    &mut scratch[lead],
-                    &mut spare[lead],
-                    &mut out[lead].profile,
-                    false,
-                ) {
-                    return Err(OtgError::CalculationFailed { dof: lead });
-                }
-                t_lead = t_lead.max(scratch[lead].t_min);
-            }
-        }
-        let mut t = disc(t_lead.max(min_dur));
+        let t = self.disc(t_lead.max(self.min_dur));
         // A synchronized DOF that coasts (zero limits) and moves reaches its target at one
         // duration only: that is the duration, or there is none.
-        if let Some(i) = (0..n).find(|&i| {
-            let sc = &scratch[i];
+        if let Some(i) = (0..self.n).find(|&i| {
+            let sc = &self.scratch[i];
             sc.sync && coasts(&sc.dof) && !at_rest(&sc.dof)
         }) {
-            let tc = scratch[i].t_min;
-            if t > tc * (1.0 + 1e-12) || disc(tc) != tc {
-                return Err(OtgError::ZeroLimits { dof: i });
-            }
-            return match try_all(scratch, spare, out, n, tc) {
-                Ok(()) => finish(view, delta_time, out, scratch, tc),
-                Err(Miss::At(k) | Miss::Below(k) | Miss::Unsolvable(k)) => {
-                    Err(OtgError::ZeroLimits {
-                        dof: if has_zero_limit(&scratch[k].dof) {
-                            k
-                        } else {
-                            i
-                        },
-                    })
-                }
-            };
+            return self.coasting(i, t);
         }
+        self.search(t)
+    }
+
+    /// The waiting DOF most likely to set the duration (the largest bound) runs step 1 now,
+    /// unless a solved DOF already needs at least as long (`t_lead`). Returns the largest
+    /// minimum duration known then.
+    #[inline]
+    fn lead_step1(&mut self, t_lead: f64, only_one: bool) -> Result<f64, OtgError> {
+        let mut lead = usize::MAX;
+        let mut b_max = f64::NEG_INFINITY;
+        for i in 0..self.n {
+            let sc = &mut self.scratch[i];
+            if sc.sync && sc.solved == Solved::No {
+                sc.bound = if only_one {
+                    f64::INFINITY
+                } else {
+                    duration_bound(&sc.dof)
+                };
+                if lead == usize::MAX || sc.bound > b_max {
+                    (lead, b_max) = (i, sc.bound);
+                }
+            }
+        }
+        if b_max <= t_lead {
+            return Ok(t_lead);
+        }
+        if !solve(
+            &mut self.scratch[lead],
+            &mut self.spare[lead],
+            &mut self.out[lead].profile,
+            false,
+        ) {
+            return Err(OtgError::CalculationFailed { dof: lead });
+        }
+        Ok(t_lead.max(self.scratch[lead].t_min))
+    }
+
+    /// Synchronization to the one duration of coasting DOF `i` (at least `t` is needed).
+    #[cold]
+    fn coasting(&mut self, i: usize, t: f64) -> Result<f64, OtgError> {
+        let tc = self.scratch[i].t_min;
+        if t > tc * (1.0 + 1e-12) || self.disc(tc) != tc {
+            return Err(OtgError::ZeroLimits { dof: i });
+        }
+        match try_all(self.scratch, self.spare, self.out, self.n, tc) {
+            Ok(()) => finish(self.view, self.delta_time, self.out, self.scratch, tc),
+            Err(Miss::At(k) | Miss::Below(k) | Miss::Unsolvable(k)) => Err(OtgError::ZeroLimits {
+                dof: if has_zero_limit(&self.scratch[k].dof) {
+                    k
+                } else {
+                    i
+                },
+            }),
+        }
+    }
+
+    /// Tries durations from `t` on: the candidate durations in increasing order, then
+    /// geometrically growing ones, until step 2 succeeds for every synchronized DOF; after a
+    /// failure the feasible range's edge is bisected ([`Planner::bisect`]).
+    #[inline]
+    fn search(&mut self, mut t: f64) -> Result<f64, OtgError> {
         let mut failed = 0;
         let mut grow = 0;
         let mut last_fail: Option<f64> = None;
@@ -475,85 +546,100 @@ fn calculate_profiles(
             if !(t.is_finite() && t < 1e300) {
                 break;
             }
-            match try_all(scratch, spare, out, n, t) {
+            match try_all(self.scratch, self.spare, self.out, self.n, t) {
                 Ok(()) => {
-                    // A missing candidate could hide a shorter feasible duration between the
-                    // last failure and t: bisect for the edge of the feasible range.
-                    if let Some(mut lo) = last_fail {
-                        let mut hi = t;
-                        let mut last_ok = true;
-                        for _ in 0..64 {
-                            let mid = disc(0.5 * (lo + hi));
-                            if mid <= lo || mid >= hi {
-                                break;
-                            }
-                            last_ok = try_all(scratch, spare, out, n, mid).is_ok();
-                            if last_ok {
-                                hi = mid;
-                            } else {
-                                lo = mid;
-                            }
-                        }
-                        // A failed attempt leaves `out` partly written: redo the last success.
-                        if !last_ok && try_all(scratch, spare, out, n, hi).is_err() {
-                            return Err(OtgError::SynchronizationFailed {
-                                dof: Some(failed),
-                                duration: hi,
-                            });
-                        }
-                        t = hi;
+                    if let Some(lo) = last_fail {
+                        t = self.bisect(lo, t, failed)?;
                     }
-                    return finish(view, delta_time, out, scratch, t);
+                    return finish(self.view, self.delta_time, self.out, self.scratch, t);
                 }
                 Err(Miss::Unsolvable(i)) => return Err(OtgError::CalculationFailed { dof: i }),
                 Err(Miss::Below(i)) => {
-                    // A DOF solved just now needs longer than t: no duration up to its minimum
-                    // is feasible.
+                    // A DOF solved just now needs longer than t: no duration up to its
+                    // minimum is feasible.
                     failed = i;
                     last_fail = None;
-                    t = disc(scratch[i].t_min.max(min_dur));
+                    t = self.disc(self.scratch[i].t_min.max(self.min_dur));
                     continue;
                 }
                 Err(Miss::At(i)) => {
                     failed = i;
                     last_fail = Some(t);
                     // t lies in a blocked interval of DOF i: its candidates bound it.
-                    if scratch[i].solved != Solved::Full
-                        && !solve(&mut scratch[i], &mut spare[i], &mut out[i].profile, true)
+                    if self.scratch[i].solved != Solved::Full
+                        && !solve(
+                            &mut self.scratch[i],
+                            &mut self.spare[i],
+                            &mut self.out[i].profile,
+                            true,
+                        )
                     {
                         return Err(OtgError::CalculationFailed { dof: i });
                     }
                 }
             }
-            // Next candidate duration above t.
-            let mut next = f64::INFINITY;
-            for s in scratch[..n].iter().filter(|s| s.sync) {
-                for &c in &s.cand[..s.ncand] {
-                    let c = disc(c);
-                    if c > t && c < next {
-                        next = c;
-                    }
-                }
-            }
-            if next.is_infinite() {
-                grow += 1;
-                next = disc(t * (1.0 + 1e-6 * 4f64.powi(grow.min(20))));
-                if next <= t {
-                    next = t + if discrete {
-                        delta_time
-                    } else {
-                        t.max(1e-9) * 1e-6
-                    };
-                }
-            }
-            t = next;
+            t = self.next_duration(t, &mut grow);
         }
-        return Err(OtgError::SynchronizationFailed {
+        Err(OtgError::SynchronizationFailed {
             dof: Some(failed),
             duration: t,
-        });
+        })
     }
-    Ok(duration_of(&out[..n]))
+
+    /// A missing candidate could hide a shorter feasible duration between the last failure
+    /// `lo` and the success `hi`: bisects for the edge of the feasible range and leaves the
+    /// profiles of the shortest success in `out`.
+    #[cold]
+    fn bisect(&mut self, mut lo: f64, mut hi: f64, failed: usize) -> Result<f64, OtgError> {
+        let mut last_ok = true;
+        for _ in 0..64 {
+            let mid = self.disc(0.5 * (lo + hi));
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            last_ok = try_all(self.scratch, self.spare, self.out, self.n, mid).is_ok();
+            if last_ok {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        // A failed attempt leaves `out` partly written: redo the last success.
+        if !last_ok && try_all(self.scratch, self.spare, self.out, self.n, hi).is_err() {
+            return Err(OtgError::SynchronizationFailed {
+                dof: Some(failed),
+                duration: hi,
+            });
+        }
+        Ok(hi)
+    }
+
+    /// The next candidate duration above `t`, or (when none is left) a geometrically growing
+    /// step above it.
+    #[inline]
+    fn next_duration(&self, t: f64, grow: &mut i32) -> f64 {
+        let mut next = f64::INFINITY;
+        for s in self.scratch[..self.n].iter().filter(|s| s.sync) {
+            for &c in &s.cand[..s.ncand] {
+                let c = self.disc(c);
+                if c > t && c < next {
+                    next = c;
+                }
+            }
+        }
+        if next.is_infinite() {
+            *grow += 1;
+            next = self.disc(t * (1.0 + 1e-6 * 4f64.powi((*grow).min(20))));
+            if next <= t {
+                next = t + if self.discrete {
+                    self.delta_time
+                } else {
+                    t.max(1e-9) * 1e-6
+                };
+            }
+        }
+        next
+    }
 }
 
 /// The synchronized profiles at duration `t` are in `out`: Ruckig's phase synchronization

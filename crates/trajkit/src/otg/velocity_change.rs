@@ -9,6 +9,7 @@
 //! Precision: durations are closed-form; negative round-off (≥ −1e−12 relative) is clamped to 0.
 
 use super::problem::ProfileOrder;
+use super::profile::Profile;
 
 /// A velocity change of at most three segments: durations and jerks (third order), or one
 /// constant-acceleration segment (second order, `accel` set).
@@ -142,6 +143,32 @@ fn build(va: f64, aa: f64, d: [f64; 3], jk: [f64; 3]) -> VelChange {
         accel: 0.0,
         t: d[0] + d[1] + d[2],
         dist: p,
+    }
+}
+
+/// Appends a velocity change to a profile.
+pub(crate) fn push_change(pr: &mut Profile, order: ProfileOrder, c: &VelChange, va: f64) {
+    match order {
+        ProfileOrder::Third => {
+            for k in 0..3 {
+                pr.push(c.d[k], c.j[k]);
+            }
+        }
+        ProfileOrder::Second => {
+            if c.t > 0.0 {
+                pr.push_with(c.t, va, c.accel, 0.0);
+            }
+        }
+        ProfileOrder::First => {}
+    }
+}
+
+/// The velocity where the fastest change from (v, a) to zero acceleration lands (`dir` = 1),
+/// or from which it reaches (v, a) (`dir` = −1).
+pub(crate) fn kink(order: ProfileOrder, v: f64, a: f64, j: f64, dir: f64) -> f64 {
+    match order {
+        ProfileOrder::Third => v + dir * a * a.abs() / (2.0 * j),
+        _ => v,
     }
 }
 

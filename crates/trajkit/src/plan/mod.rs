@@ -566,7 +566,7 @@ fn phase_plane(
 ) -> Result<Timed> {
     let mopts = messy::PlanOptions {
         kind: o.path,
-        toppra: crate::topp::Options {
+        toppra: crate::topp::ToppraOptions {
             gridpoints: o.gridpoints.clone(),
             ..Default::default()
         },

@@ -1,6 +1,7 @@
 //! The phase plane (s, ṡ) of a path-parameterized plan, for pictures: per rest-to-rest piece,
-//! the maximum velocity curve ([`crate::topp::mvc`]), the phase-plane solver's profile at (a
-//! subset of) its gridpoints, and the profile actually played after the jerk stage.
+//! the maximum velocity curve ([`crate::topp::max_velocity_curve`]), the phase-plane
+//! solver's profile at (a subset of) its gridpoints, and the profile actually played after the
+//! jerk stage.
 //!
 //! Asked for with [`super::PlanOptions::phase_plane`]; methods that do not parameterize a path
 //! (`poly`) have none. Start times and played path velocities are those of the final
@@ -9,8 +10,8 @@
 
 use crate::error::Result;
 use crate::topp::jerk::JerkLimited;
+use crate::topp::max_velocity_curve;
 use crate::topp::messy::Sequence;
-use crate::topp::mvc::max_velocity_curve;
 use crate::topp::{Parametrized, TimeLaw, Toppra};
 use crate::{Limits, Path};
 

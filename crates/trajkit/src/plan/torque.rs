@@ -2,8 +2,8 @@
 //! torque back within the effort limits.
 
 use crate::error::{Error, Result};
-use crate::topp::constraint::InverseDynamics;
 use crate::topp::messy::TorqueModel;
+use crate::topp::InverseDynamics;
 use crate::topp::Scaled;
 use crate::{Limits, Order, Trajectory};
 

@@ -24,8 +24,11 @@
 //!   stays within the limits (to 1e-12 relative).
 
 mod polynomial;
-pub mod roots;
 mod via;
+
+// The roots module moved to the crate root (`crate::roots`); this alias keeps the call sites
+// in `spline::bounded` and `topp::jerk_optimal::certify` compiling until they import it there.
+pub(crate) use crate::roots;
 
 pub use polynomial::Polynomial;
 pub use via::{ViaTiming, ViaTrajectory, ViaVelocities};

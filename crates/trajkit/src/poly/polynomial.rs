@@ -1,7 +1,7 @@
 //! One joint's polynomial over `[0, T]`, stored in normalized time τ = t/T.
 
-use super::roots::{horner, max_abs_in, MAX_DEGREE};
 use crate::error::{Error, Result};
+use crate::roots::{horner, max_abs_in, MAX_DEGREE};
 
 /// Factorial-ratio i!/(i−k)! for i ≥ k.
 #[inline]
@@ -230,7 +230,7 @@ impl Polynomial {
         let mut lo = horner(c, 0.0).min(horner(c, 1.0));
         let mut hi = horner(c, 0.0).max(horner(c, 1.0));
         let mut r = [0.0; MAX_DEGREE];
-        let m = super::roots::roots_in(&d[..n], 0.0, 1.0, &mut r);
+        let m = crate::roots::roots_in(&d[..n], 0.0, 1.0, &mut r);
         for &x in &r[..m] {
             let v = horner(c, x);
             lo = lo.min(v);

@@ -14,7 +14,8 @@
 
 use crate::error::{Error, Result};
 use crate::limits::Limits;
-use crate::primitives::dmp::{check_demo, Dmp, DmpConfig, DmpRollout, RolloutOptions};
+use crate::primitives::demo::check_demo;
+use crate::primitives::dmp::{Dmp, DmpConfig, DmpRollout, RolloutOptions};
 use crate::traj::{Order, Trajectory};
 
 /// A [`Dmp`] learned and integrated in joint-limit-respecting coordinates.

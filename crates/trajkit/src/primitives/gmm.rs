@@ -60,45 +60,53 @@ fn log_gauss_all(x: &[f64], mean: &[f64], chol: &Cholesky, dim: usize, scratch: 
     -0.5 * (m + chol.log_det() + dim as f64 * (2.0 * std::f64::consts::PI).ln())
 }
 
+/// Checks the data (a multiple of `dim` finite values, at least two samples per component)
+/// and the regularization; returns the sample count.
+fn check_data(data: &[f64], dim: usize, cfg: &GmmConfig) -> Result<usize> {
+    let k = cfg.components;
+    if dim == 0 || data.len() % dim != 0 {
+        return Err(Error::DimensionMismatch {
+            what: "GMM data entries (a multiple of the dimension)".into(),
+            expected: dim.max(1) * (data.len() / dim.max(1) + 1),
+            found: data.len(),
+        });
+    }
+    let rows = data.len() / dim;
+    if k == 0 || rows < 2 * k {
+        return Err(Error::TooFewWaypoints {
+            needed: 2 * k.max(1),
+            found: rows,
+        });
+    }
+    // Responsibilities: one per sample and component.
+    crate::size::check_memory(
+        "samples × GMM components",
+        rows as f64 * k as f64,
+        8.0,
+        "a responsibility",
+    )?;
+    if let Some(i) = data.iter().position(|v| !v.is_finite()) {
+        return Err(Error::InvalidValue {
+            field: format!("GMM data point {} entry {}", i / dim, i % dim),
+            value: data[i],
+            reason: "is not a finite number",
+        });
+    }
+    if !(cfg.reg.is_finite() && cfg.reg >= 0.0) {
+        return Err(Error::InvalidValue {
+            field: "GMM regularization".into(),
+            value: cfg.reg,
+            reason: "is not a non-negative finite number",
+        });
+    }
+    Ok(rows)
+}
+
 impl Gmm {
     /// Fits a mixture to `data` (row-major `rows × dim`, first column = time).
     pub fn fit(data: &[f64], dim: usize, cfg: &GmmConfig) -> Result<Gmm> {
         let k = cfg.components;
-        if dim == 0 || data.len() % dim != 0 {
-            return Err(Error::DimensionMismatch {
-                what: "GMM data entries (a multiple of the dimension)".into(),
-                expected: dim.max(1) * (data.len() / dim.max(1) + 1),
-                found: data.len(),
-            });
-        }
-        let rows = data.len() / dim;
-        if k == 0 || rows < 2 * k {
-            return Err(Error::TooFewWaypoints {
-                needed: 2 * k.max(1),
-                found: rows,
-            });
-        }
-        // Responsibilities: one per sample and component.
-        crate::size::check_memory(
-            "samples × GMM components",
-            rows as f64 * k as f64,
-            8.0,
-            "a responsibility",
-        )?;
-        if let Some(i) = data.iter().position(|v| !v.is_finite()) {
-            return Err(Error::InvalidValue {
-                field: format!("GMM data point {} entry {}", i / dim, i % dim),
-                value: data[i],
-                reason: "is not a finite number",
-            });
-        }
-        if !(cfg.reg.is_finite() && cfg.reg >= 0.0) {
-            return Err(Error::InvalidValue {
-                field: "GMM regularization".into(),
-                value: cfg.reg,
-                reason: "is not a non-negative finite number",
-            });
-        }
+        let rows = check_data(data, dim, cfg)?;
         // Initialization: equal slices in time.
         let mut order: Vec<usize> = (0..rows).collect();
         order.sort_by(|&a, &b| data[a * dim].total_cmp(&data[b * dim]));
@@ -116,38 +124,8 @@ impl Gmm {
             iterations: 0,
         };
         g.m_step(data, rows, &resp, cfg.reg);
-        let mut scratch = vec![0.0; dim];
-        let mut logp = vec![0.0; k];
         for it in 0..cfg.max_iter {
-            // E step.
-            let chols: Vec<Cholesky> = (0..k)
-                .map(|c| {
-                    Cholesky::factor_regularized(&g.covs[c * dim * dim..(c + 1) * dim * dim], dim)
-                })
-                .collect::<Result<_>>()?;
-            let mut ll = 0.0;
-            for r in 0..rows {
-                let x = &data[r * dim..(r + 1) * dim];
-                let mut mx = f64::NEG_INFINITY;
-                for c in 0..k {
-                    logp[c] = g.priors[c].max(1e-300).ln()
-                        + log_gauss_all(
-                            x,
-                            &g.means[c * dim..(c + 1) * dim],
-                            &chols[c],
-                            dim,
-                            &mut scratch,
-                        );
-                    mx = mx.max(logp[c]);
-                }
-                let s: f64 = logp.iter().map(|l| (l - mx).exp()).sum();
-                let lse = mx + s.ln();
-                ll += lse;
-                for c in 0..k {
-                    resp[r * k + c] = (logp[c] - lse).exp();
-                }
-            }
-            ll /= rows as f64;
+            let ll = g.e_step(data, rows, &mut resp)?;
             let improved = ll - g.log_likelihood;
             g.log_likelihood = ll;
             g.iterations = it + 1;
@@ -157,6 +135,42 @@ impl Gmm {
             }
         }
         Ok(g)
+    }
+
+    /// The responsibilities of every component for every sample into `resp` (log-sum-exp);
+    /// returns the mean log-likelihood.
+    fn e_step(&self, data: &[f64], rows: usize, resp: &mut [f64]) -> Result<f64> {
+        let (dim, k) = (self.dim, self.priors.len());
+        let mut scratch = vec![0.0; dim];
+        let mut logp = vec![0.0; k];
+        let chols: Vec<Cholesky> = (0..k)
+            .map(|c| {
+                Cholesky::factor_regularized(&self.covs[c * dim * dim..(c + 1) * dim * dim], dim)
+            })
+            .collect::<Result<_>>()?;
+        let mut ll = 0.0;
+        for r in 0..rows {
+            let x = &data[r * dim..(r + 1) * dim];
+            let mut mx = f64::NEG_INFINITY;
+            for c in 0..k {
+                logp[c] = self.priors[c].max(1e-300).ln()
+                    + log_gauss_all(
+                        x,
+                        &self.means[c * dim..(c + 1) * dim],
+                        &chols[c],
+                        dim,
+                        &mut scratch,
+                    );
+                mx = mx.max(logp[c]);
+            }
+            let s: f64 = logp.iter().map(|l| (l - mx).exp()).sum();
+            let lse = mx + s.ln();
+            ll += lse;
+            for c in 0..k {
+                resp[r * k + c] = (logp[c] - lse).exp();
+            }
+        }
+        Ok(ll / rows as f64)
     }
 
     fn m_step(&mut self, data: &[f64], rows: usize, resp: &[f64], reg: f64) {

@@ -170,7 +170,7 @@ impl KmpReference {
         let mut data = Vec::new();
         let mut dur = 0.0;
         for d in demos {
-            crate::primitives::dmp::check_demo(d.t, d.q, dof, 2)?;
+            crate::primitives::demo::check_demo(d.t, d.q, dof, 2)?;
             for (k, &t) in d.t.iter().enumerate() {
                 data.push(t - d.t[0]);
                 data.extend_from_slice(&d.q[k * dof..(k + 1) * dof]);
@@ -224,7 +224,7 @@ impl KmpReference {
             });
         }
         for q in qs {
-            crate::primitives::dmp::check_demo(t, q, dof, 2)?;
+            crate::primitives::demo::check_demo(t, q, dof, 2)?;
         }
         let (n, m) = (t.len(), qs.len() as f64);
         let mut r = KmpReference {
@@ -327,53 +327,61 @@ pub struct Kmp {
     jitter: f64,
 }
 
-impl Kmp {
-    /// Fits the KMP: the mean weights `α` (conjugate gradients) and the covariance's expansion
-    /// in time, by the low-rank inverses or a Cholesky factor of `K + λ_c Σ`, all cached (see
-    /// the module docs).
-    pub fn fit(reference: &KmpReference, cfg: &KmpConfig) -> Result<Kmp> {
-        reference.validate()?;
-        crate::error::positive(|| "kernel_h".into(), cfg.kernel_h)?;
-        crate::error::positive(|| "lambda".into(), cfg.lambda)?;
-        crate::error::positive(|| "lambda_c".into(), cfg.lambda_c)?;
-        if let Some(v) = cfg.via_tolerance {
-            crate::error::positive(|| "via_tolerance".into(), v)?;
-        }
+/// The two kernel systems of a fit, `K + λΣ` (mean) and `K + λ_c Σ` (covariance), and how
+/// they are solved: the low-rank inverses (module `kmp_lowrank`) whenever their bounds allow,
+/// else a Cholesky factor.
+struct Systems<'a> {
+    reference: &'a KmpReference,
+    cfg: &'a KmpConfig,
+    /// The time kernel matrix `K_t` (`N × N`).
+    kt: Vec<f64>,
+    /// Pivoted Cholesky of `K_t` when its numerical rank is low.
+    low_rank: Option<KernelFactor>,
+}
+
+impl Systems<'_> {
+    /// The Cholesky factor of `K + λ_c Σ` in joint-major order (unknown (point m, joint a) at
+    /// a·N + m, not point-major m·d + a): the kernel row of joint a is zero before a·N, so a
+    /// query's forward substitutions start there.
+    fn factor_cov(&self) -> Result<Cholesky> {
+        let (r, cfg) = (self.reference, self.cfg);
+        let nd = r.t.len() * r.dof;
+        Cholesky::factor_regularized(&system_matrix(r, cfg, cfg.lambda_c, true), nd)
+    }
+
+    /// The low-rank inverse of `K + lam Σ`, when the kernel has a low rank and the inverse's
+    /// bounds hold.
+    fn inverse(&self, lam: f64) -> Option<(&KernelFactor, LowRankInverse)> {
+        let r = self.reference;
+        self.low_rank
+            .as_ref()
+            .and_then(|f| LowRankInverse::new(f, &r.cov, r.dof, lam).map(|i| (f, i)))
+    }
+
+    /// The mean weights α of `(K + λΣ) α = μ` by conjugate gradients preconditioned with the
+    /// low-rank inverse (a handful of iterations), else with the factor of `K + λ_c Σ`
+    /// (spectrum in `[min(λ,λ_c)/max(λ,λ_c), 1]`: O(√(λ_c/λ)) iterations); a direct
+    /// factorization is the fallback. Also returns the covariance factor when it was built
+    /// on the way, and the largest regularization a factorization needed.
+    fn mean(&self) -> Result<(Vec<f64>, Option<Cholesky>, f64)> {
+        let (reference, cfg, kt) = (self.reference, self.cfg, &self.kt[..]);
         let (n, d) = (reference.t.len(), reference.dof);
-        check_unknowns(n, d)?;
         let nd = n * d;
-        // Unknown (point m, joint a) sits at m·d + a (point-major) or a·N + m (joint-major).
-        // Joint-major for the covariance system: the kernel row of joint a is zero before a·N,
-        // so a query's forward substitutions start there. Factored only when needed: the
-        // low-rank inverses (module `kmp_lowrank`) serve the fit whenever their bounds allow.
-        let factor_cov =
-            || Cholesky::factor_regularized(&system_matrix(reference, cfg, cfg.lambda_c, true), nd);
         let mut cov_chol: Option<Cholesky> = None;
-        let kt = kernel_matrix(&reference.t, cfg.kernel_h);
-        let low_rank = KernelFactor::new(&kt, n);
-        let inverse = |lam: f64| {
-            low_rank
-                .as_ref()
-                .and_then(|f| LowRankInverse::new(f, &reference.cov, d, lam).map(|i| (f, i)))
-        };
-        // Mean system (K + λΣ) α = μ by conjugate gradients preconditioned with the low-rank
-        // inverse (a handful of iterations), else with the factor of K + λ_c Σ (spectrum in
-        // [min(λ,λ_c)/max(λ,λ_c), 1]: O(√(λ_c/λ)) iterations). A direct factorization is the
-        // fallback.
-        let mut alpha = inverse(cfg.lambda).and_then(|(f, inv)| {
+        let mut alpha = self.inverse(cfg.lambda).and_then(|(f, inv)| {
             let mut xt = vec![0.0; nd];
             let mut zt = vec![0.0; nd];
             let mut w = vec![0.0; f.rank() * d];
-            pcg_mean(reference, cfg, &kt, &mut |x, z| {
+            pcg_mean(reference, cfg, kt, &mut |x, z| {
                 to_joint_major(x, n, d, &mut xt);
                 inv.apply(f, &xt, 1, &mut zt, &mut w);
                 from_joint_major(&zt, n, d, z);
             })
         });
         if alpha.is_none() {
-            let c = factor_cov()?;
+            let c = self.factor_cov()?;
             if c.jitter() == 0.0 {
-                alpha = pcg_mean(reference, cfg, &kt, &mut chol_precond(reference, &c));
+                alpha = pcg_mean(reference, cfg, kt, &mut chol_precond(reference, &c));
             }
             cov_chol = Some(c);
         }
@@ -391,17 +399,43 @@ impl Kmp {
                 a
             }
         };
+        Ok((alpha, cov_chol, jitter))
+    }
+}
+
+impl Kmp {
+    /// Fits the KMP: the mean weights `α` (conjugate gradients) and the covariance's expansion
+    /// in time, by the low-rank inverses or a Cholesky factor of `K + λ_c Σ`, all cached (see
+    /// the module docs).
+    pub fn fit(reference: &KmpReference, cfg: &KmpConfig) -> Result<Kmp> {
+        reference.validate()?;
+        crate::error::positive(|| "kernel_h".into(), cfg.kernel_h)?;
+        crate::error::positive(|| "lambda".into(), cfg.lambda)?;
+        crate::error::positive(|| "lambda_c".into(), cfg.lambda_c)?;
+        if let Some(v) = cfg.via_tolerance {
+            crate::error::positive(|| "via_tolerance".into(), v)?;
+        }
+        check_unknowns(reference.t.len(), reference.dof)?;
+        let kt = kernel_matrix(&reference.t, cfg.kernel_h);
+        let sys = Systems {
+            low_rank: KernelFactor::new(&kt, reference.t.len()),
+            kt,
+            reference,
+            cfg,
+        };
+        let (alpha, mut cov_chol, mut jitter) = sys.mean()?;
         // Covariance expansion: C = Bᵀ (K + λ_c Σ)⁻¹ B by low-rank refinement, else through
         // the factor; without an expansion, queries substitute through the factor.
-        let mut cov_cheb = inverse(cfg.lambda_c).and_then(|(f, inv)| {
+        let d = reference.dof;
+        let mut cov_cheb = sys.inverse(cfg.lambda_c).and_then(|(f, inv)| {
             ChebCov::from_solver(&reference.t, d, cfg.kernel_h, &mut |b, nc| {
-                solve_refined(f, &inv, &kt, &reference.cov, cfg.lambda_c, b, nc)
+                solve_refined(f, &inv, &sys.kt, &reference.cov, cfg.lambda_c, b, nc)
             })
         });
         if cov_cheb.is_none() {
             let c = match cov_chol.take() {
                 Some(c) => c,
-                None => factor_cov()?,
+                None => sys.factor_cov()?,
             };
             jitter = jitter.max(c.jitter());
             cov_cheb = ChebCov::new(&reference.t, d, cfg.kernel_h, c.l());

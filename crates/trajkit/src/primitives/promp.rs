@@ -30,7 +30,8 @@
 use crate::error::{Error, Result};
 use crate::linalg::{mul_abt, Cholesky};
 use crate::primitives::basis::GaussianBasis;
-use crate::primitives::dmp::{check_demo, ridge_fit};
+use crate::primitives::demo::check_demo;
+use crate::primitives::ridge::ridge_fit;
 use crate::rng::SplitMix64;
 use crate::traj::{Order, Trajectory};
 
@@ -193,27 +194,7 @@ impl ProMp {
         let mut ws = Vec::with_capacity(demos.len() * nw);
         let mut duration = 0.0;
         for (i, d) in demos.iter().enumerate() {
-            let w = Self::weights_with(&basis, d, dof, cfg).map_err(|e| match e {
-                Error::InvalidValue {
-                    field,
-                    value,
-                    reason,
-                } => Error::InvalidValue {
-                    field: format!("demonstration {}: {field}", i + 1),
-                    value,
-                    reason,
-                },
-                Error::DimensionMismatch {
-                    what,
-                    expected,
-                    found,
-                } => Error::DimensionMismatch {
-                    what: format!("demonstration {}: {what}", i + 1),
-                    expected,
-                    found,
-                },
-                other => other,
-            })?;
+            let w = Self::weights_with(&basis, d, dof, cfg).map_err(|e| in_demo(i, e))?;
             ws.extend_from_slice(&w);
             duration += d.t[d.t.len() - 1] - d.t[0];
         }
@@ -377,8 +358,7 @@ impl ProMp {
     /// condition) or non-finite values ([`Error::InvalidValue`]); wrong sizes; more via values
     /// than the memory budget allows ([`Error::TooLarge`]).
     pub fn condition(&self, via: &[ViaPoint]) -> Result<ProMp> {
-        let dof = self.dof;
-        let n = self.basis.len();
+        let (dof, n) = (self.dof, self.basis.len());
         let nw = dof * n;
         if via.is_empty() {
             return Ok(self.clone());
@@ -390,42 +370,7 @@ impl ProMp {
             "a via value's rows of the gain and innovation matrices",
         )?;
         for (k, v) in via.iter().enumerate() {
-            crate::error::finite(|| format!("via point {} time", k + 1), v.t)?;
-            if v.t < 0.0 || v.t > self.duration * (1.0 + 1e-12) {
-                return Err(Error::InvalidValue {
-                    field: format!(
-                        "via point {} time (the movement lasts {} s)",
-                        k + 1,
-                        self.duration
-                    ),
-                    value: v.t,
-                    reason: "is outside the movement (0 to its duration)",
-                });
-            }
-            if !matches!(v.order, Order::Position | Order::Velocity) {
-                return Err(Error::InvalidValue {
-                    field: format!("via point {} derivative order", k + 1),
-                    value: v.order.index() as f64,
-                    reason: "is not 0 (position) or 1 (velocity)",
-                });
-            }
-            if v.value.len() != dof {
-                return Err(Error::DimensionMismatch {
-                    what: format!("via point {} joint count", k + 1),
-                    expected: dof,
-                    found: v.value.len(),
-                });
-            }
-            if !v.cov.is_empty() && v.cov.len() != dof * dof {
-                return Err(Error::DimensionMismatch {
-                    what: format!("via point {} covariance entries", k + 1),
-                    expected: dof * dof,
-                    found: v.cov.len(),
-                });
-            }
-            for (i, &x) in v.value.iter().chain(&v.cov).enumerate() {
-                crate::error::finite(|| format!("via point {} entry {}", k + 1, i + 1), x)?;
-            }
+            self.check_via(k, v)?;
         }
         let m = via.len() * dof;
         // H: m × nw, sparse by joint blocks; store the n-vector per via point.
@@ -433,49 +378,8 @@ impl ProMp {
         for (k, v) in via.iter().enumerate() {
             self.psi_row(v.t, v.order.index(), &mut psis[k * n..(k + 1) * n]);
         }
-        // B = H Σ_w  (m × nw): row (k, a) = φ_kᵀ Σ[a-block rows, :].
-        let mut b = vec![0.0; m * nw];
-        for k in 0..via.len() {
-            let psi = &psis[k * n..(k + 1) * n];
-            for a in 0..dof {
-                let r = &mut b[(k * dof + a) * nw..(k * dof + a + 1) * nw];
-                for i in 0..n {
-                    let srow = &self.cov[(a * n + i) * nw..(a * n + i + 1) * nw];
-                    crate::linalg::axpy(psi[i], srow, r);
-                }
-            }
-        }
-        // G = B Hᵀ + Σ*  (m × m).
-        let mut g = vec![0.0; m * m];
-        for r in 0..m {
-            for (k2, v2) in via.iter().enumerate() {
-                let psi = &psis[k2 * n..(k2 + 1) * n];
-                for a2 in 0..dof {
-                    let c = k2 * dof + a2;
-                    g[r * m + c] =
-                        crate::linalg::dot(&b[r * nw + a2 * n..r * nw + a2 * n + n], psi);
-                }
-                let _ = v2;
-            }
-        }
-        for (k, v) in via.iter().enumerate() {
-            if !v.cov.is_empty() {
-                for a in 0..dof {
-                    for c in 0..dof {
-                        g[(k * dof + a) * m + k * dof + c] += v.cov[a * dof + c];
-                    }
-                }
-            }
-        }
-        // Symmetrize against roundoff.
-        for r in 0..m {
-            for c in 0..r {
-                let s = 0.5 * (g[r * m + c] + g[c * m + r]);
-                g[r * m + c] = s;
-                g[c * m + r] = s;
-            }
-        }
-        let chol = Cholesky::factor_regularized(&g, m)?;
+        let b = self.cross_covariance(&psis);
+        let chol = Cholesky::factor_regularized(&self.innovation(via, &psis, &b), m)?;
         // Residual y* − H μ.
         let mut res = vec![0.0; m];
         for (k, v) in via.iter().enumerate() {
@@ -504,13 +408,7 @@ impl ProMp {
                 }
             }
         }
-        for i in 0..nw {
-            for j in 0..i {
-                let s = 0.5 * (cov[i * nw + j] + cov[j * nw + i]);
-                cov[i * nw + j] = s;
-                cov[j * nw + i] = s;
-            }
-        }
+        symmetrize(&mut cov, nw);
         Ok(ProMp {
             basis: self.basis.clone(),
             dof,
@@ -519,6 +417,98 @@ impl ProMp {
             cov,
             jitter: chol.jitter(),
         })
+    }
+
+    /// Checks via point `k` (0-based): time inside the movement, position or velocity, sizes,
+    /// finite values.
+    fn check_via(&self, k: usize, v: &ViaPoint) -> Result<()> {
+        let dof = self.dof;
+        crate::error::finite(|| format!("via point {} time", k + 1), v.t)?;
+        if v.t < 0.0 || v.t > self.duration * (1.0 + 1e-12) {
+            return Err(Error::InvalidValue {
+                field: format!(
+                    "via point {} time (the movement lasts {} s)",
+                    k + 1,
+                    self.duration
+                ),
+                value: v.t,
+                reason: "is outside the movement (0 to its duration)",
+            });
+        }
+        if !matches!(v.order, Order::Position | Order::Velocity) {
+            return Err(Error::InvalidValue {
+                field: format!("via point {} derivative order", k + 1),
+                value: v.order.index() as f64,
+                reason: "is not 0 (position) or 1 (velocity)",
+            });
+        }
+        if v.value.len() != dof {
+            return Err(Error::DimensionMismatch {
+                what: format!("via point {} joint count", k + 1),
+                expected: dof,
+                found: v.value.len(),
+            });
+        }
+        if !v.cov.is_empty() && v.cov.len() != dof * dof {
+            return Err(Error::DimensionMismatch {
+                what: format!("via point {} covariance entries", k + 1),
+                expected: dof * dof,
+                found: v.cov.len(),
+            });
+        }
+        for (i, &x) in v.value.iter().chain(&v.cov).enumerate() {
+            crate::error::finite(|| format!("via point {} entry {}", k + 1, i + 1), x)?;
+        }
+        Ok(())
+    }
+
+    /// `B = H Σ_w` (`m × nw`, `m` = via points × joints) for the via points' basis rows
+    /// `psis`: row (k, a) is `φ_kᵀ Σ[a-block rows, :]`.
+    fn cross_covariance(&self, psis: &[f64]) -> Vec<f64> {
+        let (dof, n) = (self.dof, self.basis.len());
+        let nw = dof * n;
+        let vias = psis.len() / n;
+        let mut b = vec![0.0; vias * dof * nw];
+        for k in 0..vias {
+            let psi = &psis[k * n..(k + 1) * n];
+            for a in 0..dof {
+                let r = &mut b[(k * dof + a) * nw..(k * dof + a + 1) * nw];
+                for i in 0..n {
+                    let srow = &self.cov[(a * n + i) * nw..(a * n + i + 1) * nw];
+                    crate::linalg::axpy(psi[i], srow, r);
+                }
+            }
+        }
+        b
+    }
+
+    /// The innovation covariance `G = B Hᵀ + Σ*` (`m × m`, symmetrized against roundoff).
+    fn innovation(&self, via: &[ViaPoint], psis: &[f64], b: &[f64]) -> Vec<f64> {
+        let (dof, n) = (self.dof, self.basis.len());
+        let nw = dof * n;
+        let m = via.len() * dof;
+        let mut g = vec![0.0; m * m];
+        for r in 0..m {
+            for k2 in 0..via.len() {
+                let psi = &psis[k2 * n..(k2 + 1) * n];
+                for a2 in 0..dof {
+                    let c = k2 * dof + a2;
+                    g[r * m + c] =
+                        crate::linalg::dot(&b[r * nw + a2 * n..r * nw + a2 * n + n], psi);
+                }
+            }
+        }
+        for (k, v) in via.iter().enumerate() {
+            if !v.cov.is_empty() {
+                for a in 0..dof {
+                    for c in 0..dof {
+                        g[(k * dof + a) * m + k * dof + c] += v.cov[a * dof + c];
+                    }
+                }
+            }
+        }
+        symmetrize(&mut g, m);
+        g
     }
 
     /// The mean trajectory as a standalone [`WeightTrajectory`].
@@ -597,6 +587,42 @@ impl Trajectory for ProMp {
             order,
             out,
         )
+    }
+}
+
+/// Replaces the square `a` (`n × n`, row-major) by `(a + aᵀ)/2`.
+fn symmetrize(a: &mut [f64], n: usize) {
+    for r in 0..n {
+        for c in 0..r {
+            let s = 0.5 * (a[r * n + c] + a[c * n + r]);
+            a[r * n + c] = s;
+            a[c * n + r] = s;
+        }
+    }
+}
+
+/// `e` with the demonstration (0-based `i`) named in its field.
+fn in_demo(i: usize, e: Error) -> Error {
+    match e {
+        Error::InvalidValue {
+            field,
+            value,
+            reason,
+        } => Error::InvalidValue {
+            field: format!("demonstration {}: {field}", i + 1),
+            value,
+            reason,
+        },
+        Error::DimensionMismatch {
+            what,
+            expected,
+            found,
+        } => Error::DimensionMismatch {
+            what: format!("demonstration {}: {what}", i + 1),
+            expected,
+            found,
+        },
+        other => other,
     }
 }
 

@@ -17,7 +17,9 @@
 //! period, with an RMS error ≤ 1e-3 of its range (tests).
 
 use crate::error::{Error, Result};
-use crate::primitives::dmp::{check_demo, demo_derivatives, ridge_fit, DmpRollout};
+use crate::primitives::demo::{check_demo, demo_derivatives};
+use crate::primitives::dmp::DmpRollout;
+use crate::primitives::ridge::ridge_fit;
 use crate::traj::Trajectory;
 
 /// A rhythmic DMP for `dof` joints.
@@ -157,22 +159,7 @@ impl RhythmicDmp {
             None => 1.0,
         };
         let dof = self.dof;
-        let g: Vec<f64> = match anchor {
-            Some(a) => {
-                if a.len() != dof {
-                    return Err(Error::DimensionMismatch {
-                        what: "anchor joint count".into(),
-                        expected: dof,
-                        found: a.len(),
-                    });
-                }
-                for (j, &v) in a.iter().enumerate() {
-                    crate::error::finite(|| format!("anchor of joint {}", j + 1), v)?;
-                }
-                a.to_vec()
-            }
-            None => self.anchor.clone(),
-        };
+        let g = self.anchor_or(anchor)?;
         let tau = period / std::f64::consts::TAU;
         let steps_per_period = 2000usize;
         let h = period / steps_per_period as f64;
@@ -185,7 +172,12 @@ impl RhythmicDmp {
                 reason: "needs more than 1e8 integration steps",
             });
         }
-        let (az, bz) = (self.alpha_z, self.beta_z);
+        let sys = Transformation {
+            az: self.alpha_z,
+            bz: self.beta_z,
+            tau,
+            g: &g,
+        };
         // The start keeps its offset from the anchor and scales with the amplitude.
         let mut y: Vec<f64> = (0..dof)
             .map(|j| g[j] + r * (self.start[j] - self.anchor[j]))
@@ -193,11 +185,6 @@ impl RhythmicDmp {
         let mut v: Vec<f64> = (0..dof)
             .map(|j| r * self.start_velocity[j] * self.period / period)
             .collect();
-        let acc = |y: &[f64], v: &[f64], f: &[f64], out: &mut [f64]| {
-            for j in 0..dof {
-                out[j] = (az * (bz * (g[j] - y[j]) - tau * v[j]) + f[j]) / (tau * tau);
-            }
-        };
         let mut buf = vec![0.0; self.n];
         let (mut f0, mut fm, mut f1) = (vec![0.0; dof], vec![0.0; dof], vec![0.0; dof]);
         let mut a = vec![0.0; dof];
@@ -209,13 +196,9 @@ impl RhythmicDmp {
         );
         self.forcing(0.0, r, &mut buf, &mut f0);
         let mut t = 0.0;
-        let mut k1 = (vec![0.0; dof], vec![0.0; dof]);
-        let mut k2 = (vec![0.0; dof], vec![0.0; dof]);
-        let mut k3 = (vec![0.0; dof], vec![0.0; dof]);
-        let mut k4 = (vec![0.0; dof], vec![0.0; dof]);
-        let mut tmp = (vec![0.0; dof], vec![0.0; dof]);
+        let mut stages = Stages::new(dof);
         for step in 0..=nsteps {
-            acc(&y, &v, &f0, &mut a);
+            sys.acc(&y, &v, &f0, &mut a);
             ts.push(t);
             ys.extend_from_slice(&y);
             vs.extend_from_slice(&v);
@@ -231,38 +214,99 @@ impl RhythmicDmp {
             let hs = t_end - t;
             self.forcing((t + 0.5 * hs) / tau, r, &mut buf, &mut fm);
             self.forcing(t_end / tau, r, &mut buf, &mut f1);
-            k1.0.copy_from_slice(&v);
-            k1.1.copy_from_slice(&a);
-            // Stage 2.
-            for j in 0..dof {
-                tmp.0[j] = y[j] + 0.5 * hs * k1.0[j];
-                tmp.1[j] = v[j] + 0.5 * hs * k1.1[j];
-            }
-            k2.0.copy_from_slice(&tmp.1);
-            acc(&tmp.0, &tmp.1, &fm, &mut k2.1);
-            // Stage 3.
-            for j in 0..dof {
-                tmp.0[j] = y[j] + 0.5 * hs * k2.0[j];
-                tmp.1[j] = v[j] + 0.5 * hs * k2.1[j];
-            }
-            k3.0.copy_from_slice(&tmp.1);
-            acc(&tmp.0, &tmp.1, &fm, &mut k3.1);
-            // Stage 4.
-            for j in 0..dof {
-                tmp.0[j] = y[j] + hs * k3.0[j];
-                tmp.1[j] = v[j] + hs * k3.1[j];
-            }
-            k4.0.copy_from_slice(&tmp.1);
-            acc(&tmp.0, &tmp.1, &f1, &mut k4.1);
-            for j in 0..dof {
-                y[j] += hs / 6.0 * (k1.0[j] + 2.0 * k2.0[j] + 2.0 * k3.0[j] + k4.0[j]);
-                v[j] += hs / 6.0 * (k1.1[j] + 2.0 * k2.1[j] + 2.0 * k3.1[j] + k4.1[j]);
-            }
+            sys.rk4_step(&mut y, &mut v, &a, [&fm, &f1], hs, &mut stages);
             std::mem::swap(&mut f0, &mut f1);
             t = t_end;
         }
         let roll = DmpRollout::from_states(dof, ts, ys, vs, as_);
         debug_assert!(roll.duration() > 0.0);
         Ok(roll)
+    }
+
+    /// The given anchor (checked: one finite value per joint), or the demonstrated one.
+    fn anchor_or(&self, anchor: Option<&[f64]>) -> Result<Vec<f64>> {
+        let Some(a) = anchor else {
+            return Ok(self.anchor.clone());
+        };
+        if a.len() != self.dof {
+            return Err(Error::DimensionMismatch {
+                what: "anchor joint count".into(),
+                expected: self.dof,
+                found: a.len(),
+            });
+        }
+        for (j, &v) in a.iter().enumerate() {
+            crate::error::finite(|| format!("anchor of joint {}", j + 1), v)?;
+        }
+        Ok(a.to_vec())
+    }
+}
+
+/// The transformation system `τ² ÿ = α_z (β_z (g − y) − τ ẏ) + f` around the anchor `g`.
+struct Transformation<'a> {
+    az: f64,
+    bz: f64,
+    tau: f64,
+    g: &'a [f64],
+}
+
+/// RK4 stage derivatives `(ẏ, ÿ)` and the stage state.
+struct Stages {
+    k: [(Vec<f64>, Vec<f64>); 4],
+    tmp: (Vec<f64>, Vec<f64>),
+}
+
+impl Stages {
+    fn new(dof: usize) -> Stages {
+        let pair = || (vec![0.0; dof], vec![0.0; dof]);
+        Stages {
+            k: [pair(), pair(), pair(), pair()],
+            tmp: pair(),
+        }
+    }
+}
+
+impl Transformation<'_> {
+    /// `ÿ` for position `y`, velocity `v` and forcing `f`.
+    fn acc(&self, y: &[f64], v: &[f64], f: &[f64], out: &mut [f64]) {
+        let (az, bz, tau, g) = (self.az, self.bz, self.tau, self.g);
+        for j in 0..g.len() {
+            out[j] = (az * (bz * (g[j] - y[j]) - tau * v[j]) + f[j]) / (tau * tau);
+        }
+    }
+
+    /// One classical RK4 step of length `hs` from `(y, v)` with acceleration `a` there, the
+    /// forcing at the step's midpoint and end in `f`.
+    fn rk4_step(
+        &self,
+        y: &mut [f64],
+        v: &mut [f64],
+        a: &[f64],
+        f: [&[f64]; 2],
+        hs: f64,
+        st: &mut Stages,
+    ) {
+        let dof = y.len();
+        let (k, tmp) = (&mut st.k, &mut st.tmp);
+        k[0].0.copy_from_slice(v);
+        k[0].1.copy_from_slice(a);
+        // Stages 2 to 4: from the start along the previous stage, to the midpoint twice,
+        // then to the end.
+        for stage in 1..4 {
+            let c = if stage == 3 { hs } else { 0.5 * hs };
+            let (prev, rest) = k.split_at_mut(stage);
+            let p = &prev[stage - 1];
+            for j in 0..dof {
+                tmp.0[j] = y[j] + c * p.0[j];
+                tmp.1[j] = v[j] + c * p.1[j];
+            }
+            let cur = &mut rest[0];
+            cur.0.copy_from_slice(&tmp.1);
+            self.acc(&tmp.0, &tmp.1, f[usize::from(stage == 3)], &mut cur.1);
+        }
+        for j in 0..dof {
+            y[j] += hs / 6.0 * (k[0].0[j] + 2.0 * k[1].0[j] + 2.0 * k[2].0[j] + k[3].0[j]);
+            v[j] += hs / 6.0 * (k[0].1[j] + 2.0 * k[1].1[j] + 2.0 * k[2].1[j] + k[3].1[j]);
+        }
     }
 }

@@ -132,3 +132,6 @@ pub use nurbs::{Nurbs, NURBS_MAX_ORDER};
 pub use pchip::PchipSpline;
 pub use ppoly::PiecewisePolynomial;
 pub use quat::{Quat, SO3Spline};
+
+/// Small 3-vector helpers shared with the orientation DMP.
+pub(crate) use quat::cross;

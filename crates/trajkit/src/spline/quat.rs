@@ -12,7 +12,11 @@ use crate::spline::basis::{basis_ders, find_span, K1};
 use crate::spline::validate;
 use std::ops::Mul;
 
-/// A unit quaternion (rotation).
+/// A unit quaternion `w + xi + yj + zk` (a rotation): Hamilton product (`a * b` applies `b`
+/// first), active rotation `v ↦ q v q*`. [`Quat::exp`] maps a rotation vector φ (angle `‖φ‖`
+/// about `φ/‖φ‖`) to its rotation and [`Quat::log`] back (angle in `[0, π]`); angular
+/// velocities are world-frame. The orientation DMP ([`crate::primitives::QuaternionDmp`])
+/// uses the same type.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Quat {
     /// Scalar part.
@@ -38,7 +42,8 @@ impl Mul for Quat {
     }
 }
 
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+/// The cross product `a × b`.
+pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -46,11 +51,13 @@ fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     ]
 }
 
-fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+/// `a + b`.
+pub(crate) fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
 
-fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
+/// `s · a`.
+pub(crate) fn scale(a: [f64; 3], s: f64) -> [f64; 3] {
     [a[0] * s, a[1] * s, a[2] * s]
 }
 
@@ -128,7 +135,8 @@ impl Quat {
         [k * q.x, k * q.y, k * q.z]
     }
 
-    fn neg(self) -> Quat {
+    /// The same rotation with every component negated (the other hemisphere).
+    pub(crate) fn neg(self) -> Quat {
         Quat {
             w: -self.w,
             x: -self.x,
@@ -177,6 +185,38 @@ impl Quat {
     /// The world-frame angular velocity of `slerp(self, o, t)` per unit `t`.
     pub fn slerp_velocity(self, o: Quat) -> [f64; 3] {
         self.rotate(self.conj().mul(o).log())
+    }
+
+    /// The time derivative `q̇ = ½ (0, ω) ⊗ q` of this orientation `q` turning with the
+    /// world-frame angular velocity `omega` (rad/s), as `[w, x, y, z]` (not a rotation itself).
+    pub fn derivative(self, omega: [f64; 3]) -> [f64; 4] {
+        (Quat::pure(omega) * self).to_array().map(|v| 0.5 * v)
+    }
+
+    /// The second time derivative `q̈ = ½ ((0, ω̇) ⊗ q + (0, ω) ⊗ q̇)` of this orientation `q`
+    /// turning with the world-frame angular velocity `omega` (rad/s) and angular acceleration
+    /// `omega_dot` (rad/s²), as `[w, x, y, z]`.
+    pub fn second_derivative(self, omega: [f64; 3], omega_dot: [f64; 3]) -> [f64; 4] {
+        let d = self.derivative(omega);
+        let qd = Quat {
+            w: d[0],
+            x: d[1],
+            y: d[2],
+            z: d[3],
+        };
+        let a = (Quat::pure(omega_dot) * self).to_array();
+        let b = (Quat::pure(omega) * qd).to_array();
+        std::array::from_fn(|c| 0.5 * (a[c] + b[c]))
+    }
+
+    /// The pure quaternion `(0, v)` (a vector, not a rotation), for products.
+    fn pure(v: [f64; 3]) -> Quat {
+        Quat {
+            w: 0.0,
+            x: v[0],
+            y: v[1],
+            z: v[2],
+        }
     }
 }
 

@@ -19,7 +19,7 @@
 //! (turning angle within `1e-6` of π) cannot be blended and is refused by [`BlendedPath::new`]
 //! with [`Error::Infeasible`] naming the waypoint, as is a corner whose blend radius would be
 //! below `1e-5·(1 + polyline length)` (followed at ṡ ≈ √(a·r), practically a stop).
-//! [`crate::topp::totg::plan_totg`] splits waypoints at those corners first ([`stop_indices`])
+//! [`crate::topp::plan_totg`] splits waypoints at those corners first ([`stop_indices`])
 //! and plays the rest-to-rest pieces as a [`crate::topp::messy::Sequence`].
 //!
 //! # Precision contract
@@ -348,8 +348,8 @@ fn corner(w: &[f64], dim: usize, i: usize, max_deviation: f64) -> Corner {
 /// Interior waypoints of `waypoints` (row-major, consecutive repeats already removed) where a
 /// blended path must stop: exact reversals (turning angle within [`REVERSAL_ANGLE`] of π) and
 /// corners whose blend radius for `max_deviation` would be below `1e-5·(1 + polyline
-/// length)`. [`crate::topp::totg::plan_totg`] splits there into rest-to-rest pieces.
-pub fn stop_indices(waypoints: &[f64], dim: usize, max_deviation: f64) -> Vec<usize> {
+/// length)`. [`crate::topp::plan_totg`] splits there into rest-to-rest pieces.
+pub(crate) fn stop_indices(waypoints: &[f64], dim: usize, max_deviation: f64) -> Vec<usize> {
     let count = waypoints.len() / dim.max(1);
     if count < 3 {
         return Vec::new();

@@ -33,6 +33,7 @@
 //! name).
 
 use crate::error::{Error, Result};
+pub use crate::inverse_dynamics::InverseDynamics;
 use crate::limits::Limits;
 use crate::Order;
 
@@ -788,18 +789,6 @@ impl Constraint for JointAcceleration {
         }
         true
     }
-}
-
-/// A robot's inverse dynamics τ = ID(q, q̇, q̈) = M(q)q̈ + C(q, q̇)q̇ + g(q), implemented by the
-/// user (from a rigid-body library or a hand-derived model).
-///
-/// TOPP-RA uses that ID is affine in q̈ and quadratic in q̇ (no friction terms here: see
-/// [`JointTorque::with_coulomb_friction`]).
-pub trait InverseDynamics {
-    /// Number of joints.
-    fn dof(&self) -> usize;
-    /// Writes the joint torques for `q`, `qd`, `qdd` into `tau` (all of length `dof()`).
-    fn torque(&self, q: &[f64], qd: &[f64], qdd: &[f64], tau: &mut [f64]);
 }
 
 /// Joint torque limits `τ_min ≤ ID(q, q̇, q̈) + f_c·sign(q̇) ≤ τ_max`.

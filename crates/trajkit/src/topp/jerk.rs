@@ -33,7 +33,7 @@
 //! Only rest-to-rest profiles are accepted.
 
 use super::messy::Sequence;
-use super::parametrized::{Parametrized, Profile};
+use super::parametrized::{Parametrized, PhaseProfile as Profile};
 use super::rescale::{min_time_scale, Retimed, Scaled, TimeLaw};
 use crate::error::{Error, Result};
 use crate::traj::find_piece;

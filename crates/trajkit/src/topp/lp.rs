@@ -19,7 +19,7 @@
 //! `tol`. No allocation: the caller passes the half-planes as a slice.
 
 /// A read-only list of half-planes `(a0, a1, b)`: a slice, or rows computed on the fly.
-pub trait HalfPlanes {
+pub(crate) trait HalfPlanes {
     /// Number of half-planes.
     fn count(&self) -> usize;
     /// Half-plane `k` (`k < count()`).
@@ -37,7 +37,7 @@ pub trait HalfPlanes {
 /// Whether `v` violates the half-plane `r` by more than `tol` (scaled by the 1-norm of the
 /// row's normal). NaN counts as a violation.
 #[inline]
-pub fn violates(r: [f64; 3], v: [f64; 2], tol: f64) -> bool {
+pub(crate) fn violates(r: [f64; 3], v: [f64; 2], tol: f64) -> bool {
     let lhs = r[0] * v[0] + r[1] * v[1];
     let rhs = r[2] + tol * (r[0].abs() + r[1].abs());
     !matches!(
@@ -80,11 +80,11 @@ impl HalfPlanes for Vec<[f64; 3]> {
 }
 
 /// Marks a box side (not a half-plane from the slice) in [`LpSolution::active`].
-pub const BOX: usize = usize::MAX;
+pub(crate) const BOX: usize = usize::MAX;
 
 /// The optimum of a two-variable linear program.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct LpSolution {
+pub(crate) struct LpSolution {
     /// The optimal point (v0, v1).
     pub v: [f64; 2],
     /// Indices of the (up to) two half-planes active at the optimum, [`BOX`] for a box side.
@@ -96,7 +96,7 @@ pub struct LpSolution {
 /// `lo ≤ v ≤ hi` (componentwise; bounds must be finite and `lo ≤ hi`). Rows must have a
 /// non-zero normal `(rows[k][0], rows[k][1])`. `hint` lists rows to process first (indices out
 /// of range are ignored). Returns `None` when infeasible.
-pub fn maximize<R: HalfPlanes + ?Sized>(
+pub(crate) fn maximize<R: HalfPlanes + ?Sized>(
     c: [f64; 2],
     rows: &R,
     lo: [f64; 2],

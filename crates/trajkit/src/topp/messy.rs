@@ -34,12 +34,12 @@
 //! the position s and the constraint.
 //!
 //! # Precision contract
-//! Each piece carries the precision contract of [`crate::topp::toppra`]; at piece boundaries
+//! Each piece carries the precision contract of [`crate::topp::Toppra`]; at piece boundaries
 //! the robot is at rest (velocity exactly zero) and the position is the shared waypoint.
 
 use super::constraint::{InverseDynamics, JointTorque};
 use super::paths::{check_waypoints, seg_len, LinearPath};
-use super::{Options, Parametrized, Toppra};
+use super::{Parametrized, Toppra, ToppraOptions};
 use crate::error::{Error, Result};
 use crate::spline::{BoundedSpline, CubicSpline};
 use crate::traj::{clamp_time, find_piece};
@@ -299,7 +299,7 @@ pub struct PlanOptions {
     /// sharper than 1e-9 rad.
     pub reversal_angle: f64,
     /// TOPP-RA options for each piece (boundary velocities are forced to zero).
-    pub toppra: Options,
+    pub toppra: ToppraOptions,
     /// Joint torque limits: when set, each piece is also held within `±effort` of the limits
     /// (every joint needs an `effort`) for this inverse-dynamics model. Default `None`.
     pub torque: Option<TorqueModel>,
@@ -324,7 +324,7 @@ impl Default for PlanOptions {
             kind: PathKind::NaturalCubic,
             duplicate_tolerance: 1e-9,
             reversal_angle: std::f64::consts::PI - 1e-6,
-            toppra: Options::default(),
+            toppra: ToppraOptions::default(),
             torque: None,
             solver: PieceSolver::Toppra,
         }
@@ -370,7 +370,7 @@ pub fn time_pieces(
     let total = paths.pieces.len();
     let mut pieces = Vec::with_capacity(total);
     for (p, PiecePlan { from, to, path }) in paths.pieces.into_iter().enumerate() {
-        let opts = Options {
+        let opts = ToppraOptions {
             start_velocity: 0.0,
             end_velocity: 0.0,
             ..options.toppra.clone()

@@ -1,25 +1,35 @@
 //! Time-optimal path parameterization (TOPP-RA, TOTG, numerical integration) and time rescaling.
 //!
 //! Keep a path's geometry σ(s), choose its timing s(t) so that every instant respects the
-//! robot's limits, as fast as possible. The pieces mirror the algorithm:
-//! - [`constraint`]: constraints in the general form a(s)·s̈ + b(s)·ṡ² + c(s) ∈ {F v ≤ g} plus
-//!   bounds on ṡ² (joint velocity, joint acceleration, torque through user inverse dynamics,
-//!   end-effector speed through a user Jacobian);
-//! - [`lp`]: the exact two-variable linear program solved at every stage;
-//! - [`grid`]: gridpoints (automatic from a duration tolerance, uniform, chord tolerance,
-//!   given), always including path breakpoints;
-//! - [`toppra`]: the backward (controllable sets) and forward (greedy) passes; its private
-//!   `between` module holds the limits between gridpoints (Bernstein rows and exact checks on
-//!   piecewise-cubic paths, sampled checks elsewhere);
-//! - [`parametrized`]: the solved [`Profile`] and the exact output trajectory;
-//! - [`rescale`]: any path composed with any timing law, uniform time scaling;
-//! - [`paths`]: piecewise-linear paths;
-//! - [`blend`]: TOTG's path, straight segments joined by circular blends;
+//! robot's limits, as fast as possible. The pieces mirror the algorithm (private files,
+//! their items re-exported here):
+//! - constraints (constraint.rs) in the general form a(s)·s̈ + b(s)·ṡ² + c(s) ∈ {F v ≤ g}
+//!   plus bounds on ṡ² ([`Constraint`]): [`JointVelocity`], [`JointAcceleration`],
+//!   [`JointTorque`] through user [`InverseDynamics`], [`EndEffectorSpeed`] through a user
+//!   [`Jacobian`];
+//! - the exact two-variable linear program solved at every stage (lp.rs, crate-internal);
+//! - gridpoints ([`Gridpoints`], grid.rs): automatic from a duration tolerance, uniform, chord
+//!   tolerance, given, always including path breakpoints;
+//! - [`Toppra`] (toppra.rs, options [`ToppraOptions`]): the backward (controllable sets) and
+//!   forward (greedy) passes; between.rs holds the limits between gridpoints (Bernstein rows
+//!   and exact checks on piecewise-cubic paths, sampled checks elsewhere);
+//! - the solved [`PhaseProfile`] and the exact output trajectory [`Parametrized`]
+//!   (parametrized.rs);
+//! - [`Retimed`] (rescale.rs): any path composed with any [`TimeLaw`], and uniform time
+//!   scaling ([`Scaled`], [`min_time_scale`]);
+//! - [`LinearPath`] (paths.rs): piecewise-linear paths;
+//! - [`BlendedPath`] (blend.rs): TOTG's path, straight segments joined by circular blends;
+//! - [`Totg`] / [`plan_totg`] (totg.rs): time-optimal trajectory generation (Kunz & Stilman)
+//!   on a blended path;
+//! - [`max_velocity_curve`] (mvc.rs): the phase-plane limit above a profile.
+//!
+//! Four submodules are public namespaces, because their names would collide here:
 //! - [`ni`]: numerical integration in the phase plane (Bobrow / TOPP-NI) on any path, with the
-//!   same constraints;
-//! - [`totg`]: time-optimal trajectory generation (Kunz & Stilman) on a blended path;
-//! - [`messy`]: planner output as it comes: duplicates, reversals, rest-to-rest pieces;
-//! - [`mvc`]: the maximum velocity curve of a problem (the phase-plane limit above a profile).
+//!   same constraints ([`ni::solve`], [`ni::solve_profile`]);
+//! - [`messy`]: planner output as it comes: duplicates, reversals, rest-to-rest pieces
+//!   ([`messy::plan_waypoints`], [`messy::PlanOptions`]);
+//! - [`jerk`]: the jerk-bounding stage after TOPP-RA;
+//! - [`jerk_optimal`]: jerk-limited time-optimal parameterization by third-order reachability.
 //!
 //! ```
 //! use trajkit::topp::{Gridpoints, LinearPath, Toppra};
@@ -43,29 +53,30 @@
 //! ```
 
 mod between;
-pub mod blend;
-pub mod constraint;
-pub mod grid;
+mod blend;
+mod constraint;
+mod grid;
 pub mod jerk;
 pub mod jerk_optimal;
-pub mod lp;
+mod lp;
 pub mod messy;
-pub mod mvc;
+mod mvc;
 pub mod ni;
-pub mod parametrized;
-pub mod paths;
-pub mod rescale;
-pub mod toppra;
-pub mod totg;
+mod parametrized;
+mod paths;
+mod rescale;
+mod toppra;
+mod totg;
 
-pub use blend::BlendedPath;
+pub use blend::{BlendedPath, COLLINEAR_ANGLE, REPEAT_DISTANCE, REVERSAL_ANGLE};
 pub use constraint::{
     Constraint, ConstraintRows, CubicPiece, EndEffectorSpeed, InverseDynamics, Jacobian,
     JointAcceleration, JointTorque, JointVelocity, PathPoint,
 };
-pub use grid::Gridpoints;
-pub use parametrized::{Parametrized, Profile};
+pub use grid::{Gridpoints, AUTO_START, MAX_AUTO_INTERVALS};
+pub use mvc::max_velocity_curve;
+pub use parametrized::{Parametrized, PhaseProfile};
 pub use paths::LinearPath;
-pub use rescale::{min_time_scale, LinearLaw, QuinticLaw, Retimed, Scaled, TimeLaw};
-pub use toppra::{Discretization, Options, Toppra};
+pub use rescale::{min_time_scale, LinearLaw, QuinticLaw, Retimed, Scaled, TimeLaw, MAX_DOF};
+pub use toppra::{Discretization, Toppra, ToppraOptions, MAX_REFINED_INTERVALS, MAX_REFINE_ROUNDS};
 pub use totg::{plan_totg, Totg, TotgOptions};

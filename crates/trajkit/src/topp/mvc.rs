@@ -4,7 +4,7 @@
 //! It is what the phase-plane picture of TOPP-RA, TOTG and numerical integration draws above
 //! the solved profile (s, ṡ(s)): a time-optimal profile touches it and never crosses it. With
 //! x = ṡ² and u = s̈, each constraint writes half-planes `α·u + β·x ≤ γ` and bounds on x at the
-//! point ([`crate::topp::constraint`]). Eliminating u exactly (Fourier–Motzkin): a row with
+//! point ([`crate::topp::Constraint`]). Eliminating u exactly (Fourier–Motzkin): a row with
 //! α > 0 bounds u from above by `(γ − β x)/α`, one with α < 0 from below; some u exists iff
 //! every lower bound is at most every upper bound, and each such pair (r, r′) is one linear
 //! inequality in x, `(|α_r|·β_{r′} + α_{r′}·β_r)·x ≤ |α_r|·γ_{r′} + α_{r′}·γ_r`
@@ -30,7 +30,7 @@ use crate::Path;
 /// rest) satisfies the constraints.
 ///
 /// ```
-/// use trajkit::topp::{mvc::max_velocity_curve, LinearPath, Toppra};
+/// use trajkit::topp::{max_velocity_curve, LinearPath, Toppra};
 /// use trajkit::Limits;
 /// // A straight line: σ′ is constant and σ″ = 0, so only the velocity limits bound ṡ:
 /// // ṡ ≤ min_j v_j / |σ′_j|, with σ′ = Δq / L for the arc-length parameter.

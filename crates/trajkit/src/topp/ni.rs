@@ -16,7 +16,7 @@
 //! exactly for its knots, holding the constraints at both ends of the step:
 //! 1. **Backward integration** from the end: at each knot the largest x from which a step with
 //!    admissible u reaches no higher than the curve at the next knot (an exact two-variable
-//!    program, [`crate::topp::lp`]). Where the MVC is below the integrated curve the result is
+//!    program, `topp/lp.rs`). Where the MVC is below the integrated curve the result is
 //!    the MVC itself: such a knot *starts* a new backward integration — it is a switching point
 //!    ([`SwitchKind`]: a discontinuity of the path's curvature, a velocity-limit point, or a
 //!    tangent/singular point of the acceleration limit curve). Doing the envelope in one sweep
@@ -36,13 +36,13 @@
 //!    by a rigorous analytic bound b on the excess over the chord between knots, as on the arcs
 //!    of [`crate::topp::BlendedPath`]: there the knots' limits are tightened by ε ≥ b, so the
 //!    profile between knots stays within the true limits; knots at breakpoints are not
-//!    tightened and their neighbours take 4b, see [`crate::topp::totg`]); steps where a
+//!    tightened and their neighbours take 4b, see [`crate::topp::Totg`]); steps where a
 //!    constraint is exceeded by more than 3e-7 relative (bound: 9e-7 beyond the tightening,
 //!    or a bound above the cut threshold: 2e-6 of the limits, up to 5e-5 where the bounded
-//!    steps are a small share of the duration, see [`crate::topp::totg`]) are cut (as many parts
+//!    steps are a small share of the duration, see [`crate::topp::Totg`]) are cut (as many parts
 //!    as the excess calls for, the excess shrinking with the square of the step) and the
-//!    problem integrated again, at most [`crate::topp::toppra::MAX_REFINE_ROUNDS`] times and up
-//!    to [`crate::topp::toppra::MAX_REFINED_INTERVALS`] knots (TOPP-RA's caps and check
+//!    problem integrated again, at most [`crate::topp::MAX_REFINE_ROUNDS`] times and up
+//!    to [`crate::topp::MAX_REFINED_INTERVALS`] knots (TOPP-RA's caps and check
 //!    points); beyond that the solver returns [`Error::Infeasible`] saying how far the limits
 //!    are exceeded: the work is bounded for every input. Steps found clean and unchanged are
 //!    not checked again, and knots kept from the previous round keep their evaluated
@@ -56,7 +56,7 @@
 //!    above it cut: one more round, estimated again, at most twice; if such a round cannot
 //!    finish within the caps, the last converged solution is returned.
 //!
-//! The result is a [`Profile`] (x at knots, constant u between), evaluated exactly by
+//! The result is a [`PhaseProfile`] (x at knots, constant u between), evaluated exactly by
 //! [`crate::topp::Retimed`].
 //!
 //! Path breakpoints where σ″ jumps are handled by evaluating the step that ends there on its
@@ -75,12 +75,12 @@
 //!   path it agrees with TOPP-RA within 0.1% (tested both ways).
 //! - With an analytic step bound (TOTG), the duration's loss against the converged optimum
 //!   is estimated a posteriori and kept within [`LOSS_BUDGET`] where the estimate holds (see
-//!   [`crate::topp::totg`]'s precision contract).
+//!   [`crate::topp::Totg`]'s precision contract).
 //! - Positive lower bounds on ṡ² from a user constraint are enforced at knots only.
 
 use super::constraint::{Constraint, ConstraintRows, PathPoint};
 use super::lp::{self, BOX};
-use super::parametrized::{Parametrized, Profile};
+use super::parametrized::{Parametrized, PhaseProfile};
 use super::rescale::Retimed;
 use super::toppra::{
     check_path_values, largest_step, CleanSteps, Stage, MAX_REFINED_INTERVALS as MAX_KNOTS,
@@ -184,13 +184,13 @@ pub struct SwitchingPoint {
 #[derive(Debug, Clone, PartialEq)]
 pub struct PhaseSolution {
     /// The timing: x at knots (including located crossings), constant u between.
-    pub profile: Profile,
+    pub profile: PhaseProfile,
     /// Switching points met by the optimal curve, in path order.
     pub switching_points: Vec<SwitchingPoint>,
     /// Event-check rounds that cut steps.
     pub rounds: usize,
     /// A-posteriori estimate of the duration's loss relative to the converged optimum on the
-    /// same path (see [`crate::topp::totg`]'s precision contract): half the change of the
+    /// same path (see [`crate::topp::Totg`]'s precision contract): half the change of the
     /// duration when only every third knot inside the bounded (varying) stretches is kept
     /// (the discretization loss is first order in the knot spacing, so tripling the spacing
     /// adds about twice the loss), plus the tightening's cost. `None` where no step is bounded
@@ -800,9 +800,9 @@ fn parts_for(e: f64) -> usize {
     }
 }
 
-fn profile_of(s: &[f64], x: &[f64]) -> Result<Profile> {
+fn profile_of(s: &[f64], x: &[f64]) -> Result<PhaseProfile> {
     let sd: Vec<f64> = x.iter().map(|v| v.max(0.0).sqrt()).collect();
-    Profile::new(s, &sd)
+    PhaseProfile::new(s, &sd)
 }
 
 /// The forward curve over a step whose constraints do not vary along it (a straight segment):

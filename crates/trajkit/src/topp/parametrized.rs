@@ -1,6 +1,6 @@
 //! The solved timing: path velocity at every gridpoint, constant path acceleration between.
 //!
-//! A [`Profile`] holds gridpoints s_i, path velocities ṡ_i and the constant path acceleration
+//! A [`PhaseProfile`] holds gridpoints s_i, path velocities ṡ_i and the constant path acceleration
 //! u_i = (ṡ_{i+1}² − ṡ_i²) / (2Δ_i) of each interval. In time, interval i lasts
 //! Δt_i = 2Δ_i / (ṡ_i + ṡ_{i+1}) and, with τ = t − t_i,
 //! `ṡ = ṡ_i + u_i·τ`, `s = s_i + ṡ_i·τ + u_i·τ²/2`, s⃛ = 0 inside the interval.
@@ -10,7 +10,7 @@
 //! q̈ = σ″ṡ² + σ′s̈, q⃛ = σ‴ṡ³ + 3σ″ṡs̈), never refitted by another spline.
 //!
 //! # Precision contract
-//! Profile evaluation is exact up to rounding; at the end of an interval s reaches s_{i+1}
+//! PhaseProfile evaluation is exact up to rounding; at the end of an interval s reaches s_{i+1}
 //! up to rounding, and s is clamped into `[s_i, s_{i+1}]`. Position is continuous, velocity is
 //! continuous, path acceleration is piecewise constant, so joint jerk contains the jumps of s̈
 //! as impulses that [`crate::Trajectory::eval`] does not show (it reports the jerk inside the
@@ -20,19 +20,21 @@ use super::rescale::{Retimed, TimeLaw};
 use crate::error::{Error, Result};
 use crate::traj::{clamp_time, find_piece};
 
-/// TOPP-RA's output trajectory: a path timed by a [`Profile`].
-pub type Parametrized<P> = Retimed<P, Profile>;
+/// TOPP-RA's output trajectory: a path timed by a [`PhaseProfile`].
+pub type Parametrized<P> = Retimed<P, PhaseProfile>;
 
-/// Path velocity at gridpoints and constant path acceleration between them.
+/// A phase-plane profile: the path velocity ṡ at gridpoints over the path position s, and the
+/// constant path acceleration between them. (`otg::Profile` is a different thing: one DOF's
+/// online jerk-limited profile.)
 #[derive(Debug, Clone, PartialEq)]
-pub struct Profile {
+pub struct PhaseProfile {
     s: Vec<f64>,
     sd: Vec<f64>,
     sdd: Vec<f64>,
     t: Vec<f64>,
 }
 
-impl Profile {
+impl PhaseProfile {
     /// A profile from gridpoints (strictly increasing) and path velocities `sd` (≥ 0, finite,
     /// one per gridpoint). Two consecutive zero velocities would take infinite time and are
     /// refused.
@@ -90,7 +92,7 @@ impl Profile {
                 "the duration is not finite (path velocity too close to zero)".into(),
             ));
         }
-        Ok(Profile {
+        Ok(PhaseProfile {
             s: s.to_vec(),
             sd: sd.to_vec(),
             sdd,
@@ -124,12 +126,12 @@ impl Profile {
     }
 }
 
-impl TimeLaw for Profile {
+impl TimeLaw for PhaseProfile {
     fn duration(&self) -> f64 {
-        Profile::duration(self)
+        PhaseProfile::duration(self)
     }
     fn eval(&self, t: f64) -> [f64; 4] {
-        let t = clamp_time(t, Profile::duration(self));
+        let t = clamp_time(t, PhaseProfile::duration(self));
         let n = self.sdd.len();
         if t >= self.t[n] {
             // The end state exactly (rest stays rest).
@@ -152,14 +154,14 @@ mod tests {
     #[test]
     fn constant_acceleration_pieces() {
         // From rest, u = 1 on [0, 0.5]: ṡ₁ = 1, t₁ = 1; then constant speed on [0.5, 1.5].
-        let p = Profile::new(&[0.0, 0.5, 1.5], &[0.0, 1.0, 1.0]).unwrap();
+        let p = PhaseProfile::new(&[0.0, 0.5, 1.5], &[0.0, 1.0, 1.0]).unwrap();
         assert_eq!(p.accelerations(), &[1.0, 0.0]);
         assert_eq!(p.times(), &[0.0, 1.0, 2.0]);
         let [s, sd, sdd, _] = p.eval(0.5);
         assert!((s - 0.125).abs() < 1e-15 && (sd - 0.5).abs() < 1e-15 && sdd == 1.0);
         assert_eq!(p.eval(5.0)[0], 1.5);
-        assert!(Profile::new(&[0.0, 1.0, 2.0], &[1.0, 0.0, 0.0]).is_err());
-        assert!(Profile::new(&[0.0, 1.0], &[1.0, -1.0]).is_err());
-        assert!(Profile::new(&[0.0, 0.0], &[1.0, 1.0]).is_err());
+        assert!(PhaseProfile::new(&[0.0, 1.0, 2.0], &[1.0, 0.0, 0.0]).is_err());
+        assert!(PhaseProfile::new(&[0.0, 1.0], &[1.0, -1.0]).is_err());
+        assert!(PhaseProfile::new(&[0.0, 0.0], &[1.0, 1.0]).is_err());
     }
 }

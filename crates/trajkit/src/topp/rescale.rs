@@ -8,7 +8,7 @@
 //!   ξ̇ = σ′ṡ,   ξ̈ = σ″ṡ² + σ′s̈,   ξ⃛ = σ‴ṡ³ + 3σ″ṡs̈ + σ′s⃛
 //! ```
 //!
-//! Timing laws: the TOPP-RA [`crate::topp::Profile`], a constant-speed [`LinearLaw`], a
+//! Timing laws: the TOPP-RA [`crate::topp::PhaseProfile`], a constant-speed [`LinearLaw`], a
 //! rest-to-rest minimum-jerk [`QuinticLaw`], or user code.
 //!
 //! [`Scaled`] slows a whole trajectory down (or speeds it up) by a factor k: ξ_k(t) = ξ(t/k),

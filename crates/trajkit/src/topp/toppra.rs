@@ -2,14 +2,14 @@
 //!
 //! With state x = ṡ² and control u = s̈, the path velocity evolves between gridpoints as
 //! x_{i+1} = x_i + 2Δ_i·u_i (constant s̈ on each interval). Each constraint gives half-planes in
-//! (u, x) at every gridpoint ([`crate::topp::constraint`]). The solver
+//! (u, x) at every gridpoint ([`crate::topp::Constraint`]). The solver
 //! 1. evaluates the path and all constraints at every gridpoint;
 //! 2. **backward pass**: from the end set K_N = {ṡ_end²}, computes the controllable sets
 //!    K_i = [min, max] of the x from which some admissible u reaches K_{i+1} — two exact
-//!    two-variable linear programs per stage ([`crate::topp::lp`]);
+//!    two-variable linear programs per stage (`topp/lp.rs`);
 //! 3. **forward pass**: from x_0 = ṡ_start², takes the largest admissible u that stays in
 //!    K_{i+1} (a one-variable program: the smallest upper bound);
-//! 4. with [`Options::refine`] (the default) the limits hold between gridpoints too
+//! 4. with [`ToppraOptions::refine`] (the default) the limits hold between gridpoints too
 //!    (module `topp::between`): on paths that are polynomials of degree ≤ 3 between
 //!    breakpoints (trajkit's splines and polylines) each stage also carries the interior
 //!    Bernstein coefficients of the joint velocity and acceleration along the interval (rows
@@ -19,7 +19,7 @@
 //!
 //! Gridpoints ([`Gridpoints`]): by default chosen from a duration tolerance of 1e-4 relative
 //! ([`Gridpoints::Auto`]: equal intervals per path piece, doubled until the duration settles;
-//! see [`crate::topp::grid`]), or a uniform count, a chord tolerance, or a given list.
+//! see [`crate::topp::Gridpoints`]), or a uniform count, a chord tolerance, or a given list.
 //!
 //! Discretization ([`Discretization`]): *interpolation* (default) enforces the constraints of
 //! interval i at both s_i and s_{i+1} with the same u_i (x_{i+1} = x_i + 2Δu_i), so the limits
@@ -34,7 +34,7 @@
 //! - The profile is the exact greedy solution of the discretized problem up to the LP tolerance
 //!   (1e-10 relative): at every gridpoint, every constraint holds for the interval's u on both
 //!   sides within 1e-9 relative.
-//! - Between gridpoints, with [`Options::refine`] on (the default):
+//! - Between gridpoints, with [`ToppraOptions::refine`] on (the default):
 //!   - on paths that are polynomials of degree ≤ 3 between breakpoints
 //!     ([`crate::Path::piecewise_degree`]) with gridpoints at the breakpoints (every grid but
 //!     a [`Gridpoints::Given`] one), joint velocity and joint acceleration limits hold on the
@@ -63,7 +63,7 @@
 use super::constraint::{Constraint, ConstraintRows, PathPoint};
 use super::grid::Gridpoints;
 use super::lp::{self, BOX};
-use super::parametrized::{Parametrized, Profile};
+use super::parametrized::{Parametrized, PhaseProfile};
 use super::rescale::Retimed;
 use crate::error::{Error, Result};
 use crate::{Limits, Path};
@@ -78,7 +78,7 @@ pub enum Discretization {
     Collocation,
 }
 
-/// Largest number of refinement rounds of [`Options::refine`].
+/// Largest number of refinement rounds of [`ToppraOptions::refine`].
 pub const MAX_REFINE_ROUNDS: usize = 8;
 
 /// Refinement stops before the grid would exceed this many intervals.
@@ -109,11 +109,11 @@ pub(crate) const REFINE_POINTS: [f64; 15] = [
     1.0 - 1.0 / 16384.0,
 ];
 
-/// Solver options. `Options::default()`: the grid chosen from a 1e-4 duration tolerance
+/// Solver options. `ToppraOptions::default()`: the grid chosen from a 1e-4 duration tolerance
 /// ([`Gridpoints::Auto`]), interpolation, rest to rest, limits guaranteed between gridpoints
 /// (`refine` on).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Options {
+pub struct ToppraOptions {
     /// Gridpoints.
     pub gridpoints: Gridpoints,
     /// Discretization scheme.
@@ -126,9 +126,9 @@ pub struct Options {
     pub refine: bool,
 }
 
-impl Default for Options {
+impl Default for ToppraOptions {
     fn default() -> Self {
-        Options {
+        ToppraOptions {
             gridpoints: Gridpoints::Auto { tolerance: 1e-4 },
             discretization: Discretization::Interpolation,
             start_velocity: 0.0,
@@ -156,7 +156,7 @@ impl Default for Options {
 pub struct Toppra<'c, P: Path> {
     path: P,
     constraints: Vec<Box<dyn Constraint + 'c>>,
-    options: Options,
+    options: ToppraOptions,
 }
 
 impl<'c, P: Path> Toppra<'c, P> {
@@ -165,7 +165,7 @@ impl<'c, P: Path> Toppra<'c, P> {
         Toppra {
             path,
             constraints: Vec::new(),
-            options: Options::default(),
+            options: ToppraOptions::default(),
         }
     }
 
@@ -191,7 +191,7 @@ impl<'c, P: Path> Toppra<'c, P> {
     }
 
     /// Replaces the options.
-    pub fn options(mut self, options: Options) -> Self {
+    pub fn options(mut self, options: ToppraOptions) -> Self {
         self.options = options;
         self
     }
@@ -215,7 +215,7 @@ impl<'c, P: Path> Toppra<'c, P> {
     }
 
     /// The options.
-    pub fn options_ref(&self) -> &Options {
+    pub fn options_ref(&self) -> &ToppraOptions {
         &self.options
     }
 
@@ -230,7 +230,7 @@ impl<'c, P: Path> Toppra<'c, P> {
     }
 
     /// Solves and returns the timing only.
-    pub fn solve_profile(&self) -> Result<Profile> {
+    pub fn solve_profile(&self) -> Result<PhaseProfile> {
         let o = &self.options;
         let (a, b) = self.path.interval();
         crate::error::finite(|| "path interval start".into(), a)?;
@@ -306,7 +306,7 @@ impl<'c, P: Path> Toppra<'c, P> {
     /// finer than the previous one differs from the previous T_prev by at most
     /// (r − 1)·`tolerance`·T: with an error C·h^p, p ≥ 1, that bounds the finer grid's error by
     /// `tolerance` (see [`super::grid`]).
-    fn solve_auto(&self, tolerance: f64) -> Result<Profile> {
+    fn solve_auto(&self, tolerance: f64) -> Result<PhaseProfile> {
         use super::grid::{per_piece, piece_breaks, AUTO_START, MAX_AUTO_INTERVALS};
         crate::error::positive(|| "gridpoint tolerance".into(), tolerance)?;
         let breaks = piece_breaks(&self.path);
@@ -349,9 +349,9 @@ impl<'c, P: Path> Toppra<'c, P> {
     }
 }
 
-fn profile_from(grid: &[f64], x: &[f64]) -> Result<Profile> {
+fn profile_from(grid: &[f64], x: &[f64]) -> Result<PhaseProfile> {
     let sd: Vec<f64> = x.iter().map(|v| v.max(0.0).sqrt()).collect();
-    Profile::new(grid, &sd)
+    PhaseProfile::new(grid, &sd)
 }
 
 /// Constraint data at every gridpoint and scratch space.

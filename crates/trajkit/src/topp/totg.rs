@@ -37,10 +37,10 @@
 //! `max_deviation`) cannot be blended: [`plan_totg`] splits the waypoints there into
 //! rest-to-rest pieces played as a [`Sequence`] (the robot stops at that waypoint);
 //! [`BlendedPath::new`] refuses them with [`Error::Infeasible`]. The work is bounded for every input
-//! (refinement rounds and knots are capped, see [`crate::topp::toppra::MAX_REFINE_ROUNDS`]).
+//! (refinement rounds and knots are capped, see [`crate::topp::MAX_REFINE_ROUNDS`]).
 //!
 //! # Precision contract
-//! The result is a [`Profile`] (ṡ² linear in s between knots) composed exactly with the path:
+//! The result is a [`PhaseProfile`] (ṡ² linear in s between knots) composed exactly with the path:
 //! - on straight segments the limits hold exactly (up to rounding) and the timing is the
 //!   closed-form optimum (trapezoid / triangle in ṡ);
 //! - on arcs the limits hold at knots within 1e-9 relative and everywhere between knots
@@ -111,7 +111,7 @@ use super::blend::BlendedPath;
 use super::constraint::{Constraint, JointAcceleration, JointVelocity};
 use super::messy::{dedup_waypoints, in_piece, Sequence};
 use super::ni::{integrate, PhaseSolution};
-use super::parametrized::{Parametrized, Profile};
+use super::parametrized::{Parametrized, PhaseProfile};
 use super::rescale::Retimed;
 use crate::error::{Error, Result};
 use crate::{Limits, Order, Path};
@@ -317,7 +317,7 @@ impl Totg {
     }
 
     /// Integrates and returns the timing.
-    pub fn solve_profile(&self) -> Result<Profile> {
+    pub fn solve_profile(&self) -> Result<PhaseProfile> {
         Ok(self.solve_detailed()?.profile)
     }
 
@@ -330,7 +330,7 @@ impl Totg {
 
 /// TOTG through raw waypoints (row-major `count × dim`): repeated waypoints removed, the
 /// waypoints split at exact reversals and at corners too sharp to blend
-/// ([`super::blend::stop_indices`]) into pieces (each blended with
+/// (`stop_indices` in blend.rs) into pieces (each blended with
 /// `options.max_deviation`, timed from rest to rest except `options.start_velocity` on the
 /// first piece and `options.end_velocity` on the last) and the pieces played one after the
 /// other.

@@ -66,28 +66,36 @@
 //! # Ok::<(), trajkit::Error>(())
 //! ```
 
+#[cfg(feature = "yaml")]
 mod moveit;
+#[cfg(feature = "serde")]
 mod trajkit_format;
+#[cfg(feature = "urdf")]
 mod urdf;
+#[cfg(feature = "serde")]
 mod value;
 
+#[cfg(feature = "yaml")]
 pub use moveit::{apply_moveit_joint_limits, moveit_joint_limits_from_str};
-pub use trajkit_format::{from_json_str, from_yaml_str};
-pub use urdf::from_urdf_str;
-pub(crate) use urdf::line_of;
+#[cfg(feature = "serde")]
+pub use trajkit_format::from_json_str;
+#[cfg(feature = "yaml")]
+pub use trajkit_format::from_yaml_str;
+#[cfg(feature = "urdf")]
+pub use urdf::{from_urdf, from_urdf_str};
 
 use super::{presets, PartialLimits};
-use crate::error::{Error, Result};
+use crate::error::{Error, Location, Result};
 use std::path::Path;
-use value::{file_error, yaml_error};
 
 // ---------------------------------------------------------------------------------------------
 // Dispatch.
 
 /// True when YAML text is a mapping with a top-level `joint_limits` key (MoveIt's format).
+#[cfg(feature = "yaml")]
 fn is_moveit_yaml(text: &str, source: &str) -> Result<bool> {
     let v: serde_yaml_ng::Value =
-        serde_yaml_ng::from_str(text).map_err(|e| yaml_error(source, e))?;
+        serde_yaml_ng::from_str(text).map_err(|e| value::yaml_error(source, e))?;
     Ok(v.as_mapping()
         .is_some_and(|m| m.contains_key(serde_yaml_ng::Value::from("joint_limits"))))
 }
@@ -115,12 +123,15 @@ pub fn from_file(path: &Path) -> Result<PartialLimits> {
             ),
         ));
     }
+    #[cfg_attr(not(any(feature = "serde", feature = "urdf")), allow(unused_variables))]
     let text = std::fs::read_to_string(path).map_err(|e| Error::Io {
         path: source.clone(),
         message: e.to_string(),
     })?;
     match ext.as_str() {
+        #[cfg(feature = "serde")]
         "json" => from_json_str(&text, &source),
+        #[cfg(feature = "yaml")]
         "yaml" | "yml" => {
             if is_moveit_yaml(&text, &source)? {
                 moveit_joint_limits_from_str(&text, &source, None)
@@ -128,7 +139,21 @@ pub fn from_file(path: &Path) -> Result<PartialLimits> {
                 from_yaml_str(&text, &source)
             }
         }
-        _ => from_urdf_str(&text, &source),
+        #[cfg(feature = "urdf")]
+        "urdf" | "xml" => from_urdf_str(&text, &source),
+        other => Err(file_error(
+            &source,
+            "",
+            format!(
+                "reading .{other} limits files needs trajkit's `{}` feature, which this build \
+                 leaves out",
+                match other {
+                    "json" => "serde",
+                    "yaml" | "yml" => "yaml",
+                    _ => "urdf",
+                }
+            ),
+        )),
     }
 }
 
@@ -159,5 +184,32 @@ pub fn from_spec(spec: &str) -> Result<PartialLimits> {
     })
 }
 
-#[cfg(test)]
+/// Wraps an error found after parsing (no line known) so that it names the file.
+#[cfg_attr(not(any(feature = "serde", feature = "urdf")), allow(dead_code))]
+pub(super) fn in_file(source: &str, e: Error) -> Error {
+    match e {
+        Error::Parse { .. } | Error::Io { .. } => e,
+        other => Error::Parse {
+            location: Location {
+                source: source.to_string(),
+                line: 0,
+                field: String::new(),
+            },
+            message: other.to_string(),
+        },
+    }
+}
+
+pub(super) fn file_error(source: &str, field: &str, message: impl Into<String>) -> Error {
+    Error::Parse {
+        location: Location {
+            source: source.to_string(),
+            line: 0,
+            field: field.to_string(),
+        },
+        message: message.into(),
+    }
+}
+
+#[cfg(all(test, feature = "yaml", feature = "urdf"))]
 mod tests;

@@ -1,6 +1,7 @@
 //! Values as written in a limits file: checked inside the format's deserializer so that an
 //! error carries the value's line, and turned into [`Error::Parse`] naming file, line and field.
 
+pub(super) use super::{file_error, in_file};
 use crate::error::{Error, Location};
 use crate::limits::presets;
 use serde::de::{self, DeserializeSeed, Deserializer, IgnoredAny, MapAccess, SeqAccess, Visitor};
@@ -84,35 +85,10 @@ pub(super) fn json_error(source: &str, e: serde_json::Error) -> Error {
     parse_error(source, e.line(), &e.to_string())
 }
 
+#[cfg(feature = "yaml")]
 pub(super) fn yaml_error(source: &str, e: serde_yaml_ng::Error) -> Error {
     let line = e.location().map_or(0, |l| l.line());
     parse_error(source, line, &e.to_string())
-}
-
-/// Wraps an error found after parsing (no line known) so that it names the file.
-pub(super) fn in_file(source: &str, e: Error) -> Error {
-    match e {
-        Error::Parse { .. } | Error::Io { .. } => e,
-        other => Error::Parse {
-            location: Location {
-                source: source.to_string(),
-                line: 0,
-                field: String::new(),
-            },
-            message: other.to_string(),
-        },
-    }
-}
-
-pub(super) fn file_error(source: &str, field: &str, message: impl Into<String>) -> Error {
-    Error::Parse {
-        location: Location {
-            source: source.to_string(),
-            line: 0,
-            field: field.to_string(),
-        },
-        message: message.into(),
-    }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -13,7 +13,7 @@
 //! repeated with twice as many steps until two successive durations agree within it.
 
 use crate::topp::rescale::TimeLaw;
-use crate::topp::Profile;
+use crate::topp::PhaseProfile as Profile;
 
 /// Gridpoints evenly spaced in the time of `law` (`steps` intervals), with the path's
 /// `breaks` and a geometric refinement of `levels` halvings at both ends.

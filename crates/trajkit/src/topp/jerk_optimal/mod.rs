@@ -93,7 +93,7 @@ use crate::topp::constraint::{
 };
 use crate::topp::messy::{Sequence, TorqueModel};
 use crate::topp::rescale::Retimed;
-use crate::topp::{Gridpoints, Options, Profile, Toppra};
+use crate::topp::{Gridpoints, PhaseProfile as Profile, Toppra, ToppraOptions as Options};
 use crate::{Limits, Order, Path};
 use certify::JointRange;
 

@@ -1,12 +1,12 @@
 //! Step 1's fastest-only mode against its full mode: the same minimum duration on seeded
 //! random problems of every category of the otg suite (its generator, one DOF each).
 
-#[path = "../../tests/otg_common/mod.rs"]
+#[path = "../../../tests/otg_common/mod.rs"]
 mod otg_common;
 
-use super::problem::Dof1;
-use super::profile::Profile;
-use super::step1::{step1_fastest_into, step1_into, MAX_CANDIDATES};
+use super::super::problem::Dof1;
+use super::super::profile::Profile;
+use super::{step1_fastest_into, step1_into, MAX_CANDIDATES};
 use crate::rng::SplitMix64;
 use crate::Limits;
 use otg_common::{problem, ALL};
@@ -37,7 +37,7 @@ fn fastest_only_matches_the_full_mode() {
             };
             let (full, fast) = both(&q);
             // The public entry point is the fastest-only mode.
-            let public = super::time_optimal(&q).map(|p| p.duration());
+            let public = super::super::time_optimal(&q).map(|p| p.duration());
             assert_eq!(
                 public, fast,
                 "{cat:?} #{k}: time_optimal vs fastest-only: {q:?}"

@@ -1,33 +1,19 @@
-//! Real roots of low-degree polynomials on an interval, without allocation.
+//! Real roots of polynomials of degree ≤ [`MAX_DEGREE`] on an interval by derivative
+//! recursion: the general solver, for extrema of polynomials.
 //!
-//! Method: root isolation by derivative recursion. Between consecutive roots of p′ the
-//! polynomial p is monotone, so each such interval holds at most one root of p, found by
-//! bisection on a sign change. Recursing down to degree 1 isolates every root of odd
-//! multiplicity. Roots of even multiplicity (tangent roots, no sign change) are reported only
-//! when |p| there is below `1e-14 · scale`; they do not matter for finding extrema, which is
-//! what trajkit uses this for.
+//! Method: between consecutive roots of p′ the polynomial p is monotone, so each such interval
+//! holds at most one root of p, found by bisection on a sign change. Recursing down to degree 1
+//! isolates every root of odd multiplicity. Roots of even multiplicity (tangent roots, no sign
+//! change) are reported only when |p| there is below `1e-14 · scale`; they do not matter for
+//! finding extrema, which is what trajkit uses this for.
 //!
 //! Precision: each root is bracketed to a width of at most 4 ulp of the interval's larger end
 //! (bisection runs until the midpoint no longer moves).
 
-/// Largest polynomial degree supported.
+use super::{derivative, horner};
+
+/// Largest polynomial degree [`roots_in`] and [`max_abs_in`] accept.
 pub const MAX_DEGREE: usize = 8;
-
-/// Evaluates `c[0] + c[1] x + ... ` by Horner's rule.
-#[inline]
-pub fn horner(c: &[f64], x: f64) -> f64 {
-    c.iter().rev().fold(0.0, |acc, &ci| acc * x + ci)
-}
-
-/// Writes the derivative's coefficients of `c` into `d` (length `c.len() - 1`); returns its
-/// length.
-fn derivative(c: &[f64], d: &mut [f64; MAX_DEGREE + 1]) -> usize {
-    let n = c.len().saturating_sub(1);
-    for i in 0..n {
-        d[i] = c[i + 1] * (i + 1) as f64;
-    }
-    n
-}
 
 /// Real roots of the polynomial with coefficients `c` (lowest order first, degree ≤
 /// [`MAX_DEGREE`]) in the closed interval `[a, b]`, written increasing into `out`; returns how

@@ -1,0 +1,336 @@
+//! The families of the time-optimal jerk-limited motion in closed form: the cruise at the
+//! velocity limit, and a₀ ↗ α₁ ↘ α₂ ↗ a_f with or without plateaus, each from the roots of its
+//! position polynomial ([`super::super::families`]).
+
+use super::super::families_gen::{s1_acc0, s1_acc01, s1_acc1, s1_none};
+use super::super::problem::{Dof1, ProfileOrder};
+use super::super::profile::State1;
+use super::super::velocity_change::push_change;
+use super::verify::velocity_window;
+use super::Collector;
+use crate::roots::MAX_POLY;
+
+/// A sequence of up to 7 constant-jerk segments.
+#[derive(Clone, Copy)]
+pub(super) struct Seq {
+    n: usize,
+    d: [f64; 7],
+    j: [f64; 7],
+}
+
+impl Seq {
+    pub(super) fn new() -> Seq {
+        Seq {
+            n: 0,
+            d: [0.0; 7],
+            j: [0.0; 7],
+        }
+    }
+    #[inline]
+    pub(super) fn add(&mut self, d: f64, j: f64) {
+        self.d[self.n] = d.max(0.0);
+        self.j[self.n] = j;
+        self.n += 1;
+    }
+    /// Offers the sequence, started from `q`'s start state (mirrored back when `mirror`), to
+    /// the collector unless it cannot matter.
+    pub(super) fn offer(&self, q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
+        if !col.wants(self.d[..self.n].iter().sum()) {
+            return;
+        }
+        let pr = col.scratch(State1 {
+            p: q.p0,
+            v: q.v0,
+            a: q.a0,
+        });
+        for k in 0..self.n {
+            pr.push(self.d[k], self.j[k]);
+        }
+        if mirror {
+            pr.mirror();
+        }
+        col.submit();
+    }
+    #[inline]
+    pub(super) fn displacement(&self, v0: f64, a0: f64) -> f64 {
+        let (mut p, mut v, mut a) = (0.0, v0, a0);
+        for k in 0..self.n {
+            (p, v, a) = super::super::profile::integrate(p, v, a, self.j[k], self.d[k]);
+        }
+        p
+    }
+}
+
+/// The cruise family (vel) in the positive direction of the (possibly mirrored) problem `q`:
+/// fastest change to (v_max, 0), cruise, fastest change to the target. When it offered a
+/// valid profile, returns the cruise's share of its duration.
+pub(super) fn vel_family(q: &Dof1, mirror: bool, col: &mut Collector<'_>) -> Option<f64> {
+    let j = q.jmax;
+    let (a0, v0, af, vf) = (q.a0, q.v0, q.af, q.vf);
+    let amax = q.amax;
+    let a2 = -q.amin;
+    let d = q.pf - q.p0;
+    // vel: cruise at v_max.
+    if q.vmax.is_finite() {
+        let c1 = super::super::velocity_change::fastest3(v0, a0, q.vmax, 0.0, j, amax, -a2);
+        let c2 = super::super::velocity_change::fastest3(q.vmax, 0.0, vf, af, j, amax, -a2);
+        if let (Some(c1), Some(c2)) = (c1, c2) {
+            let tau = (d - c1.dist - c2.dist) / q.vmax;
+            if tau >= 0.0 {
+                let pr = col.scratch(State1 {
+                    p: q.p0,
+                    v: v0,
+                    a: a0,
+                });
+                push_change(pr, ProfileOrder::Third, &c1, v0);
+                pr.snap(q.vmax, 0.0);
+                pr.push_with(tau, q.vmax, 0.0, 0.0);
+                push_change(pr, ProfileOrder::Third, &c2, q.vmax);
+                if mirror {
+                    pr.mirror();
+                }
+                let share = tau / pr.duration();
+                return col.submit().then_some(share);
+            }
+        }
+    }
+    None
+}
+
+/// The families a₀ ↗ α₁ ↘ α₂ ↗ a_f (with or without plateaus at a_max and a_min) in the
+/// positive direction of the (possibly mirrored) problem `q`, each from the roots of its
+/// position polynomial (see [`super::super::families`]).
+pub(super) fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
+    let (amax, amin, j) = (q.amax, q.amin, q.jmax);
+    let tol = 1e-12 * (amax - amin);
+    if q.a0 > amax + tol || !(amax.is_finite() && amin.is_finite()) {
+        return;
+    }
+    // Every family here ramps the acceleration up, down, up (a₀ ↗ α₁ ↘ α₂ ↗ a_f): the
+    // velocity never falls below the start's dip or the target's approach from below.
+    let v_low =
+        (q.v0 - q.a0.min(0.0).powi(2) / (2.0 * j)).min(q.vf - q.af.max(0.0).powi(2) / (2.0 * j));
+    if col.cannot_cover(q.pf - q.p0, v_low, q.vmax.max(q.v0)) {
+        return;
+    }
+    let dscale = (amax - amin) / j;
+    let f = Closed {
+        q,
+        mirror,
+        dv: q.vf - q.v0,
+        d: q.pf - q.p0,
+        tol,
+        dscale,
+        // Where a plateau family passes a velocity peak (the acceleration turning from
+        // positive to negative), the peak must not exceed v_max (or the start's velocity,
+        // when the brake left it above): a necessary condition that narrows the parameter
+        // windows, with a margin far above round-off (verification accepts 0.5e-12
+        // relative). The peak velocity is a function of the parameter in closed form.
+        vtop: q.vmax.max(q.v0) + 1e-9 * (q.vmax.abs().min(1e300) + q.v0.abs() + q.vf.abs()),
+    };
+    let mut roots = [0.0; MAX_POLY];
+    f.none(col, &mut roots);
+    f.acc0(col, &mut roots);
+    if q.af < amin - tol {
+        return;
+    }
+    f.acc1(col, &mut roots);
+    f.acc0_acc1(col, &mut roots);
+}
+
+/// What [`closed_families`] shares between its four families.
+struct Closed<'q> {
+    q: &'q Dof1,
+    mirror: bool,
+    /// v_f − v₀.
+    dv: f64,
+    /// p_f − p₀.
+    d: f64,
+    /// Tolerance of the acceleration levels.
+    tol: f64,
+    /// (a_max − a_min)/j, the scale of the durations.
+    dscale: f64,
+    /// The largest velocity a plateau family's peak may have.
+    vtop: f64,
+}
+
+impl Closed<'_> {
+    #[inline]
+    fn emit(&self, seq: &Seq, col: &mut Collector<'_>) {
+        seq.offer(self.q, self.mirror, col);
+    }
+
+    /// Durations may come out negative at round-off level on a family's edge.
+    #[inline]
+    fn okd(&self, x: f64) -> bool {
+        x >= -1e-12 * self.dscale.max(1e-300)
+    }
+
+    /// The plateau families' plateau duration is convex in their parameter, so its largest
+    /// value over the parameter window is at one of the window's ends. When it is clearly
+    /// negative at both (beyond the tolerance of `okd`, with a margin far above round-off),
+    /// no root can give a valid profile and the family is skipped: neither its coefficients
+    /// nor its polynomial are computed.
+    #[inline]
+    fn hopeless(&self, t: f64, size: f64) -> bool {
+        t < -1e-12 * self.dscale.max(1e-300) - 1e-9 * size
+    }
+
+    /// none: s = α₁, α₂ = w. (Coefficients only when a window is not empty.)
+    #[inline]
+    fn none(&self, col: &mut Collector<'_>, roots: &mut [f64; MAX_POLY]) {
+        let q = self.q;
+        let (j, a0, af, amin, tol) = (q.jmax, q.a0, q.af, q.amin, self.tol);
+        let mut none = None;
+        // α₂² = α₁² − K with α₂ ∈ [a_min, a_f]:
+        // α₁² ∈ [K (+a_f² when a_f < 0), K + max(a_f², a_min²)].
+        let k = j * self.dv + (a0 * a0 - af * af) / 2.0;
+        let l = k + if af < 0.0 { af * af } else { 0.0 };
+        let af_pos = if af >= 0.0 { af * af } else { 0.0 };
+        let u = k + af_pos.max(amin * amin);
+        for (lo, hi) in square_window(l.max(0.0), u, a0.min(q.amax), q.amax, true, tol) {
+            let r = none.get_or_insert_with(|| s1_none(a0, af, q.v0, q.vf, self.d, j));
+            let n = r.roots(lo, hi, roots);
+            for &x in &roots[..n] {
+                let al2 = r.w_at(x);
+                if al2 > x + tol || al2 > af + tol || al2 < amin - tol {
+                    continue;
+                }
+                let mut s = Seq::new();
+                s.add((x - a0) / j, j);
+                s.add((x - al2) / j, -j);
+                s.add((af - al2) / j, j);
+                self.emit(&s, col);
+            }
+        }
+    }
+
+    /// acc0: s = α₂, plateau τ₁ at a_max. For α₂ < 0 the peak is v_f + (2α₂² − a_f²)/(2j).
+    #[inline]
+    fn acc0(&self, col: &mut Collector<'_>, roots: &mut [f64; MAX_POLY]) {
+        let q = self.q;
+        let (j, a0, af, amax, amin, tol) = (q.jmax, q.a0, q.af, q.amax, q.amin, self.tol);
+        let c0 = amax * amax + (af * af - a0 * a0) / 2.0 - j * self.dv;
+        let peak_lo = -(af * af / 2.0 + j * (self.vtop - q.vf)).max(0.0).sqrt();
+        let (xlo, xhi) = ((amin - tol).max(peak_lo - tol), amax.min(af) + tol);
+        let t1_at = |x: f64| (x * x - c0) / (j * amax);
+        let t1_size = |x: f64| (x * x + c0.abs()) / (j * amax);
+        let n = if xlo > xhi
+            || (self.hopeless(t1_at(xlo), t1_size(xlo)) && self.hopeless(t1_at(xhi), t1_size(xhi)))
+        {
+            0
+        } else {
+            s1_acc0(a0, af, q.v0, q.vf, self.d, j, amax).roots(xlo, xhi, roots)
+        };
+        for &x in &roots[..n] {
+            let t1 = (x * x - c0) / (j * amax);
+            if !self.okd(t1) {
+                continue;
+            }
+            let mut s = Seq::new();
+            s.add((amax - a0) / j, j);
+            s.add(t1, 0.0);
+            s.add((amax - x) / j, -j);
+            s.add((af - x) / j, j);
+            self.emit(&s, col);
+        }
+    }
+
+    /// acc1: s = α₁, plateau τ₂ at a_min. For α₁ > 0 the peak is v₀ + (2α₁² − a₀²)/(2j).
+    #[inline]
+    fn acc1(&self, col: &mut Collector<'_>, roots: &mut [f64; MAX_POLY]) {
+        let q = self.q;
+        let (j, a0, af, amax, amin, tol) = (q.jmax, q.a0, q.af, q.amax, q.amin, self.tol);
+        let dv = self.dv;
+        let t2_of = |x: f64| {
+            ((2.0 * x * x - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j) - dv) / -amin
+        };
+        let t2_size = |x: f64| {
+            ((2.0 * x * x + a0 * a0 + 2.0 * amin * amin + af * af) / (2.0 * j) + dv.abs()) / -amin
+        };
+        let peak_hi = (j * (self.vtop - q.v0) + a0 * a0 / 2.0).max(0.0).sqrt();
+        let (xlo, xhi) = (a0.min(amax) - tol, amax.min(peak_hi) + tol);
+        let n = if xlo > xhi
+            || (self.hopeless(t2_of(xlo), t2_size(xlo)) && self.hopeless(t2_of(xhi), t2_size(xhi)))
+        {
+            0
+        } else {
+            s1_acc1(a0, af, q.v0, q.vf, self.d, j, amin).roots(xlo, xhi, roots)
+        };
+        for &x in &roots[..n] {
+            let t2 = t2_of(x);
+            if !self.okd(t2) {
+                continue;
+            }
+            let mut s = Seq::new();
+            s.add((x - a0) / j, j);
+            s.add((x - amin) / j, -j);
+            s.add(t2, 0.0);
+            s.add((af - amin) / j, j);
+            self.emit(&s, col);
+        }
+    }
+
+    /// acc0_acc1: s = τ₁ (τ₂ grows with τ₁: its largest value is at the window's end). The
+    /// peak is v₀ + (2a_max² − a₀²)/(2j) + a_max·τ₁.
+    #[inline]
+    fn acc0_acc1(&self, col: &mut Collector<'_>, roots: &mut [f64; MAX_POLY]) {
+        let q = self.q;
+        let (j, a0, af, amax, amin) = (q.jmax, q.a0, q.af, q.amax, q.amin);
+        let dv = self.dv;
+        let (vlo, vhi) = velocity_window(q);
+        let t1_peak = (self.vtop - q.v0 - (2.0 * amax * amax - a0 * a0) / (2.0 * j)) / amax;
+        let t1_hi = (((vhi - vlo).abs() + dv.abs()) / amax).min(t1_peak);
+        let k01 = (2.0 * amax * amax - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j);
+        let t2_at = |x: f64| (k01 + amax * x - dv) / -amin;
+        let size = (k01.abs() + amax * t1_hi + dv.abs()) / -amin;
+        let n = if t1_hi < 0.0 || self.hopeless(t2_at(t1_hi), size) {
+            0
+        } else {
+            s1_acc01(a0, af, q.v0, q.vf, self.d, j, amax, amin).roots(0.0, t1_hi, roots)
+        };
+        for &x in &roots[..n] {
+            let t2 = ((2.0 * amax * amax - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j)
+                + amax * x
+                - dv)
+                / -amin;
+            if !self.okd(t2) {
+                continue;
+            }
+            let mut s = Seq::new();
+            s.add((amax - a0) / j, j);
+            s.add(x, 0.0);
+            s.add((amax - amin) / j, -j);
+            s.add(t2, 0.0);
+            s.add((af - amin) / j, j);
+            self.emit(&s, col);
+        }
+    }
+}
+
+/// The parts of `[lo, hi]` where x² ∈ [l, u]: up to two intervals (the negative one only
+/// when `neg_ok`). Bounds are widened by `tol` so that edge roots survive round-off.
+pub(super) fn square_window(
+    l: f64,
+    u: f64,
+    lo: f64,
+    hi: f64,
+    neg_ok: bool,
+    tol: f64,
+) -> impl Iterator<Item = (f64, f64)> {
+    let mut out = [(1.0, 0.0); 2];
+    if l <= u && u >= 0.0 {
+        let (r0, r1) = (l.max(0.0).sqrt(), u.sqrt());
+        let (a, b) = ((r0 - tol).max(lo), (r1 + tol).min(hi));
+        if a <= b {
+            out[0] = (a, b);
+        }
+        if neg_ok {
+            let (a, b) = ((-r1 - tol).max(lo), (-r0 + tol).min(hi));
+            if a <= b {
+                out[1] = (a, b);
+            }
+        }
+    }
+    out.into_iter().filter(|(a, b)| a <= b)
+}
