@@ -9,7 +9,10 @@
   spline through the 7 waypoints of the `standard_7wp_natural_N1000` fixture, 1000 uniform
   intervals plus breakpoints): trajkit.topp.TOPPRA(...).compute_trajectory() vs toppra's
   TOPPRA constructor + compute_parameterization (seidel); trajkit on the same grid
-  (refine=False), and once more with its default grid refinement.
+  (refine=False), and once more with its default grid refinement;
+- plan: trajkit.plan on the same waypoints and limits (+ the Panda jerk limits), without
+  the jerk stage on 1000 intervals, and with the defaults, vs toppra's whole job on the same
+  chord-length natural spline (constructor + compute_trajectory).
 
 Run inside an environment with the package and the peers (python/requirements-test.txt):
     python tools/bench_python.py [repeats]
@@ -25,14 +28,22 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
+class Times(list):
+    """Seconds per call of each pass; compared by median and by minimum (the minimum is the
+    least disturbed pass on a loaded machine)."""
+
+    def med(self):
+        return statistics.median(self)
+
+
 def timeit(f, repeats, inner=1):
-    ts = []
+    ts = Times()
     for _ in range(repeats):
         t0 = time.perf_counter()
         for _ in range(inner):
             f()
         ts.append((time.perf_counter() - t0) / inner)
-    return statistics.median(ts)
+    return ts
 
 
 def otg_problems(mod, n, general, seed=3):
@@ -57,15 +68,16 @@ def bench_otg(repeats):
     from trajkit import otg as tk
     rows = []
     for general in (False, True):
-        res = {}
+        runs = {}
         for mod in (ruckig, tk):
             probs = otg_problems(mod, 500, general)
             gen, traj = mod.Ruckig(7, 0.001), mod.Trajectory(7)
-
-            def run():
-                for p in probs:
-                    gen.calculate(p, traj)
-            res[mod.__name__] = timeit(run, repeats) / len(probs)
+            runs[mod.__name__] = (lambda g=gen, tr=traj, ps=probs: [g.calculate(p, tr) for p in ps])
+        res = {k: Times() for k in runs}
+        # Passes alternate between the two, so that both see the same load.
+        for _ in range(repeats):
+            for k, run in runs.items():
+                res[k].append(timeit(run, 1)[0] / 500)
         rows.append(("OTG calculate, 7 DOF, " + ("general states" if general else "rest to rest"),
                      res["trajkit.otg"], res["ruckig"]))
     return rows
@@ -119,13 +131,56 @@ def bench_topp(repeats):
             ("  the same with trajkit's grid refinement (default)", timeit(refined, 3), t_peer)]
 
 
+def bench_plan(repeats):
+    """trajkit.plan on the standard problem's waypoints and velocity/acceleration limits (Panda
+    jerk limits, no position ranges) next to toppra's whole job on the same path: its natural cubic spline
+    through the same waypoints with the same chord-length parameterization as plan's path,
+    the same limits, 1000 intervals plus breakpoints, constructor + compute_trajectory."""
+    import toppra as ta
+    import toppra.algorithm as algo
+    import toppra.constraint as constraint
+    import trajkit
+    ta.setup_logging("WARNING")
+    fix = os.path.join(HERE, "..", "crates", "trajkit", "tests", "fixtures", "topp", "toppra_panda.json")
+    prob = next(p for p in json.load(open(fix))["problems"] if p["name"] == "standard_7wp_natural_N1000")
+    wp = np.array(prob["waypoints"])
+    vmax, amax = np.array(prob["vmax"]), np.array(prob["amax"])
+    panda = trajkit.Limits("panda")
+    # The toppra problem has no position ranges: stated unbounded, so that plan's path is the
+    # plain spline (a range repair would reshape it).
+    limits = panda.with_overrides(max_velocity=vmax, max_acceleration=amax,
+                                  position_range=(-np.inf, np.inf))
+    ss = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(wp, axis=0), axis=1))])
+    g = np.linspace(0.0, ss[-1], 1001)
+    grid = np.array(sorted(set(list(ss) + [s for s in g if np.min(np.abs(ss - s)) > 1e-9 * ss[-1]])))
+    path_ref = ta.SplineInterpolator(ss, wp, bc_type="natural")
+    pc = [constraint.JointVelocityConstraint(np.vstack([-vmax, vmax]).T),
+          constraint.JointAccelerationConstraint(np.vstack([-amax, amax]).T,
+                                                 discretization_scheme=constraint.DiscretizationType.Interpolation)]
+
+    def peer():
+        algo.TOPPRA(pc, path_ref, gridpoints=grid, solver_wrapper="seidel",
+                    parametrizer="ParametrizeConstAccel").compute_trajectory(0.0, 0.0)
+
+    def raw():
+        trajkit.plan(wp, limits, jerk_limit=False, gridpoints=1000)
+
+    def default():
+        trajkit.plan(wp, limits)
+    t_peer = timeit(peer, max(3, repeats // 3))
+    return [("plan, standard problem, N = 1000, no jerk stage", timeit(raw, repeats), t_peer),
+            ("plan, standard problem, defaults (auto grid, jerk stage)", timeit(default, max(3, repeats // 3)), t_peer)]
+
+
 def main():
     repeats = int(sys.argv[1]) if len(sys.argv) > 1 else 15
     print(f"load: {os.getloadavg()}")
-    rows = bench_otg(repeats) + bench_spline(repeats) + bench_topp(repeats)
-    print(f"{'benchmark':55} {'trajkit':>12} {'peer':>12} {'peer/trajkit':>12}")
+    rows = bench_otg(repeats) + bench_spline(repeats) + bench_topp(repeats) + bench_plan(repeats)
+    print(f"{'benchmark (median | min per call)':57} {'trajkit':>25} {'peer':>25} {'ratio med|min':>14}")
     for name, ours, peer in rows:
-        print(f"{name:55} {ours * 1e6:10.2f}us {peer * 1e6:10.2f}us {peer / ours:11.1f}x")
+        print(f"{name:57} {ours.med() * 1e6:12.2f}|{min(ours) * 1e6:10.2f}us "
+              f"{peer.med() * 1e6:12.2f}|{min(peer) * 1e6:10.2f}us "
+              f"{peer.med() / ours.med():6.1f}|{min(peer) / min(ours):5.1f}x")
     print(f"load: {os.getloadavg()}")
 
 

@@ -128,6 +128,19 @@ fn sync_from(s: Sync_) -> PySync {
     }
 }
 
+fn interface_from(c: CI) -> PyInterface {
+    match c {
+        CI::Velocity => PyInterface::Velocity,
+        _ => PyInterface::Position,
+    }
+}
+
+fn interface_to(c: PyInterface) -> CI {
+    match c {
+        PyInterface::Position => CI::Position,
+        PyInterface::Velocity => CI::Velocity,
+    }
+}
 /// Ruckig's `InputParameter(dofs)`: current and target state, limits, options.
 #[pyclass(module = "trajkit.otg", name = "InputParameter", from_py_object)]
 #[derive(Clone)]
@@ -312,20 +325,42 @@ impl PyInput {
         self.inner.options.synchronization = sync_to(s);
     }
 
+    /// Synchronization per DOF (Ruckig's `per_dof_synchronization`; None: `synchronization`
+    /// for all). `StraightLine` is for all DOFs only.
+    #[getter]
+    fn per_dof_synchronization(&self) -> Option<Vec<PySync>> {
+        self.inner
+            .per_dof_synchronization
+            .as_ref()
+            .map(|v| v.iter().map(|&s| sync_from(s)).collect())
+    }
+    #[setter]
+    fn set_per_dof_synchronization(&mut self, v: Option<Vec<PySync>>) {
+        self.inner.per_dof_synchronization = v.map(|v| v.into_iter().map(sync_to).collect());
+    }
+
+    /// Control interface per DOF (Ruckig's `per_dof_control_interface`; None:
+    /// `control_interface` for all).
+    #[getter]
+    fn per_dof_control_interface(&self) -> Option<Vec<PyInterface>> {
+        self.inner
+            .per_dof_control_interface
+            .as_ref()
+            .map(|v| v.iter().map(|&c| interface_from(c)).collect())
+    }
+    #[setter]
+    fn set_per_dof_control_interface(&mut self, v: Option<Vec<PyInterface>>) {
+        self.inner.per_dof_control_interface = v.map(|v| v.into_iter().map(interface_to).collect());
+    }
+
     /// Position or velocity control.
     #[getter]
     fn control_interface(&self) -> PyInterface {
-        match self.inner.options.control_interface {
-            CI::Velocity => PyInterface::Velocity,
-            _ => PyInterface::Position,
-        }
+        interface_from(self.inner.options.control_interface)
     }
     #[setter]
     fn set_control_interface(&mut self, c: PyInterface) {
-        self.inner.options.control_interface = match c {
-            PyInterface::Position => CI::Position,
-            PyInterface::Velocity => CI::Velocity,
-        };
+        self.inner.options.control_interface = interface_to(c);
     }
 
     /// Continuous duration, or a multiple of the control period.
@@ -378,6 +413,15 @@ impl PyInput {
                 matches!(o.control_interface, CI::Velocity),
                 matches!(o.duration_discretization, DD::Discrete),
             ),
+            (
+                self.per_dof_synchronization()
+                    .map(|v| v.into_iter().map(|s| s as i64).collect::<Vec<_>>()),
+                i.per_dof_control_interface.as_ref().map(|v| {
+                    v.iter()
+                        .map(|c| matches!(c, CI::Velocity))
+                        .collect::<Vec<_>>()
+                }),
+            ),
         )
             .into_pyobject(py)
     }
@@ -392,7 +436,9 @@ impl PyInput {
             Option<Vec<f64>>,
             Vec<bool>,
         );
-        let (s, l, o): (States, Limits, (Option<f64>, i64, bool, bool)) = state.extract()?;
+        type PerDof = (Option<Vec<i64>>, Option<Vec<bool>>);
+        let (s, l, o, d): (States, Limits, (Option<f64>, i64, bool, bool), PerDof) =
+            state.extract()?;
         let i = &mut self.inner;
         (
             i.current_position,
@@ -411,15 +457,21 @@ impl PyInput {
             i.enabled,
         ) = l;
         i.options.minimum_duration = o.0;
-        i.options.synchronization = sync_to(match o.1 {
-            1 => PySync::TimeIfNecessary,
-            2 => PySync::Phase,
-            3 => PySync::No,
-            4 => PySync::StraightLine,
-            _ => PySync::Time,
-        });
-        i.options.control_interface = if o.2 { CI::Velocity } else { CI::Position };
+        let sync_of = |k: i64| {
+            sync_to(match k {
+                1 => PySync::TimeIfNecessary,
+                2 => PySync::Phase,
+                3 => PySync::No,
+                4 => PySync::StraightLine,
+                _ => PySync::Time,
+            })
+        };
+        let iface_of = |v: bool| if v { CI::Velocity } else { CI::Position };
+        i.options.synchronization = sync_of(o.1);
+        i.options.control_interface = iface_of(o.2);
         i.options.duration_discretization = if o.3 { DD::Discrete } else { DD::Continuous };
+        i.per_dof_synchronization = d.0.map(|v| v.into_iter().map(sync_of).collect());
+        i.per_dof_control_interface = d.1.map(|v| v.into_iter().map(iface_of).collect());
         Ok(())
     }
 
@@ -440,6 +492,79 @@ impl PyInput {
             s.push_str(&format!("inp.{name} = {v:?}\n"));
         }
         s
+    }
+}
+
+/// One DOF's motion (Ruckig's `Profile`, read-only): jerk segments from a start state,
+/// a brake first when the start state was outside the limits.
+#[pyclass(module = "trajkit.otg", name = "Profile", frozen, get_all)]
+#[derive(Clone)]
+pub struct PyProfile {
+    /// Segment durations (seconds).
+    t: Vec<f64>,
+    /// Segment end times (cumulative durations).
+    t_sum: Vec<f64>,
+    /// Jerk of each segment.
+    j: Vec<f64>,
+    /// Acceleration at each segment start, then at the end.
+    a: Vec<f64>,
+    /// Velocity at each segment start, then at the end.
+    v: Vec<f64>,
+    /// Position at each segment start, then at the end.
+    p: Vec<f64>,
+    /// Final position.
+    pf: f64,
+    /// Final velocity.
+    vf: f64,
+    /// Final acceleration.
+    af: f64,
+    /// Duration of the brake before the profile proper (0 when none).
+    brake_duration: f64,
+}
+
+impl PyProfile {
+    fn of(pr: &trajkit::otg::Profile) -> Self {
+        let n = pr.segments();
+        let mut out = PyProfile {
+            t: Vec::with_capacity(n),
+            t_sum: Vec::with_capacity(n),
+            j: Vec::with_capacity(n),
+            a: Vec::with_capacity(n + 1),
+            v: Vec::with_capacity(n + 1),
+            p: Vec::with_capacity(n + 1),
+            pf: 0.0,
+            vf: 0.0,
+            af: 0.0,
+            brake_duration: pr.brake_duration(),
+        };
+        for (t0, d, s, j) in (0..n).filter_map(|k| pr.segment(k)) {
+            out.t.push(d);
+            out.t_sum.push(t0 + d);
+            out.j.push(j);
+            out.p.push(s.p);
+            out.v.push(s.v);
+            out.a.push(s.a);
+        }
+        let e = pr.end();
+        (out.pf, out.vf, out.af) = (e.p, e.v, e.a);
+        out.p.push(e.p);
+        out.v.push(e.v);
+        out.a.push(e.a);
+        out
+    }
+}
+
+#[pymethods]
+impl PyProfile {
+    fn __repr__(&self) -> String {
+        format!(
+            "trajkit.otg.Profile(segments={}, duration={}, pf={}, vf={}, af={})",
+            self.t.len(),
+            self.t_sum.last().copied().unwrap_or(0.0),
+            self.pf,
+            self.vf,
+            self.af
+        )
     }
 }
 
@@ -559,7 +684,7 @@ impl PyOtgTrajectory {
             .collect())
     }
 
-    /// The first time DOF `dof` is at `position`, or `None`.
+    /// The first time at or after `time_after` at which DOF `dof` is at `position`, or `None`.
     #[pyo3(signature = (dof, position, time_after = 0.0))]
     fn get_first_time_at_position(
         &self,
@@ -567,10 +692,8 @@ impl PyOtgTrajectory {
         position: f64,
         time_after: f64,
     ) -> PyResult<Option<f64>> {
-        if time_after != 0.0 {
-            return Err(bad(format!(
-                "time_after = {time_after}: only 0 is supported (the first time from the start)"
-            )));
+        if time_after.is_nan() {
+            return Err(bad("time_after = NaN: expected a time in seconds"));
         }
         let t = self.get()?;
         if dof >= t.dof() {
@@ -579,7 +702,26 @@ impl PyOtgTrajectory {
                 t.dof()
             )));
         }
-        Ok(t.first_time_at_position(dof, position))
+        Ok(t.first_time_at_position_after(dof, position, time_after))
+    }
+
+    /// Duration of each section (one section: no intermediate waypoints), Ruckig's
+    /// `intermediate_durations`.
+    #[getter]
+    fn intermediate_durations(&self) -> PyResult<Vec<f64>> {
+        Ok(vec![self.get()?.duration()])
+    }
+
+    /// The profiles, read-only: one list per section (one section), each with one
+    /// `Profile` per DOF.
+    #[getter]
+    fn profiles(&self) -> PyResult<Vec<Vec<PyProfile>>> {
+        let t = self.get()?;
+        Ok(vec![t
+            .dofs()
+            .iter()
+            .map(|d| PyProfile::of(&d.profile))
+            .collect()])
     }
 
     /// trajkit's vectorized evaluation: the `order`-th derivative (0..3) at every time of `t`
@@ -821,6 +963,29 @@ impl PyRuckig {
         })
     }
 
+    /// Ruckig's `validate_input`: True when `input` can be calculated (lengths, options,
+    /// finite values, signs of the limits) and, as asked, the current / target velocity and
+    /// acceleration are within the limits; else raises `RuckigError` naming the field, the
+    /// DOF and the value.
+    #[pyo3(signature = (input, check_current_state_within_limits = false, check_target_state_within_limits = true))]
+    fn validate_input(
+        &self,
+        input: PyRef<'_, PyInput>,
+        check_current_state_within_limits: bool,
+        check_target_state_within_limits: bool,
+    ) -> PyResult<bool> {
+        self.check_dofs(input.inner.dof(), "the input")?;
+        input
+            .inner
+            .validate(
+                self.delta_time,
+                check_current_state_within_limits,
+                check_target_state_within_limits,
+            )
+            .map_err(otg_err)?;
+        Ok(true)
+    }
+
     /// Forgets the last input: the next `update` calculates anew.
     fn reset(&mut self) {
         self.last = None;
@@ -839,6 +1004,7 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyOutput>()?;
     m.add_class::<PyOtgTrajectory>()?;
     m.add_class::<PyBound>()?;
+    m.add_class::<PyProfile>()?;
     m.add_class::<PyRuckig>()?;
     Ok(())
 }

@@ -212,3 +212,128 @@ def test_vectorized_evaluation_and_pickling():
     assert tr2.duration == tr.duration
     inp2 = pickle.loads(pickle.dumps(inp))
     assert inp2 == inp and inp2.target_position == [1.0, -2.0]
+
+
+def per_dof_problem(rng, mod, dofs, syncs, ifaces):
+    inp = random_problem(rng, mod, dofs, "general")
+    # Velocity control aims at a velocity within the limits.
+    inp.per_dof_synchronization = [getattr(mod.Synchronization, s) for s in syncs]
+    inp.per_dof_control_interface = [getattr(mod.ControlInterface, c) for c in ifaces]
+    return inp
+
+
+def test_per_dof_options_match_ruckig():
+    """Per-DOF synchronization and control interface: durations within 1e-9 of Ruckig's on
+    seeded random problems, and the options survive pickling."""
+    import pickle
+    rng = np.random.default_rng(23)
+    names = ["Time", "TimeIfNecessary", "Phase", "No"]
+    compared = 0
+    for k in range(600):
+        dofs = [2, 3, 7][k % 3]
+        syncs = [names[i] for i in rng.integers(0, 4, dofs)]
+        ifaces = ["Velocity" if x < 0.3 else "Position" for x in rng.uniform(0, 1, dofs)]
+        a = per_dof_problem(rng, ruckig, dofs, syncs, ifaces)
+        b = same_problem(tk, a)
+        b.per_dof_synchronization = [getattr(tk.Synchronization, s) for s in syncs]
+        b.per_dof_control_interface = [getattr(tk.ControlInterface, c) for c in ifaces]
+        assert pickle.loads(pickle.dumps(b)) == b
+        tr_r, tr_t = ruckig.Trajectory(dofs), tk.Trajectory(dofs)
+        try:
+            ruckig.Ruckig(dofs, 0.001).calculate(a, tr_r)
+        except ruckig.RuckigError:
+            continue
+        tk.Ruckig(dofs, 0.001).calculate(b, tr_t)
+        d = tr_r.duration
+        assert abs(tr_t.duration - d) <= 1e-9 * max(1.0, d), (k, syncs, ifaces, tr_t.duration, d)
+        compared += 1
+    assert compared > 500
+
+
+def test_first_time_at_position_after_matches_ruckig():
+    """At or after `time_after`, at the position, the first such time on trajkit's own
+    trajectory; equal to Ruckig's where the two trajectories of the DOF coincide
+    (synchronized DOFs may take different profiles of the same duration) and start without a
+    brake."""
+    rng = np.random.default_rng(31)
+    checked = compared = 0
+    for k in range(300):
+        a = random_problem(rng, ruckig, 3, "general")
+        b = same_problem(tk, a)
+        tr_r, tr_t = ruckig.Trajectory(3), tk.Trajectory(3)
+        ruckig.Ruckig(3, 0.001).calculate(a, tr_r)
+        tk.Ruckig(3, 0.001).calculate(b, tr_t)
+        T = tr_t.duration
+        grid = np.linspace(0, T, 201)
+        q = tr_t(grid)[:, 0]
+        # Ruckig's answer leaves out the brake before the profile (its time is then the brake's
+        # duration early, at another position): compared without one.
+        same = tr_t.profiles[0][0].brake_duration == 0.0 and all(
+            abs(tr_r.at_time(float(x))[0][0] - y) < 1e-7 for x, y in zip(grid[::10], q[::10]))
+        lo, hi = tr_t.position_extrema[0].min, tr_t.position_extrema[0].max
+        for _ in range(4):
+            p = float(rng.uniform(lo, hi))
+            after = float(rng.uniform(0, T))
+            got = tr_t.get_first_time_at_position(0, p, after)
+            later = grid[grid >= after]
+            side = np.sign(tr_t(later)[:, 0] - p)
+            if got is None:
+                assert np.all(side == side[0]) or np.min(np.abs(tr_t(later)[:, 0] - p)) < 1e-9
+                continue
+            assert after <= got <= T + 1e-12
+            assert abs(tr_t.at_time(got)[0][0] - p) < 1e-9
+            before = later[later < got - 1e-9]
+            if len(before):
+                s = np.sign(tr_t(before)[:, 0] - p)
+                assert np.all(s == s[0]), (k, p, after, got)
+            checked += 1
+            if same:
+                want = tr_r.get_first_time_at_position(0, p, after)
+                assert want is not None and abs(got - want) < 1e-7 * max(1.0, want), (k, p, after, want, got)
+                compared += 1
+    assert checked > 500 and compared > 200, (checked, compared)
+
+
+def test_validate_input_profiles_and_sections_like_ruckig():
+    for mod in (ruckig, tk):
+        inp = mod.InputParameter(2)
+        inp.current_position, inp.target_position = [0.0, 1.0], [1.0, -1.0]
+        inp.current_velocity = [1.5, 0.0]
+        inp.max_velocity, inp.max_acceleration, inp.max_jerk = [1.0, 1.0], [2.0, 2.0], [10.0, 10.0]
+        otg = mod.Ruckig(2, 0.01)
+        assert otg.validate_input(inp) is True
+        assert otg.validate_input(inp, False, True) is True
+        with pytest.raises(mod.RuckigError, match="velocity"):
+            otg.validate_input(inp, True, True)
+        inp.current_velocity = [0.5, 0.0]
+        inp.target_acceleration = [0.0, 3.0]
+        with pytest.raises(mod.RuckigError, match="acceleration"):
+            otg.validate_input(inp)
+        if mod is ruckig:
+            assert otg.validate_input(inp, False, False) is True
+        else:
+            # trajkit's calculation refuses a target acceleration outside the limits, so its
+            # validation does too, whatever the flags.
+            with pytest.raises(mod.RuckigError, match="target_acceleration"):
+                otg.validate_input(inp, False, False)
+        inp.target_acceleration = [0.0, 0.0]
+        inp.max_jerk = [10.0, -1.0]
+        with pytest.raises(mod.RuckigError, match="jerk"):
+            otg.validate_input(inp)
+        inp.max_jerk = [10.0, 10.0]
+        tr = mod.Trajectory(2)
+        otg.calculate(inp, tr)
+        assert len(tr.intermediate_durations) == 1
+        assert tr.intermediate_durations[0] == pytest.approx(tr.duration)
+        assert len(tr.profiles) == 1 and len(tr.profiles[0]) == 2
+        if mod is tk:
+            for dof, pr in enumerate(tr.profiles[0]):
+                assert pr.t_sum[-1] == pytest.approx(tr.duration, abs=1e-12)
+                assert np.allclose(np.cumsum(pr.t), pr.t_sum)
+                assert len(pr.p) == len(pr.t) + 1 == len(pr.j) + 1
+                assert pr.pf == pytest.approx(inp.target_position[dof], abs=1e-9)
+                # Each segment integrates to the next start state.
+                for k in range(len(pr.t)):
+                    d = pr.t[k]
+                    p1 = pr.p[k] + pr.v[k] * d + pr.a[k] * d * d / 2 + pr.j[k] * d ** 3 / 6
+                    assert p1 == pytest.approx(pr.p[k + 1], abs=1e-9)

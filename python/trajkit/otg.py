@@ -19,9 +19,14 @@ A Ruckig script runs after changing ``from ruckig import ...`` to
 
 Same names as Ruckig: ``Ruckig``, ``InputParameter``, ``OutputParameter``, ``Trajectory``
 (``duration``, ``at_time``, ``position_extrema``, ``independent_min_durations``,
-``get_first_time_at_position``), ``Bound``, ``Result``, ``Synchronization`` (``Time``,
-``TimeIfNecessary``, ``Phase``, ``No``), ``ControlInterface``, ``DurationDiscretization`` and
-``RuckigError`` (here the same class as ``trajkit.TrajkitError``, a ``ValueError``).
+``intermediate_durations``, ``profiles``, ``get_first_time_at_position(dof, p,
+time_after)``), ``Profile``, ``Bound``, ``Result``, ``Synchronization`` (``Time``,
+``TimeIfNecessary``, ``Phase``, ``No``, and trajkit's ``StraightLine``), ``ControlInterface``,
+``DurationDiscretization``, ``InputParameter.per_dof_synchronization`` and
+``per_dof_control_interface``, ``Ruckig.validate_input`` and ``RuckigError`` (here the same
+class as ``trajkit.TrajkitError``, a ``ValueError``). A ``Profile`` lists one DOF's jerk
+segments (``t`` durations, ``t_sum``, ``j``, and ``p``, ``v``, ``a`` at each segment start
+and the end); trajkit's segments are not Ruckig's seven fixed phases.
 Not supported (Ruckig Pro features): intermediate waypoints, position limits, per-section
 limits; setting those attributes raises ``AttributeError``.
 
@@ -36,6 +41,7 @@ InputParameter = _o.InputParameter
 OutputParameter = _o.OutputParameter
 Trajectory = _o.Trajectory
 Bound = _o.Bound
+Profile = _o.Profile
 Result = _o.Result
 Synchronization = _o.Synchronization
 ControlInterface = _o.ControlInterface
@@ -54,6 +60,7 @@ Time = Synchronization.Time
 TimeIfNecessary = Synchronization.TimeIfNecessary
 Phase = Synchronization.Phase
 No = Synchronization.No
+StraightLine = Synchronization.StraightLine
 Position = ControlInterface.Position
 Velocity = ControlInterface.Velocity
 Continuous = DurationDiscretization.Continuous
@@ -65,6 +72,7 @@ __all__ = [
     "OutputParameter",
     "Trajectory",
     "Bound",
+    "Profile",
     "Result",
     "Synchronization",
     "ControlInterface",

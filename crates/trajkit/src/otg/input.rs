@@ -264,6 +264,75 @@ impl DynInputParameter {
         self.current_position.len()
     }
 
+    /// Ruckig's `validate_input`: the checks a calculation makes before planning (lengths,
+    /// options, finite states, signs of the limits, for every DOF), and optionally that the
+    /// current (`current_within_limits`) and target (`target_within_limits`) velocity and
+    /// acceleration of every enabled DOF lie within `[min, max]` of their limits (a
+    /// calculation accepts a current state outside them and brakes first). The first
+    /// violation is the error, with the field, the DOF and the value.
+    ///
+    /// ```
+    /// use trajkit::otg::{DynInputParameter, OtgError};
+    /// let mut input = DynInputParameter::new(2);
+    /// input.max_velocity = vec![1.0, 1.0];
+    /// input.max_acceleration = vec![2.0, 2.0];
+    /// input.max_jerk = vec![10.0, 10.0];
+    /// input.current_velocity = vec![0.0, 1.5];
+    /// assert!(input.validate(0.001, false, true).is_ok());
+    /// assert!(matches!(
+    ///     input.validate(0.001, true, true),
+    ///     Err(OtgError::InvalidInput { dof: Some(1), field: "current_velocity", .. })
+    /// ));
+    /// ```
+    pub fn validate(
+        &self,
+        delta_time: f64,
+        current_within_limits: bool,
+        target_within_limits: bool,
+    ) -> Result<(), OtgError> {
+        let view = self.view();
+        view.check_shape(delta_time)?;
+        for i in 0..self.dof() {
+            let d = view.dof_problem(i)?;
+            if !self.enabled[i] {
+                continue;
+            }
+            let states = [
+                (
+                    current_within_limits,
+                    "current_velocity",
+                    d.v0,
+                    "current_acceleration",
+                    d.a0,
+                ),
+                (
+                    target_within_limits,
+                    "target_velocity",
+                    d.vf,
+                    "target_acceleration",
+                    d.af,
+                ),
+            ];
+            for (on, fv, v, fa, a) in states {
+                if !on {
+                    continue;
+                }
+                if v > d.vmax || v < d.vmin {
+                    return Err(bad(i, fv, v, "is outside [min_velocity, max_velocity]"));
+                }
+                if a > d.amax || a < d.amin {
+                    return Err(bad(
+                        i,
+                        fa,
+                        a,
+                        "is outside [min_acceleration, max_acceleration]",
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+
     pub(crate) fn view(&self) -> InputView<'_> {
         InputView {
             cp: &self.current_position,

@@ -467,6 +467,33 @@ impl Profile {
         }
         None
     }
+
+    /// First time in `[after, duration]` at which the position equals `p`, if any (Ruckig's
+    /// `time_after`); for `after ≤ 0` it is [`Profile::first_time_at_position`]. Segments that
+    /// end before `after` are skipped and the first one searched from `after` on.
+    pub fn first_time_at_position_after(&self, p: f64, after: f64) -> Option<f64> {
+        if after.is_nan() || after <= 0.0 {
+            return self.first_time_at_position(p);
+        }
+        for k in 0..self.n {
+            let d = self.d[k];
+            if self.t[k] + d < after {
+                continue;
+            }
+            let lo = (after - self.t[k]).max(0.0);
+            let mut roots = [0.0; 3];
+            let m = cubic_roots_in(
+                [self.p[k] - p, self.v[k], self.a[k] / 2.0, self.j[k] / 6.0],
+                lo,
+                d,
+                &mut roots,
+            );
+            if m > 0 {
+                return Some(self.t[k] + roots[0]);
+            }
+        }
+        None
+    }
 }
 
 /// Real roots of `a x² + b x + c` in the open interval `(lo, hi)`; returns how many.
@@ -509,6 +536,54 @@ fn cubic_roots_in(c: [f64; 4], lo: f64, hi: f64, out: &mut [f64; 3]) -> usize {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// `first_time_at_position_after`: at or after `after`, at the position, and the first
+    /// such time (no sign change of `p(t) − target` between `after` and it on a fine grid).
+    #[test]
+    fn first_time_at_position_after_is_the_first_from_after() {
+        // Up through 0.1 and back down through it: two crossings.
+        let mut pr = Profile::new(State1 {
+            p: 0.0,
+            v: 1.0,
+            a: 0.0,
+        });
+        assert!(pr.push(0.5, -4.0));
+        assert!(pr.push(0.5, 0.0));
+        assert!(pr.push(1.0, 4.0));
+        let target = 0.1;
+        let end = 2.0;
+        assert_eq!(
+            pr.first_time_at_position_after(target, 0.0),
+            pr.first_time_at_position(target)
+        );
+        let mut crossings = 0;
+        for i in 0..=400 {
+            let after = end * i as f64 / 400.0;
+            match pr.first_time_at_position_after(target, after) {
+                Some(t) => {
+                    assert!(t >= after && t <= end, "after {after}: {t}");
+                    assert!((pr.state_at(t).0 - target).abs() < 1e-12);
+                    let s0 = pr.state_at(after).0 - target;
+                    for k in 0..200 {
+                        let u = after + (t - after) * k as f64 / 200.0;
+                        let su = pr.state_at(u).0 - target;
+                        assert!(su == 0.0 || su.signum() == s0.signum() || (u - t).abs() < 1e-9);
+                    }
+                }
+                None => {
+                    // No crossing left: the rest stays on one side.
+                    let s0 = pr.state_at(after).0 - target;
+                    for k in 0..=200 {
+                        let u = after + (end - after) * k as f64 / 200.0;
+                        assert!((pr.state_at(u).0 - target).signum() == s0.signum());
+                    }
+                    crossings += 1;
+                }
+            }
+        }
+        assert!(crossings > 0, "the last crossing is followed by no other");
+        assert_eq!(pr.first_time_at_position_after(target, 5.0), None);
+    }
 
     #[test]
     fn integrate_matches_finite_differences() {

@@ -149,6 +149,16 @@ impl<S: AsRef<[DofTrajectory]>> OtgTrajectory<S> {
     pub fn first_time_at_position(&self, i: usize, p: f64) -> Option<f64> {
         self.dofs.as_ref().get(i)?.profile.first_time_at_position(p)
     }
+
+    /// The first time at or after `after` at which degree of freedom `i` is at position `p`,
+    /// if it gets there within its profile (Ruckig's `time_after`).
+    pub fn first_time_at_position_after(&self, i: usize, p: f64, after: f64) -> Option<f64> {
+        self.dofs
+            .as_ref()
+            .get(i)?
+            .profile
+            .first_time_at_position_after(p, after)
+    }
 }
 
 impl<S: AsRef<[DofTrajectory]>> Trajectory for OtgTrajectory<S> {

@@ -286,19 +286,23 @@ impl PiecewisePolynomial {
             3 => self.eval_many_fixed::<4>(s, order, out),
             5 => self.eval_many_fixed::<6>(s, order, out),
             7 => self.eval_many_fixed::<8>(s, order, out),
-            _ => {
-                let mut hint = 0;
-                for (&si, o) in s.iter().zip(out.chunks_exact_mut(self.dim)) {
-                    let x = self.clamp(si);
-                    let i = if x.is_nan() {
-                        0
-                    } else {
-                        self.piece_index_from(x, hint)
-                    };
-                    hint = i;
-                    self.eval_piece(i, x, order, o);
-                }
-            }
+            _ => self.eval_many_general(s, order, out),
+        }
+    }
+
+    /// [`PiecewisePolynomial::eval_many`] for any degree and dimension: `eval_piece` per
+    /// point, each piece searched from the previous one.
+    fn eval_many_general(&self, s: &[f64], order: usize, out: &mut [f64]) {
+        let mut hint = 0;
+        for (&si, o) in s.iter().zip(out.chunks_exact_mut(self.dim)) {
+            let x = self.clamp(si);
+            let i = if x.is_nan() {
+                0
+            } else {
+                self.piece_index_from(x, hint)
+            };
+            hint = i;
+            self.eval_piece(i, x, order, o);
         }
     }
 
@@ -325,19 +329,7 @@ impl PiecewisePolynomial {
             7 => self.eval_many_block::<K, 7>(s, order, out),
             8 => self.eval_many_block::<K, 8>(s, order, out),
             9..=16 => self.eval_many_block::<K, 16>(s, order, out),
-            _ => {
-                let mut hint = 0;
-                for (&si, o) in s.iter().zip(out.chunks_exact_mut(dim)) {
-                    let x = self.clamp(si);
-                    let i = if x.is_nan() {
-                        0
-                    } else {
-                        self.piece_index_from(x, hint)
-                    };
-                    hint = i;
-                    self.eval_piece(i, x, order, o);
-                }
-            }
+            _ => self.eval_many_general(s, order, out),
         }
     }
 
