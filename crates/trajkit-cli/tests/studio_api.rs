@@ -969,14 +969,19 @@ fn a_slow_request_does_not_block_the_others_and_a_full_pool_answers_503() {
     // One worker per class; a request waits at most 0.2 s for one.
     let s = Studio::start(&["--workers", "1", "--queue-timeout", "0.2"]);
     let addr = s.addr;
-    // About 0.8 s optimized, several seconds in a debug build.
+    // A 300-waypoint Panda path on the automatic grid: seconds in a debug build.
+    let rows: Vec<Vec<f64>> = (0..300)
+        .map(|i| {
+            let q0 = [0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785];
+            (0..7)
+                .map(|k| q0[k] + 0.3 * (0.1 * i as f64 + k as f64).sin())
+                .collect()
+        })
+        .collect();
+    let slow_body = json!({"waypoints": rows, "limits": {"preset": "panda"}});
     let slow = std::thread::spawn(move || {
         let t = Instant::now();
-        let r = post(
-            addr,
-            "/api/plan",
-            &default_plan(json!({"gridpoints": 10000})),
-        );
+        let r = post(addr, "/api/plan", &slow_body);
         (r.status, t.elapsed())
     });
     std::thread::sleep(Duration::from_millis(100));
