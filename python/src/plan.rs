@@ -213,7 +213,8 @@ fn plan<'py>(
             Some(g) => self::gridpoints(g)?,
         },
         jerk: if jerk_limit {
-            JerkStage::Filter
+            // The library's default stage, as `trajkit plan` uses it.
+            PlanOptions::default().jerk
         } else {
             JerkStage::Off
         },
