@@ -10,14 +10,7 @@ use trajkit::{JointLimits, Limits, Order, Trajectory};
 
 mod topp_common;
 
-fn line_cases() -> Vec<Value> {
-    let p = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/fixtures/jerk/lines.json"
-    );
-    let v: Value = serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
-    v["cases"].as_array().unwrap().clone()
-}
+use topp_common::line_cases;
 
 fn waypoints(c: &Value) -> Waypoints {
     let dof = c["dof"].as_u64().unwrap() as usize;

@@ -9,6 +9,7 @@
 mod topp_common;
 
 use serde_json::Value;
+use topp_common::{finite_difference_error, line_cases};
 use trajkit::dynamics::SerialChain;
 use trajkit::rng::SplitMix64;
 use trajkit::spline::CubicSpline;
@@ -19,63 +20,17 @@ use trajkit::topp::InverseDynamics;
 use trajkit::topp::{Gridpoints, LinearPath, Toppra, ToppraOptions};
 use trajkit::{Limits, Order, Path, Trajectory};
 
+/// Largest ratio |value| / limit of velocity, acceleration and jerk (directional) over
+/// samples at `rate` Hz (both ends included).
+fn worst_ratio(traj: &dyn Trajectory, limits: &Limits, rate: f64) -> [f64; 3] {
+    topp_common::worst_ratio_with_range(traj, limits, rate).0
+}
+
 fn opts(steps: usize) -> JerkOptions {
     JerkOptions {
         steps: Some(steps),
         ..JerkOptions::default()
     }
-}
-
-/// Largest ratio |value| / limit of velocity, acceleration and jerk (directional) over
-/// samples at `rate` Hz (both ends included).
-fn worst_ratio<T: Trajectory>(traj: &T, limits: &Limits, rate: f64) -> [f64; 3] {
-    let n = traj.dof();
-    let mut buf = vec![0.0; n];
-    let mut worst = [0.0f64; 3];
-    let count = (traj.duration() * rate).ceil() as usize;
-    for k in 0..=count {
-        let t = (k as f64 / rate).min(traj.duration());
-        for (o, order) in [Order::Velocity, Order::Acceleration, Order::Jerk]
-            .into_iter()
-            .enumerate()
-        {
-            traj.eval(t, order, &mut buf);
-            for (j, &v) in buf.iter().enumerate() {
-                worst[o] = worst[o].max(limits.joint(j).ratio(order, v));
-            }
-        }
-    }
-    worst
-}
-
-/// Central differences of the evaluated position, velocity and acceleration against the
-/// evaluated velocity, acceleration and jerk, at `count` times away from the ends.
-fn finite_difference_error<T: Trajectory>(traj: &T, count: usize) -> [f64; 3] {
-    let n = traj.dof();
-    let h = 1e-6;
-    let (mut a, mut b, mut c) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let mut err = [0.0f64; 3];
-    let orders = [
-        Order::Position,
-        Order::Velocity,
-        Order::Acceleration,
-        Order::Jerk,
-    ];
-    for k in 1..count {
-        let t = traj.duration() * k as f64 / count as f64;
-        for o in 0..3 {
-            traj.eval(t + h, orders[o], &mut a);
-            traj.eval(t - h, orders[o], &mut b);
-            traj.eval(t, orders[o + 1], &mut c);
-            for j in 0..n {
-                let num = (a[j] - b[j]) / (2.0 * h);
-                // Relative to the derivative's own size along the motion (jerk jumps at
-                // gridpoints: a difference across a jump is bounded by the jump).
-                err[o] = err[o].max((num - c[j]).abs() / (1.0 + c[j].abs()));
-            }
-        }
-    }
-    err
 }
 
 fn panda_with_jerk_scale(scale: f64) -> Limits {
@@ -281,15 +236,6 @@ fn fixture_limits(c: &Value) -> Limits {
             .collect(),
     )
     .unwrap()
-}
-
-fn line_cases() -> Vec<Value> {
-    let p = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/fixtures/jerk/lines.json"
-    );
-    let v: Value = serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
-    v["cases"].as_array().unwrap().clone()
 }
 
 #[test]

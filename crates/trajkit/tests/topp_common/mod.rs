@@ -187,3 +187,13 @@ pub fn finite_difference_error(traj: &dyn Trajectory, count: usize) -> [f64; 3] 
 /// A two-link arm moving in the vertical x-z plane (joint axes y, gravity −z), with effort
 /// limits that bind (shared with the CLI's torque tests).
 pub const ARM: &str = include_str!("../fixtures/two_link_arm.urdf");
+
+/// The straight-line cases of `tools/jerk_line_fixtures.py` (Ruckig's exact optima).
+pub fn line_cases() -> Vec<Value> {
+    let p = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fixtures/jerk/lines.json"
+    );
+    let v: Value = serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
+    v["cases"].as_array().unwrap().clone()
+}
