@@ -17,7 +17,7 @@ use trajkit::topp::{plan_totg, TotgOptions};
 
 use crate::convert::{bad, table, Floats, TrajkitError};
 use crate::limits::complete_of;
-use crate::otg::{PyInput, PyOtgTrajectory};
+use crate::otg::{otg_err, PyInput, PyOtgTrajectory};
 use crate::topp::{piece_options, PIECES_NEEDS, TOTG_NEEDS};
 use crate::traj::{PyTrajectory, SharedTrajectory};
 
@@ -59,23 +59,27 @@ fn threads_of(threads: Option<usize>) -> PyResult<usize> {
     }
 }
 
-/// Results to a list: each `Ok` through `make`, each error a `TrajkitError` instance.
-fn to_list<'py, T, E: std::fmt::Display>(
+/// Results to a list: each `Ok` through `make`, each error a `TrajkitError` instance (made by
+/// `error`: the otg errors carry `result`, `kind` and `dof` as `Ruckig.calculate` raises them).
+fn to_list<'py, T, E>(
     py: Python<'py>,
     results: Vec<Result<T, E>>,
+    error: impl Fn(E) -> PyErr,
     make: impl Fn(T) -> PyResult<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyList>> {
     let items = results
         .into_iter()
         .map(|r| match r {
             Ok(v) => make(v),
-            Err(e) => Ok(TrajkitError::new_err(e.to_string())
-                .into_value(py)
-                .into_bound(py)
-                .into_any()),
+            Err(e) => Ok(error(e).into_value(py).into_bound(py).into_any()),
         })
         .collect::<PyResult<Vec<_>>>()?;
     PyList::new(py, items)
+}
+
+/// A library error as a `TrajkitError` with its message.
+fn message(e: impl std::fmt::Display) -> PyErr {
+    TrajkitError::new_err(e.to_string())
 }
 
 /// Calculates every `trajkit.otg.InputParameter` of `inputs` with control period
@@ -97,7 +101,7 @@ fn otg<'py>(
         .zip(data)
         .map(|(r, input)| r.map(|t| (input, t)))
         .collect();
-    to_list(py, paired, |(input, t)| {
+    to_list(py, paired, otg_err, |(input, t)| {
         Ok(Bound::new(py, PyOtgTrajectory::calculated(input, delta_time, t))?.into_any())
     })
 }
@@ -136,7 +140,7 @@ fn plan_waypoints<'py>(
             plan_pieces(w, *d, &l, &opts).map(|t| Arc::new(t) as SharedTrajectory)
         })
     });
-    to_list(py, results, |t| {
+    to_list(py, results, message, |t| {
         Ok(Bound::new(py, PyTrajectory::new(t))?.into_any())
     })
 }
@@ -164,7 +168,7 @@ fn totg<'py>(
             plan_totg(w, *d, &l, &opts).map(|t| Arc::new(t) as SharedTrajectory)
         })
     });
-    to_list(py, results, |t| {
+    to_list(py, results, message, |t| {
         Ok(Bound::new(py, PyTrajectory::new(t))?.into_any())
     })
 }

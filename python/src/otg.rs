@@ -6,6 +6,20 @@
 //! `InputParameter` holds a `trajkit::otg::DynInputParameter` and hands it to
 //! `trajkit::otg::calculate_dyn` as it is (no conversion per call).
 //!
+//! Errors are raised as `RuckigError` (= `trajkit.TrajkitError`) with the library's message
+//! and three attributes: `result` (the Ruckig `Result` member of the failure:
+//! `ErrorInvalidInput`, `ErrorPositionalLimits`, `ErrorZeroLimits`,
+//! `ErrorExecutionTimeCalculation`, `ErrorSynchronizationCalculation`), `kind`
+//! (`trajkit::otg::OtgError::name`, e.g. `'position_limits'`, `'interrupted'`) and `dof`
+//! (the DOF it is about, or `None`).
+//!
+//! Ruckig Pro's features: `InputParameter.min_position` / `max_position` (per DOF, ±inf by
+//! default) and `interrupt_calculation_duration` (µs, `None` by default) are the library's
+//! fields. A budget that runs out before any valid duration is known raises with `kind ==
+//! 'interrupted'` (and `update` sets `was_calculation_interrupted` first); one that runs out
+//! after gives the shortest valid trajectory found, and `update` reports
+//! `was_calculation_interrupted = True` whenever the calculation used its whole budget.
+//!
 //! `Ruckig.update` keeps Ruckig's (and `trajkit::otg::Otg::update`'s) contract for a run-time
 //! number of DOFs: it calculates when the input differs from the one it last calculated for,
 //! then advances one control period and writes the state there; the state it returns is
@@ -19,15 +33,37 @@ use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use trajkit::otg::{
     calculate_dyn, ControlInterface as CI, DurationDiscretization as DD, DynInputParameter,
-    DynTrajectory, Synchronization as Sync_,
+    DynTrajectory, OtgError, Synchronization as Sync_,
 };
 
 use crate::convert::{bad, floats, Floats};
 use crate::traj::eval_traj;
 
-/// The library's error as `trajkit.TrajkitError` (exported as `trajkit.otg.RuckigError` too).
-pub fn otg_err(e: impl std::fmt::Display) -> PyErr {
-    bad(e.to_string())
+/// The library's error as `trajkit.TrajkitError` (exported as `trajkit.otg.RuckigError` too)
+/// with its message and the attributes `result` (the Ruckig `Result` member), `kind` and
+/// `dof` (see the module documentation).
+pub fn otg_err(e: OtgError) -> PyErr {
+    let err = bad(e.to_string());
+    let result = match e {
+        OtgError::InvalidInput { .. } => PyResult_::ErrorInvalidInput,
+        OtgError::PositionLimits { .. } => PyResult_::ErrorPositionalLimits,
+        OtgError::ZeroLimits { .. } => PyResult_::ErrorZeroLimits,
+        OtgError::CalculationFailed { .. } | OtgError::Interrupted { .. } => {
+            PyResult_::ErrorExecutionTimeCalculation
+        }
+        OtgError::SynchronizationFailed { .. } => PyResult_::ErrorSynchronizationCalculation,
+        // A failure added to the library later: Ruckig's generic error.
+        _ => PyResult_::Error,
+    };
+    Python::attach(|py| {
+        let value = err.value(py);
+        // Setting attributes on a fresh exception instance cannot fail short of memory
+        // exhaustion; the error itself is what the caller needs either way.
+        let _ = value.setattr("result", result);
+        let _ = value.setattr("kind", e.name());
+        let _ = value.setattr("dof", e.dof());
+    });
+    err
 }
 
 /// Ruckig's `Result`: the status of `calculate` and `update` (errors are raised as
@@ -43,8 +79,10 @@ pub enum PyResult_ {
     Error = -1,
     /// Invalid input.
     ErrorInvalidInput = -100,
-    /// Position limits (not supported by trajkit).
+    /// A DOF cannot reach its target inside `[min_position, max_position]`.
     ErrorPositionalLimits = -102,
+    /// A DOF with a zero limit cannot reach its target (at the duration the others need).
+    ErrorZeroLimits = -104,
     /// Calculation failed.
     ErrorExecutionTimeCalculation = -110,
     /// Synchronization failed.
@@ -295,6 +333,42 @@ impl PyInput {
         Ok(())
     }
 
+    /// Ruckig Pro's `max_position`: the largest position of each DOF along the whole motion
+    /// (a list, `inf` = none, the default).
+    #[getter]
+    fn max_position(&self) -> Vec<f64> {
+        self.inner.max_position.clone()
+    }
+    #[setter]
+    fn set_max_position(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.inner.max_position = floats(v, "max_position", None)?;
+        Ok(())
+    }
+
+    /// Ruckig Pro's `min_position`: the smallest position of each DOF along the whole motion
+    /// (a list, `-inf` = none, the default).
+    #[getter]
+    fn min_position(&self) -> Vec<f64> {
+        self.inner.min_position.clone()
+    }
+    #[setter]
+    fn set_min_position(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
+        self.inner.min_position = floats(v, "min_position", None)?;
+        Ok(())
+    }
+
+    /// Ruckig Pro's calculation budget in microseconds, or `None` (no budget, the default):
+    /// when it runs out the calculation returns the shortest valid trajectory found so far,
+    /// or raises `RuckigError` with `kind == 'interrupted'` when it has none.
+    #[getter]
+    fn interrupt_calculation_duration(&self) -> Option<f64> {
+        self.inner.options.interrupt_calculation_duration
+    }
+    #[setter]
+    fn set_interrupt_calculation_duration(&mut self, v: Option<f64>) {
+        self.inner.options.interrupt_calculation_duration = v;
+    }
+
     /// Which DOFs are planned (a disabled one keeps its current acceleration).
     #[getter]
     fn enabled(&self) -> Vec<bool> {
@@ -422,6 +496,11 @@ impl PyInput {
                         .collect::<Vec<_>>()
                 }),
             ),
+            (
+                i.min_position.clone(),
+                i.max_position.clone(),
+                o.interrupt_calculation_duration,
+            ),
         )
             .into_pyobject(py)
     }
@@ -437,8 +516,9 @@ impl PyInput {
             Vec<bool>,
         );
         type PerDof = (Option<Vec<i64>>, Option<Vec<bool>>);
-        let (s, l, o, d): (States, Limits, (Option<f64>, i64, bool, bool), PerDof) =
-            state.extract()?;
+        type Options = (Option<f64>, i64, bool, bool);
+        type Pro = (Vec<f64>, Vec<f64>, Option<f64>);
+        let (s, l, o, d, pro): (States, Limits, Options, PerDof, Pro) = state.extract()?;
         let i = &mut self.inner;
         (
             i.current_position,
@@ -472,6 +552,11 @@ impl PyInput {
         i.options.duration_discretization = if o.3 { DD::Discrete } else { DD::Continuous };
         i.per_dof_synchronization = d.0.map(|v| v.into_iter().map(sync_of).collect());
         i.per_dof_control_interface = d.1.map(|v| v.into_iter().map(iface_of).collect());
+        (
+            i.min_position,
+            i.max_position,
+            i.options.interrupt_calculation_duration,
+        ) = pro;
         Ok(())
     }
 
@@ -488,6 +573,8 @@ impl PyInput {
             ("max_velocity", &i.max_velocity),
             ("max_acceleration", &i.max_acceleration),
             ("max_jerk", &i.max_jerk),
+            ("min_position", &i.min_position),
+            ("max_position", &i.max_position),
         ] {
             s.push_str(&format!("inp.{name} = {v:?}\n"));
         }
@@ -791,7 +878,9 @@ pub struct PyOutput {
     time: f64,
     /// Whether this update calculated a new trajectory.
     new_calculation: bool,
-    /// Always False (trajkit's calculation is not interrupted).
+    /// True when the calculation used its whole `interrupt_calculation_duration` budget: the
+    /// trajectory is then the shortest valid one found within it (or, when none was found,
+    /// `update` raised `RuckigError` with `kind == 'interrupted'`). False without a budget.
     was_calculation_interrupted: bool,
     /// Wall-clock duration of the calculation in microseconds.
     calculation_duration: f64,
@@ -922,10 +1011,18 @@ impl PyRuckig {
         self.check_dofs(input.inner.dof(), "the input")?;
         output.new_calculation = false;
         output.calculation_duration = 0.0;
+        output.was_calculation_interrupted = false;
         if self.last.as_ref() != Some(&input.inner) || self.traj.is_none() {
             let start = Instant::now();
             let r = calculate_dyn(&input.inner, self.delta_time);
             output.calculation_duration = start.elapsed().as_secs_f64() * 1e6;
+            // The library stops its search once the budget has elapsed; a calculation that
+            // lasted the whole budget is reported as interrupted.
+            output.was_calculation_interrupted = input
+                .inner
+                .options
+                .interrupt_calculation_duration
+                .is_some_and(|b| output.calculation_duration >= b);
             match r {
                 Ok(t) => self.traj = Some(t),
                 Err(e) => {

@@ -5,7 +5,9 @@
 //! `trajkit.Limits`, completed by the CLI's keyword arguments: [`LimitsArgs`]); the limits the
 //! method needs are `PlanOptions::needs()`, and a missing one is a `TrajkitError` naming the
 //! joint and field. The result is a `trajkit.Plan`, a `trajkit.Trajectory` with the plan's
-//! report, notes and samples; it pickles by the call that made it.
+//! report, notes and samples; it pickles by the call that made it. `jerk_stage` is
+//! `trajkit plan --jerk-stage` (`'auto'`, `'filter'`, `'third-order'`: `trajkit::plan::JerkStage`);
+//! `jerk_limit=False` is `JerkStage::Off`.
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -58,6 +60,29 @@ fn gridpoints(g: &Bound<'_, PyAny>) -> PyResult<Gridpoints> {
         "gridpoints = {}: expected 'auto' or a positive interval count",
         g.repr()?
     )))
+}
+
+/// The jerk stage of `toppra` and `ni` (`trajkit plan --jerk-stage`); `None` is `'auto'`,
+/// the library's default. `jerk_limit=False` is [`JerkStage::Off`] and takes no stage.
+fn jerk_stage(name: Option<&str>, jerk_limit: bool) -> PyResult<JerkStage> {
+    if !jerk_limit {
+        return match name {
+            None => Ok(JerkStage::Off),
+            Some(s) => Err(bad(format!(
+                "jerk_stage = '{s}' bounds jerk, jerk_limit=False states it unlimited: give one of them"
+            ))),
+        };
+    }
+    Ok(match name {
+        None | Some("auto") => JerkStage::Auto,
+        Some("filter") => JerkStage::Filter,
+        Some("third-order") => JerkStage::ThirdOrder,
+        Some(other) => {
+            return Err(bad(format!(
+                "jerk_stage = '{other}' is not 'auto', 'filter' or 'third-order'"
+            )))
+        }
+    })
 }
 
 fn degree(name: &str) -> PyResult<Degree> {
@@ -145,10 +170,16 @@ fn torque_model(
 }
 
 /// Plans a trajectory through `waypoints` within `limits` (see the module documentation).
+///
+/// `jerk_stage` (toppra and ni, as `trajkit plan --jerk-stage`): `'auto'` (the default, also
+/// `None`: the exact jerk-limited optimum on straight-line pieces, the filter elsewhere),
+/// `'filter'` (the filter on every piece) or `'third-order'` (`'auto'` plus the third-order
+/// time-optimal planner on curved pieces, the shorter result kept; seconds per piece).
+/// `jerk_limit=False` plans without a jerk stage and takes no `jerk_stage`.
 #[pyfunction]
 #[pyo3(signature = (
     waypoints, limits = None, *, method = "toppra", joint_names = None, path = "natural",
-    gridpoints = None, jerk_limit = true, max_deviation = 0.1, degree = "quintic",
+    gridpoints = None, jerk_limit = true, jerk_stage = None, max_deviation = 0.1, degree = "quintic",
     via_velocity = "heuristic", sample_rate = 1000.0, torque_limits = false, dynamics = None,
     joint_limits = None, fill_from = None, fill_by = "name", max_velocity = None,
     max_acceleration = None, max_jerk = None, position_range = None, velocity_scale = 1.0,
@@ -164,6 +195,7 @@ fn plan<'py>(
     path: &str,
     gridpoints: Option<Bound<'py, PyAny>>,
     jerk_limit: bool,
+    jerk_stage: Option<&str>,
     max_deviation: f64,
     degree: &str,
     via_velocity: &str,
@@ -185,6 +217,7 @@ fn plan<'py>(
         (joint_names.clone(), dynamics.clone(), joint_limits.clone());
     let w = self::waypoints(&waypoints, joint_names)?;
     let m = self::method(method)?;
+    let stage = self::jerk_stage(jerk_stage, jerk_limit)?;
     if !jerk_limit && max_jerk.is_some() {
         return Err(bad(
             "jerk_limit=False states every jerk limit unlimited; do not give max_jerk too",
@@ -212,12 +245,7 @@ fn plan<'py>(
             None => PlanOptions::default().gridpoints,
             Some(g) => self::gridpoints(g)?,
         },
-        jerk: if jerk_limit {
-            // The library's default stage, as `trajkit plan` uses it.
-            PlanOptions::default().jerk
-        } else {
-            JerkStage::Off
-        },
+        jerk: stage,
         max_deviation,
         degree: self::degree(degree)?,
         via_velocity: self::via_velocity(via_velocity)?,
@@ -252,6 +280,7 @@ fn plan<'py>(
         path,
         gridpoints,
         jerk_limit,
+        jerk_stage,
         max_deviation,
         degree,
         via_velocity,

@@ -91,6 +91,8 @@ def test_batch_otg_in_order_with_per_item_errors():
     for i, (inp, r) in enumerate(zip(ins, res)):
         if i in (7, 123):
             assert isinstance(r, trajkit.TrajkitError) and "max_jerk" in str(r)
+            # As Ruckig.calculate raises it.
+            assert r.result == otg.Result.ErrorInvalidInput and r.kind == "invalid_input"
             continue
         one = otg.Trajectory(7)
         otg.Ruckig(7, 0.001).calculate(inp, one)

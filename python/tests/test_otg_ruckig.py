@@ -132,6 +132,8 @@ def test_invalid_input_raises_ruckig_error_with_trajkit_message():
     with pytest.raises(tk.RuckigError, match=r"max_jerk\[0\] = -1") as e:
         otg.calculate(inp, tk.Trajectory(1))
     assert isinstance(e.value, ValueError) and isinstance(e.value, trajkit.TrajkitError)
+    assert e.value.result == tk.Result.ErrorInvalidInput
+    assert e.value.kind == "invalid_input" and e.value.dof == 0
     with pytest.raises(trajkit.TrajkitError):
         otg.update(inp, tk.OutputParameter(1))
     inp.max_jerk = [float("nan")]
@@ -140,7 +142,7 @@ def test_invalid_input_raises_ruckig_error_with_trajkit_message():
     with pytest.raises(trajkit.TrajkitError, match="degrees of freedom"):
         tk.Ruckig(2, 0.01).calculate(inp, tk.Trajectory(1))
     with pytest.raises(AttributeError):
-        inp.max_position = [1.0]  # Ruckig Pro's position limits: not silently ignored
+        inp.intermediate_positions = [[1.0]]  # Ruckig Pro's waypoints: not silently ignored
 
 
 def test_enums_and_options():

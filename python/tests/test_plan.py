@@ -55,6 +55,11 @@ CASES = [
     ("toppra", {}, ["--limits", "panda"]),
     ("toppra", {"jerk_limit": False}, ["--limits", "panda", "--no-jerk-limit"]),
     ("toppra", {"path": "linear"}, ["--limits", "panda", "--path", "linear"]),
+    ("toppra", {"jerk_stage": "auto"}, ["--limits", "panda", "--jerk-stage", "auto"]),
+    ("toppra", {"jerk_stage": "filter"}, ["--limits", "panda", "--jerk-stage", "filter"]),
+    ("toppra", {"jerk_stage": "third-order"},
+     ["--limits", "panda", "--jerk-stage", "third-order"]),
+    ("ni", {"jerk_stage": "filter"}, ["--limits", "panda", "--method", "ni", "--jerk-stage", "filter"]),
     ("ni", {}, ["--limits", "panda", "--method", "ni"]),
     ("poly", {"degree": "septic"}, ["--limits", "panda", "--method", "poly", "--degree", "septic"]),
     ("totg", {"jerk_limit": False, "max_deviation": 0.05},
@@ -167,6 +172,10 @@ def test_plan_bad_input():
         trajkit.plan(wp, "panda", gridpoints=0)
     with pytest.raises(trajkit.TrajkitError, match="jerk_limit"):
         trajkit.plan(wp, "panda", jerk_limit=False, max_jerk=5.0)
+    with pytest.raises(trajkit.TrajkitError, match="jerk_stage = 'fast' is not"):
+        trajkit.plan(wp, "panda", jerk_stage="fast")
+    with pytest.raises(trajkit.TrajkitError, match="jerk_stage = 'filter'.*jerk_limit=False"):
+        trajkit.plan(wp, "panda", jerk_limit=False, jerk_stage="filter")
 
 
 def test_plan_matches_toppra():
@@ -193,3 +202,59 @@ def test_plan_matches_toppra():
                            path, gridpoints=grid, solver_wrapper="seidel")
         want = inst.compute_trajectory(0.0, 0.0).duration
         assert abs(p.raw_duration - want) / want < 2e-3, (p.raw_duration, want)
+
+
+def line_waypoints():
+    """Three collinear waypoints in order (one rest-to-rest piece along a straight line)."""
+    mid = (PANDA.position[:, 0] + PANDA.position[:, 1]) / 2
+    d = np.array([0.9, -0.5, 0.3, 0.6, -0.8, 0.4, -0.2])
+    return np.array([mid - d / 2, mid + d / 10, mid + d / 2])
+
+
+def test_straight_line_auto_is_the_otg_optimum():
+    """jerk_stage='auto' on a straight line: the duration of the 1-D jerk-limited optimum
+    along it (the joints' limits projected on the line), as trajkit.otg and the Ruckig wheel
+    compute it; 'filter' is never shorter."""
+    wp = line_waypoints()
+    p = trajkit.plan(wp, "panda", jerk_stage="auto")
+    assert p.pieces == 1
+    length = float(np.linalg.norm(wp[-1] - wp[0]))
+    u = np.abs(wp[-1] - wp[0]) / length
+    lim = [float(np.min(x / u)) for x in (PANDA.velocity, PANDA.acceleration, PANDA.jerk)]
+    durations = {}
+    for name, mod in [("trajkit", tk_otg()), ("ruckig", pytest.importorskip("ruckig"))]:
+        inp = mod.InputParameter(1)
+        inp.current_position, inp.target_position = [0.0], [length]
+        inp.max_velocity, inp.max_acceleration, inp.max_jerk = [lim[0]], [lim[1]], [lim[2]]
+        tr = mod.Trajectory(1)
+        mod.Ruckig(1, 0.001).calculate(inp, tr)
+        durations[name] = tr.duration
+    assert durations["trajkit"] == pytest.approx(durations["ruckig"], rel=1e-9)
+    # The library plans with the projected limits lowered by 1e-10 relative (LIMIT_MARGIN).
+    assert p.duration == pytest.approx(durations["ruckig"], rel=1e-8)
+    assert p.duration >= durations["ruckig"] * (1 - 1e-12)
+    f = trajkit.plan(wp, "panda", jerk_stage="filter")
+    assert f.duration > p.duration * (1 + 1e-6)
+    for q in (p, f):
+        assert q.worst_ratio <= 1.0 + 1e-9
+        assert np.allclose(q(0.0), wp[0], atol=1e-9) and np.allclose(q(q.duration), wp[-1], atol=1e-9)
+
+
+@pytest.mark.parametrize("stage", ["auto", "filter", "third-order"])
+def test_straight_line_stages_match_cli(tmp_path, stage):
+    wp = line_waypoints()
+    p = trajkit.plan(wp, "panda", jerk_stage=stage)
+    table = run_cli(tmp_path, wp, ["--limits", "panda", "--jerk-stage", stage, "--rate", "250"])
+    assert abs(table[-1, 0] - p.duration) <= 1e-12 * p.duration
+    t, q, qd, qdd, qddd = p.sample(250)
+    for k, got in enumerate([q, qd, qdd, qddd]):
+        want = table[:, 1 + 7 * k: 1 + 7 * (k + 1)]
+        scale = max(1.0, float(np.max(np.abs(want))))
+        assert np.max(np.abs(got - want)) <= 1e-12 * scale, (stage, k)
+    again = pickle.loads(pickle.dumps(p))
+    assert again.duration == p.duration
+
+
+def tk_otg():
+    from trajkit import otg
+    return otg

@@ -8,7 +8,12 @@ ArrayLike = npt.ArrayLike
 FloatArray = npt.NDArray[np.float64]
 LimitsLike = Union["Limits", str, dict]
 
-class TrajkitError(ValueError): ...
+class TrajkitError(ValueError):
+    # Set on failures of trajkit.otg (raised as RuckigError, the same class): the Ruckig
+    # Result member, trajkit's error kind ('position_limits', 'interrupted', ...) and the DOF.
+    result: Any
+    kind: str
+    dof: Optional[int]
 
 class Trajectory:
     """Any trajkit trajectory: evaluate over arrays of times, sample, pickle."""
@@ -101,6 +106,7 @@ def plan(
     path: str = "natural",
     gridpoints: Union[str, int, None] = None,
     jerk_limit: bool = True,
+    jerk_stage: Optional[str] = None,
     max_deviation: float = 0.1,
     degree: str = "quintic",
     via_velocity: str = "heuristic",

@@ -27,8 +27,19 @@ time_after)``), ``Profile``, ``Bound``, ``Result``, ``Synchronization`` (``Time`
 class as ``trajkit.TrajkitError``, a ``ValueError``). A ``Profile`` lists one DOF's jerk
 segments (``t`` durations, ``t_sum``, ``j``, and ``p``, ``v``, ``a`` at each segment start
 and the end); trajkit's segments are not Ruckig's seven fixed phases.
-Not supported (Ruckig Pro features): intermediate waypoints, position limits, per-section
-limits; setting those attributes raises ``AttributeError``.
+Ruckig Pro's position limits (``InputParameter.min_position`` / ``max_position``, per DOF,
+``-inf`` / ``inf`` by default: positions stay inside along the whole motion) and calculation
+budget (``InputParameter.interrupt_calculation_duration``, microseconds, ``None`` by default:
+the shortest valid trajectory found within it, ``OutputParameter.was_calculation_interrupted``
+when ``update`` used all of it) are supported. Failures raise ``RuckigError`` with the
+library's message and ``result`` (the ``Result`` member: ``ErrorInvalidInput``,
+``ErrorPositionalLimits``, ``ErrorZeroLimits``, ``ErrorExecutionTimeCalculation``,
+``ErrorSynchronizationCalculation``), ``kind`` (``'invalid_input'``, ``'position_limits'``,
+``'zero_limits'``, ``'interrupted'``, ``'calculation_failed'``, ``'synchronization_failed'``)
+and ``dof`` (or ``None``). A budget that runs out before any valid trajectory is known raises
+with ``kind == 'interrupted'`` and ``result == Result.ErrorExecutionTimeCalculation``.
+Not supported (Ruckig Pro features): intermediate waypoints and per-section limits; setting
+those attributes raises ``AttributeError``.
 
 trajkit adds vectorized evaluation: ``trajectory(t, order=0)`` for an array ``t``.
 """
@@ -54,6 +65,7 @@ Finished = Result.Finished
 Error = Result.Error
 ErrorInvalidInput = Result.ErrorInvalidInput
 ErrorPositionalLimits = Result.ErrorPositionalLimits
+ErrorZeroLimits = Result.ErrorZeroLimits
 ErrorExecutionTimeCalculation = Result.ErrorExecutionTimeCalculation
 ErrorSynchronizationCalculation = Result.ErrorSynchronizationCalculation
 Time = Synchronization.Time

@@ -1,11 +1,11 @@
 from typing import List, Optional, Tuple
 from ._trajkit import ArrayLike, FloatArray, TrajkitError
 
-RuckigError = TrajkitError
+RuckigError = TrajkitError  # otg failures carry `result`, `kind` and `dof` (see TrajkitError)
 
 class Result:
     Working: "Result"; Finished: "Result"; Error: "Result"; ErrorInvalidInput: "Result"
-    ErrorPositionalLimits: "Result"; ErrorExecutionTimeCalculation: "Result"; ErrorSynchronizationCalculation: "Result"
+    ErrorPositionalLimits: "Result"; ErrorZeroLimits: "Result"; ErrorExecutionTimeCalculation: "Result"; ErrorSynchronizationCalculation: "Result"
     def __int__(self) -> int: ...
 class Synchronization:
     Time: "Synchronization"; TimeIfNecessary: "Synchronization"; Phase: "Synchronization"; No: "Synchronization"
@@ -20,6 +20,8 @@ class InputParameter:
     target_position: List[float]; target_velocity: List[float]; target_acceleration: List[float]
     max_velocity: List[float]; max_acceleration: List[float]; max_jerk: List[float]
     min_velocity: Optional[List[float]]; min_acceleration: Optional[List[float]]
+    min_position: List[float]; max_position: List[float]
+    interrupt_calculation_duration: Optional[float]
     enabled: List[bool]; minimum_duration: Optional[float]
     synchronization: Synchronization; control_interface: ControlInterface
     duration_discretization: DurationDiscretization
