@@ -199,8 +199,16 @@ impl BSpline {
         degree: usize,
         w: Option<&[f64]>,
     ) -> Result<BSpline> {
-        let n = check_least_squares(x, y, dim, knots, degree, w)?;
-        let (mut r, mut z) = givens_band(x, y, dim, knots, degree, w, n);
+        let data = LsqData {
+            x,
+            y,
+            dim,
+            knots,
+            k: degree,
+            w,
+        };
+        let n = data.check()?;
+        let (mut r, mut z) = data.givens_band(n);
         back_substitute(&mut r, &mut z, degree + 1, n, dim)?;
         Ok(BSpline {
             k: degree,
@@ -258,100 +266,115 @@ pub(super) fn collocate(
     Ok(c)
 }
 
-/// Validates the input of [`BSpline::least_squares`]; returns the number of control points.
-fn check_least_squares(
-    x: &[f64],
-    y: &[f64],
+/// The data of [`BSpline::least_squares`]: `m` parameters `x`, values `y` (`m × dim`), the
+/// knots, the degree `k` and the optional weights.
+#[derive(Clone, Copy)]
+struct LsqData<'a> {
+    x: &'a [f64],
+    y: &'a [f64],
     dim: usize,
-    knots: &[f64],
+    knots: &'a [f64],
     k: usize,
-    w: Option<&[f64]>,
-) -> Result<usize> {
-    validate::dim(dim)?;
-    if knots.len() < k + 2 {
-        return Err(Error::TooFewWaypoints {
-            needed: k + 2,
-            found: knots.len(),
-        });
-    }
-    let n = knots.len() - k - 1;
-    check_knots(knots, k, n)?;
-    validate::nondecreasing("x", x)?;
-    validate::values("y", y, x.len(), dim)?;
-    if let Some(w) = w {
-        validate::values("w", w, x.len(), 1)?;
-    }
-    let (a, b) = (knots[k], knots[n]);
-    if let Some(i) = x.iter().position(|&v| v < a || v > b) {
-        return Err(Error::InvalidValue {
-            field: format!("x[{i}]"),
-            value: x[i],
-            reason: "is outside the knots' base interval",
-        });
-    }
-    if x.len() < n {
-        return Err(Error::TooFewWaypoints {
-            needed: n,
-            found: x.len(),
-        });
-    }
-    Ok(n)
+    w: Option<&'a [f64]>,
 }
 
-/// Folds the weighted observation rows into an upper-triangular band by Givens rotations:
-/// returns `R` (row `i` holds `R[i][i..=i+k]`, `n × (k + 1)`) and the rotated right-hand side
-/// `z` (`n × dim`).
-fn givens_band(
-    x: &[f64],
-    y: &[f64],
-    dim: usize,
-    knots: &[f64],
-    k: usize,
-    w: Option<&[f64]>,
-    n: usize,
-) -> (Vec<f64>, Vec<f64>) {
-    let k1 = k + 1;
-    let mut r = vec![0.0f64; n * k1];
-    let mut z = vec![0.0; n * dim];
-    let mut row = [0.0; K1];
-    let mut yr = vec![0.0; dim];
-    for (j, &s) in x.iter().enumerate() {
-        let wj = w.map_or(1.0, |w| w[j]);
-        let l = find_span(knots, k, s);
-        basis_funs(knots, k, l, s, &mut row);
-        for v in row[..k1].iter_mut() {
-            *v *= wj;
+impl LsqData<'_> {
+    /// Validates the data; returns the number of control points.
+    fn check(&self) -> Result<usize> {
+        let LsqData {
+            x,
+            y,
+            dim,
+            knots,
+            k,
+            w,
+        } = *self;
+        validate::dim(dim)?;
+        if knots.len() < k + 2 {
+            return Err(Error::TooFewWaypoints {
+                needed: k + 2,
+                found: knots.len(),
+            });
         }
-        for d in 0..dim {
-            yr[d] = wj * y[j * dim + d];
+        let n = knots.len() - k - 1;
+        check_knots(knots, k, n)?;
+        validate::nondecreasing("x", x)?;
+        validate::values("y", y, x.len(), dim)?;
+        if let Some(w) = w {
+            validate::values("w", w, x.len(), 1)?;
         }
-        let f = l - k;
-        for i in 0..k1 {
-            if row[i] == 0.0 {
-                continue;
-            }
-            let col = f + i;
-            let p: f64 = r[col * k1];
-            let h = p.hypot(row[i]);
-            let (cs, sn) = (p / h, row[i] / h);
-            r[col * k1] = h;
-            for q in 1..k1 - i {
-                let a = r[col * k1 + q];
-                let b = row[i + q];
-                r[col * k1 + q] = cs * a + sn * b;
-                row[i + q] = -sn * a + cs * b;
+        let (a, b) = (knots[k], knots[n]);
+        if let Some(i) = x.iter().position(|&v| v < a || v > b) {
+            return Err(Error::InvalidValue {
+                field: format!("x[{i}]"),
+                value: x[i],
+                reason: "is outside the knots' base interval",
+            });
+        }
+        if x.len() < n {
+            return Err(Error::TooFewWaypoints {
+                needed: n,
+                found: x.len(),
+            });
+        }
+        Ok(n)
+    }
+
+    /// Folds the weighted observation rows into an upper-triangular band by Givens rotations:
+    /// returns `R` (row `i` holds `R[i][i..=i+k]`, `n × (k + 1)`) and the rotated right-hand side
+    /// `z` (`n × dim`).
+    fn givens_band(&self, n: usize) -> (Vec<f64>, Vec<f64>) {
+        let LsqData {
+            x,
+            y,
+            dim,
+            knots,
+            k,
+            w,
+        } = *self;
+        let k1 = k + 1;
+        let mut r = vec![0.0f64; n * k1];
+        let mut z = vec![0.0; n * dim];
+        let mut row = [0.0; K1];
+        let mut yr = vec![0.0; dim];
+        for (j, &s) in x.iter().enumerate() {
+            let wj = w.map_or(1.0, |w| w[j]);
+            let l = find_span(knots, k, s);
+            basis_funs(knots, k, l, s, &mut row);
+            for v in row[..k1].iter_mut() {
+                *v *= wj;
             }
             for d in 0..dim {
-                let a = z[col * dim + d];
-                z[col * dim + d] = cs * a + sn * yr[d];
-                yr[d] = -sn * a + cs * yr[d];
+                yr[d] = wj * y[j * dim + d];
+            }
+            let f = l - k;
+            for i in 0..k1 {
+                if row[i] == 0.0 {
+                    continue;
+                }
+                let col = f + i;
+                let p: f64 = r[col * k1];
+                let h = p.hypot(row[i]);
+                let (cs, sn) = (p / h, row[i] / h);
+                r[col * k1] = h;
+                for q in 1..k1 - i {
+                    let a = r[col * k1 + q];
+                    let b = row[i + q];
+                    r[col * k1 + q] = cs * a + sn * b;
+                    row[i + q] = -sn * a + cs * b;
+                }
+                for d in 0..dim {
+                    let a = z[col * dim + d];
+                    z[col * dim + d] = cs * a + sn * yr[d];
+                    yr[d] = -sn * a + cs * yr[d];
+                }
             }
         }
+        (r, z)
     }
-    (r, z)
 }
 
-/// Solves `R c = z` in place (`c` overwrites `z`) for the band `R` of [`givens_band`]; a
+/// Solves `R c = z` in place (`c` overwrites `z`) for the band `R` of [`LsqData::givens_band`]; a
 /// diagonal entry below 1e-14 of the band's largest entry is a Schoenberg–Whitney failure.
 fn back_substitute(r: &mut [f64], z: &mut [f64], k1: usize, n: usize, dim: usize) -> Result<()> {
     let scale = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
