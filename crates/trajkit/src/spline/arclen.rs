@@ -45,6 +45,145 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
+/// An accepted subinterval `[u0, u1]` of the path parameter: its length `h`, and du/ds and
+/// d²u/ds² at both ends from inside.
+#[derive(Debug, Clone, Copy)]
+struct Accepted {
+    h: f64,
+    u0: f64,
+    u1: f64,
+    v0: f64,
+    v1: f64,
+    a0: f64,
+    a1: f64,
+}
+
+/// The speed ‖σ′(u)‖ (`d` is scratch of length `dim`).
+fn speed<P: Path>(path: &P, u: f64, d: &mut [f64]) -> f64 {
+    path.eval(u, 1, d);
+    norm(d)
+}
+
+/// 8-point Gauss–Legendre length of `[a, b]`.
+fn gl<P: Path>(path: &P, a: f64, b: f64, d: &mut [f64]) -> f64 {
+    let (c, h) = (0.5 * (a + b), 0.5 * (b - a));
+    let mut s = 0.0;
+    for i in 0..4 {
+        s += GW[i] * (speed(path, c - h * GX[i], d) + speed(path, c + h * GX[i], d));
+    }
+    s * h
+}
+
+/// du/ds and d²u/ds² of the inverse u(s) at u, from the side the evaluation lands on; a zero
+/// or non-finite speed is a typed error.
+fn inverse_derivs<P: Path>(path: &P, u: f64, d1: &mut [f64], d2: &mut [f64]) -> Result<(f64, f64)> {
+    path.eval(u, 1, d1);
+    path.eval(u, 2, d2);
+    let g = norm(d1);
+    if !(g > 0.0 && g.is_finite()) {
+        return Err(Error::InvalidValue {
+            field: format!("path speed |σ′| at parameter {u}"),
+            value: g,
+            reason:
+                "is zero or not finite: arc length parameterization needs a path that does not stop",
+        });
+    }
+    let gu = dot(d1, d2) / g;
+    Ok((1.0 / g, -gu / (g * g * g)))
+}
+
+/// Bisects the smooth piece `[a, b]` of the path until Gauss–Legendre agrees with the two
+/// halves within the subinterval's share of `tol` and the quintic model of u(s) hits the
+/// quarter points within `tol / 5` (or depth 60); appends the accepted subintervals in
+/// increasing order.
+#[allow(clippy::too_many_arguments)]
+fn subdivide_piece<P: Path>(
+    path: &P,
+    a: f64,
+    b: f64,
+    tol: f64,
+    span: f64,
+    d1: &mut [f64],
+    d2: &mut [f64],
+    out: &mut Vec<Accepted>,
+) -> Result<()> {
+    // Left-limit derivatives at b: evaluate just inside the piece.
+    let b_in = b - (b - a) * 1e-12;
+    let mut stack = vec![(a, b, 0usize)];
+    while let Some((x0, x1, depth)) = stack.pop() {
+        let whole = gl(path, x0, x1, d1);
+        let xm = 0.5 * (x0 + x1);
+        let left = gl(path, x0, xm, d1);
+        let right = gl(path, xm, x1, d1);
+        let share = tol * (x1 - x0) / span;
+        let mut ok = (whole - left - right).abs() <= 0.1 * share || depth >= 60;
+        let (v0, a0) = inverse_derivs(path, x0, d1, d2)?;
+        let xe = if x1 == b { b_in } else { x1 };
+        let (v1, a1) = inverse_derivs(path, xe, d1, d2)?;
+        let h = left + right;
+        if ok && depth < 60 {
+            // Does the quintic model of u(s) hit the quarter points? (Not the midpoint
+            // alone: on a symmetric piece the model is exact there whatever its error
+            // elsewhere.)
+            let c = quintic_coeffs(h, x0, x1, v0, v1, a0, a1);
+            let model =
+                |sm: f64| ((((c[5] * sm + c[4]) * sm + c[3]) * sm + c[2]) * sm + c[1]) * sm + c[0];
+            let (xq, x3) = (x0 + 0.25 * (x1 - x0), x0 + 0.75 * (x1 - x0));
+            let (lq, l3) = (gl(path, x0, xq, d1), left + gl(path, xm, x3, d1));
+            let eq = (model(lq) - xq).abs() * speed(path, xq, d1);
+            let e3 = (model(l3) - x3).abs() * speed(path, x3, d1);
+            ok = eq.max(e3) <= 0.2 * tol;
+        }
+        if ok {
+            out.push(Accepted {
+                h,
+                u0: x0,
+                u1: x1,
+                v0,
+                v1,
+                a0,
+                a1,
+            });
+        } else {
+            // Right half first so the left one is processed next (increasing order).
+            stack.push((xm, x1, depth + 1));
+            stack.push((x0, xm, depth + 1));
+        }
+    }
+    Ok(())
+}
+
+/// The subdivision nodes, the length up to each, and u(s) as a piecewise quintic Hermite on
+/// those lengths, from the accepted subintervals in order (`ub` closes the last one).
+fn inverse_model(seg_data: &[Accepted], ub: f64) -> (Vec<f64>, Vec<f64>, PiecewisePolynomial) {
+    let mut total = 0.0;
+    let mut u: Vec<f64> = Vec::with_capacity(seg_data.len() + 1);
+    let mut len: Vec<f64> = Vec::with_capacity(seg_data.len() + 1);
+    for sd in seg_data {
+        u.push(sd.u0);
+        len.push(total);
+        total += sd.h;
+    }
+    u.push(ub);
+    len.push(total);
+    let mut coeffs = Vec::with_capacity(seg_data.len() * 6);
+    let mut breaks = len.clone();
+    // Guard against zero-length subintervals from round-off (cannot happen with positive
+    // speed, but keep the breaks strictly increasing).
+    for i in 1..breaks.len() {
+        if breaks[i] <= breaks[i - 1] {
+            breaks[i] = breaks[i - 1] * (1.0 + f64::EPSILON) + f64::MIN_POSITIVE;
+        }
+    }
+    for sd in seg_data {
+        coeffs.extend_from_slice(&quintic_coeffs(
+            sd.h, sd.u0, sd.u1, sd.v0, sd.v1, sd.a0, sd.a1,
+        ));
+    }
+    let inv = PiecewisePolynomial::from_parts(breaks, 1, 5, coeffs);
+    (u, len, inv)
+}
+
 /// Arc length of a path `σ(u)` and its arc-length reparameterization `x(s) = σ(u(s))`,
 /// `s ∈ [0, L]`, to an absolute tolerance chosen at construction.
 ///
@@ -88,104 +227,18 @@ impl<P: Path> ArcLength<P> {
         let dim = path.dim();
         let (ua, ub) = path.interval();
         let span = ub - ua;
-        let speed = |u: f64, d: &mut [f64]| -> f64 {
-            path.eval(u, 1, d);
-            norm(d)
-        };
         let mut d1 = vec![0.0; dim];
         let mut d2 = vec![0.0; dim];
-        let gl = |a: f64, b: f64, d: &mut [f64]| -> f64 {
-            let (c, h) = (0.5 * (a + b), 0.5 * (b - a));
-            let mut s = 0.0;
-            for i in 0..4 {
-                s += GW[i] * (speed(c - h * GX[i], d) + speed(c + h * GX[i], d));
-            }
-            s * h
-        };
-        // u-derivatives of u(s) at u, from the side the evaluation lands on.
-        let derivs = |u: f64, d1: &mut [f64], d2: &mut [f64]| -> Result<(f64, f64)> {
-            path.eval(u, 1, d1);
-            path.eval(u, 2, d2);
-            let g = norm(d1);
-            if !(g > 0.0 && g.is_finite()) {
-                return Err(Error::InvalidValue {
-                    field: format!("path speed |σ′| at parameter {u}"),
-                    value: g,
-                    reason: "is zero or not finite: arc length parameterization needs a path that does not stop",
-                });
-            }
-            let gu = dot(d1, d2) / g;
-            Ok((1.0 / g, -gu / (g * g * g)))
-        };
         let br = path.breakpoints();
-        // Accepted subintervals: (length, u0, u1, du/ds and d²u/ds² at both ends from inside).
-        let mut seg_data: Vec<(f64, f64, f64, f64, f64, f64, f64)> = Vec::new();
-        let mut total = 0.0;
+        let mut seg_data: Vec<Accepted> = Vec::new();
         for w in br.windows(2) {
             let (a, b) = (w[0], w[1]);
             if b <= a {
                 continue;
             }
-            // Left-limit derivatives at b: evaluate just inside the piece.
-            let b_in = b - (b - a) * 1e-12;
-            let mut stack = vec![(a, b, 0usize)];
-            while let Some((x0, x1, depth)) = stack.pop() {
-                let whole = gl(x0, x1, &mut d1);
-                let xm = 0.5 * (x0 + x1);
-                let left = gl(x0, xm, &mut d1);
-                let right = gl(xm, x1, &mut d1);
-                let share = tol * (x1 - x0) / span;
-                let mut ok = (whole - left - right).abs() <= 0.1 * share || depth >= 60;
-                let (v0, a0) = derivs(x0, &mut d1, &mut d2)?;
-                let xe = if x1 == b { b_in } else { x1 };
-                let (v1, a1) = derivs(xe, &mut d1, &mut d2)?;
-                let h = left + right;
-                if ok && depth < 60 {
-                    // Does the quintic model of u(s) hit the quarter points? (Not the midpoint
-                    // alone: on a symmetric piece the model is exact there whatever its error
-                    // elsewhere.)
-                    let c = quintic_coeffs(h, x0, x1, v0, v1, a0, a1);
-                    let model = |sm: f64| {
-                        ((((c[5] * sm + c[4]) * sm + c[3]) * sm + c[2]) * sm + c[1]) * sm + c[0]
-                    };
-                    let (xq, x3) = (x0 + 0.25 * (x1 - x0), x0 + 0.75 * (x1 - x0));
-                    let (lq, l3) = (gl(x0, xq, &mut d1), left + gl(xm, x3, &mut d1));
-                    let eq = (model(lq) - xq).abs() * speed(xq, &mut d1);
-                    let e3 = (model(l3) - x3).abs() * speed(x3, &mut d1);
-                    ok = eq.max(e3) <= 0.2 * tol;
-                }
-                if ok {
-                    seg_data.push((h, x0, x1, v0, v1, a0, a1));
-                } else {
-                    // Right half first so the left one is processed next (increasing order).
-                    stack.push((xm, x1, depth + 1));
-                    stack.push((x0, xm, depth + 1));
-                }
-            }
+            subdivide_piece(&path, a, b, tol, span, &mut d1, &mut d2, &mut seg_data)?;
         }
-        let mut u: Vec<f64> = Vec::with_capacity(seg_data.len() + 1);
-        let mut len: Vec<f64> = Vec::with_capacity(seg_data.len() + 1);
-        for sd in &seg_data {
-            u.push(sd.1);
-            len.push(total);
-            total += sd.0;
-        }
-        u.push(ub);
-        len.push(total);
-        let mut coeffs = Vec::with_capacity(seg_data.len() * 6);
-        let mut breaks = len.clone();
-        // Guard against zero-length subintervals from round-off (cannot happen with positive
-        // speed, but keep the breaks strictly increasing).
-        for i in 1..breaks.len() {
-            if breaks[i] <= breaks[i - 1] {
-                breaks[i] = breaks[i - 1] * (1.0 + f64::EPSILON) + f64::MIN_POSITIVE;
-            }
-        }
-        for sd in &seg_data {
-            let (h, u0, u1, v0, v1, a0, a1) = *sd;
-            coeffs.extend_from_slice(&quintic_coeffs(h, u0, u1, v0, v1, a0, a1));
-        }
-        let inv = PiecewisePolynomial::from_parts(breaks, 1, 5, coeffs);
+        let (u, len, inv) = inverse_model(&seg_data, ub);
         Ok(ArcLength {
             path,
             tol,

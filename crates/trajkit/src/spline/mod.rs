@@ -40,9 +40,10 @@
 //!   O(n) banded solve.
 //! - [`CubicHermiteSpline`], [`QuinticHermiteSpline`] (hermite.rs): given velocities (and
 //!   accelerations) at the breaks.
-//! - [`BSpline`] (bspline.rs, basis functions in basis.rs): any degree up to [`MAX_DEGREE`],
-//!   knot insertion, degree elevation, interpolation with end-derivative conditions
-//!   ([`BSpline::minimum_jerk`], [`BSpline::minimum_snap`]), least squares, [`DesignMatrix`].
+//! - [`BSpline`] (bspline.rs, fitting in bspline/fit.rs, basis functions in basis.rs): any
+//!   degree up to [`MAX_DEGREE`], knot insertion, degree elevation, interpolation with
+//!   end-derivative conditions ([`BSpline::minimum_jerk`], [`BSpline::minimum_snap`]), least
+//!   squares, [`DesignMatrix`].
 //! - [`CatmullRom`] (catmull_rom.rs): uniform, centripetal, chordal ([`CatmullRomKind`]).
 //! - [`Bezier`] (bezier.rs): de Casteljau, hodograph, subdivision, degree elevation.
 //! - [`Nurbs`] (nurbs.rs): weights, rational derivatives, exact circles and arcs.
@@ -61,8 +62,9 @@
 //! (`cubic`, `hermite`, `pchip`, `akima`, `catmull_rom`) compute slopes at the breaks and hand
 //! them to `ppoly.rs` (`PiecewisePolynomial`), which does all evaluation. Global systems go
 //! through `banded.rs` (banded LU; periodic by Sherman–Morrison), so construction is O(n).
-//! `basis.rs` (Cox–de Boor in stack buffers) serves `bspline.rs` (interpolation incl.
-//! minimum-jerk/snap, least squares, design matrix, knot insertion, elevation) and `nurbs.rs`;
+//! `basis.rs` (Cox–de Boor in stack buffers) serves `bspline.rs` (evaluation, design matrix,
+//! knot insertion, elevation; its `fit.rs` does interpolation incl. minimum-jerk/snap and
+//! least squares by banded Givens QR) and `nurbs.rs`;
 //! `bezier.rs` is de Casteljau; `arclen.rs` wraps any `Path`; `quat.rs` is SO(3) (slerp,
 //! cumulative B-spline). `validate.rs` holds the shared input checks. `bounded.rs`
 //! (`BoundedSpline`) repairs a C² spline so that each component stays inside its bounds

@@ -272,6 +272,54 @@ fn normalized(q: &[Quat]) -> Result<Vec<Quat>> {
     q.iter().map(|q| Quat::new(q.w, q.x, q.y, q.z)).collect()
 }
 
+/// The quasi-Newton matrix of [`SO3Spline::interpolate`], factored: the (linear, Euclidean)
+/// collocation system of the cubic B-spline on knots `t` at the keyframe times, with the
+/// reflected end rotations folded in; exact in one step about a fixed axis.
+fn collocation_matrix(t: &[f64], times: &[f64]) -> Result<Banded> {
+    let n = times.len();
+    let mut a = Banded::zeros(n, 2, 2);
+    for (i, &ti) in times.iter().enumerate() {
+        let l = find_span(t, 3, ti);
+        let mut nb = [0.0; K1];
+        basis_ders(t, 3, l, ti, 0, &mut nb);
+        let mut row = vec![0.0; n];
+        for r in 0..4 {
+            let j = l - 3 + r; // index into c = [C_{−1}, C_0, …, C_n]
+            let w = nb[r];
+            if j == 0 {
+                row[0] += 2.0 * w;
+                row[1] -= w;
+            } else if j == n + 1 {
+                row[n - 1] += 2.0 * w;
+                row[n - 2] -= w;
+            } else {
+                row[j - 1] += w;
+            }
+        }
+        for (col, &v) in row.iter().enumerate() {
+            if v != 0.0 {
+                a.set(i, col, v);
+            }
+        }
+    }
+    a.factor()
+        .map_err(|_| Error::Infeasible("SO(3) spline: singular collocation system".into()))?;
+    Ok(a)
+}
+
+/// World-frame keyframe residuals of `sp` into `delta` (3 per keyframe); returns the largest
+/// angle. Left perturbations of all control rotations move the curve (to first order) by the
+/// same combination of them.
+fn keyframe_residual(sp: &SO3Spline, times: &[f64], keys: &[Quat], delta: &mut [f64]) -> f64 {
+    let mut worst = 0.0f64;
+    for i in 0..keys.len() {
+        let d = keys[i].mul(sp.eval(times[i]).conj()).log();
+        worst = worst.max((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt());
+        delta[i * 3..i * 3 + 3].copy_from_slice(&d);
+    }
+    worst
+}
+
 impl SO3Spline {
     /// The interpolating spline through `keys` at increasing finite `times` (at least 2 of
     /// each, as many times as keys). The control rotations are found by a damped quasi-Newton
@@ -298,76 +346,9 @@ impl SO3Spline {
         c.extend_from_slice(&keys);
         c.push(keys[n - 1]);
         let mut sp = SO3Spline { t, c };
-        // Quasi-Newton: the correction of the control rotations solves the (linear, Euclidean)
-        // collocation system of the cubic B-spline at the keyframe times, with the reflected
-        // end rotations folded in; exact in one step about a fixed axis.
-        let mut a = Banded::zeros(n, 2, 2);
-        for (i, &ti) in times.iter().enumerate() {
-            let l = find_span(&sp.t, 3, ti);
-            let mut nb = [0.0; K1];
-            basis_ders(&sp.t, 3, l, ti, 0, &mut nb);
-            let mut row = vec![0.0; n];
-            for r in 0..4 {
-                let j = l - 3 + r; // index into c = [C_{−1}, C_0, …, C_n]
-                let w = nb[r];
-                if j == 0 {
-                    row[0] += 2.0 * w;
-                    row[1] -= w;
-                } else if j == n + 1 {
-                    row[n - 1] += 2.0 * w;
-                    row[n - 2] -= w;
-                } else {
-                    row[j - 1] += w;
-                }
-            }
-            for (col, &v) in row.iter().enumerate() {
-                if v != 0.0 {
-                    a.set(i, col, v);
-                }
-            }
-        }
-        a.factor()
-            .map_err(|_| Error::Infeasible("SO(3) spline: singular collocation system".into()))?;
-        // World-frame residuals: left perturbations of all control rotations move the curve
-        // (to first order) by the same combination of them.
-        let residual = |sp: &SO3Spline, delta: &mut [f64]| -> f64 {
-            let mut worst = 0.0f64;
-            for i in 0..n {
-                let d = keys[i].mul(sp.eval(times[i]).conj()).log();
-                worst = worst.max((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt());
-                delta[i * 3..i * 3 + 3].copy_from_slice(&d);
-            }
-            worst
-        };
-        let mut delta = vec![0.0; n * 3];
-        let mut trial = vec![0.0; n * 3];
-        sp.reflect_ends();
-        let mut worst = residual(&sp, &mut delta);
-        for _ in 0..100 {
-            if worst <= 1e-14 {
-                return Ok(sp);
-            }
-            if !worst.is_finite() {
-                break;
-            }
-            a.solve(&mut delta, 3);
-            // Backtracking: halve the step until the largest keyframe error decreases.
-            let base = sp.c.clone();
-            let mut step = 1.0;
-            loop {
-                for i in 0..n {
-                    let d = scale([delta[i * 3], delta[i * 3 + 1], delta[i * 3 + 2]], step);
-                    sp.c[i + 1] = Quat::exp(d).mul(base[i + 1]);
-                }
-                sp.reflect_ends();
-                let w = residual(&sp, &mut trial);
-                if w < worst || step < 1e-4 {
-                    worst = w;
-                    std::mem::swap(&mut delta, &mut trial);
-                    break;
-                }
-                step *= 0.5;
-            }
+        let a = collocation_matrix(&sp.t, times)?;
+        if sp.newton(&a, times, &keys) {
+            return Ok(sp);
         }
         sp.reflect_ends();
         let worst = (0..n)
@@ -419,6 +400,44 @@ impl SO3Spline {
     /// The control rotations `C_{−1} … C_n`.
     pub fn control_rotations(&self) -> &[Quat] {
         &self.c
+    }
+
+    /// Damped quasi-Newton on the interior control rotations (at most 100 steps, each halved
+    /// until the largest keyframe error decreases, down to 1e-4); true once that error is at
+    /// most 1e-14 rad (the ends are then reflected), false when it stalls or is not finite.
+    fn newton(&mut self, a: &Banded, times: &[f64], keys: &[Quat]) -> bool {
+        let n = keys.len();
+        let mut delta = vec![0.0; n * 3];
+        let mut trial = vec![0.0; n * 3];
+        self.reflect_ends();
+        let mut worst = keyframe_residual(self, times, keys, &mut delta);
+        for _ in 0..100 {
+            if worst <= 1e-14 {
+                return true;
+            }
+            if !worst.is_finite() {
+                break;
+            }
+            a.solve(&mut delta, 3);
+            // Backtracking: halve the step until the largest keyframe error decreases.
+            let base = self.c.clone();
+            let mut step = 1.0;
+            loop {
+                for i in 0..n {
+                    let d = scale([delta[i * 3], delta[i * 3 + 1], delta[i * 3 + 2]], step);
+                    self.c[i + 1] = Quat::exp(d).mul(base[i + 1]);
+                }
+                self.reflect_ends();
+                let w = keyframe_residual(self, times, keys, &mut trial);
+                if w < worst || step < 1e-4 {
+                    worst = w;
+                    std::mem::swap(&mut delta, &mut trial);
+                    break;
+                }
+                step *= 0.5;
+            }
+        }
+        false
     }
 
     /// C_{−1} = C_0 (C_0⁻¹ C_1)⁻¹, likewise at the other end.

@@ -122,13 +122,8 @@ impl BlendedPath {
                 b.line(&seg_start, end);
                 break;
             }
-            let Corner {
-                dir,
-                next,
-                angle,
-                ell,
-                radius,
-            } = corner(&w, dim, i, max_deviation);
+            let c = corner(&w, dim, i, max_deviation);
+            let (angle, radius) = (c.angle, c.radius);
             if angle >= std::f64::consts::PI - REVERSAL_ANGLE {
                 return Err(Error::Infeasible(format!(
                     "waypoint {} reverses the path exactly (turning angle {angle} rad): it cannot be blended; split there (plan_totg does)",
@@ -145,22 +140,7 @@ impl BlendedPath {
                     kept[i]
                 )));
             }
-            let half = 0.5 * angle;
-            let corner = &w[i * dim..(i + 1) * dim];
-            let arc_start: Vec<f64> = (0..dim).map(|j| corner[j] - ell * dir[j]).collect();
-            let arc_end: Vec<f64> = (0..dim).map(|j| corner[j] + ell * next[j]).collect();
-            b.line(&seg_start, &arc_start);
-            // Centre: from the corner along the bisector (d₁ − d₀)/‖d₁ − d₀‖, at r / cos(α/2).
-            let mut bis: Vec<f64> = (0..dim).map(|j| next[j] - dir[j]).collect();
-            let nb = bis.iter().map(|v| v * v).sum::<f64>().sqrt();
-            bis.iter_mut().for_each(|v| *v /= nb);
-            let cdist = radius / half.cos();
-            let center: Vec<f64> = (0..dim).map(|j| corner[j] + cdist * bis[j]).collect();
-            let x: Vec<f64> = (0..dim)
-                .map(|j| (arc_start[j] - center[j]) / radius)
-                .collect();
-            b.arc(&center, &x, &dir, radius, angle);
-            seg_start = arc_end;
+            seg_start = b.blend(&seg_start, &w[i * dim..(i + 1) * dim], &c);
         }
         Ok(BlendedPath {
             dim,
@@ -396,6 +376,34 @@ impl Builder {
         self.pieces.push(Piece::Line { start, dir });
         let s0 = self.s[self.s.len() - 1];
         self.s.push(s0 + len);
+    }
+
+    /// The segment from `seg_start` to the arc of corner `c` at waypoint `corner`, then the
+    /// arc; returns the arc's end, where the next segment starts.
+    fn blend(&mut self, seg_start: &[f64], corner: &[f64], c: &Corner) -> Vec<f64> {
+        let Corner {
+            dir,
+            next,
+            angle,
+            ell,
+            radius,
+        } = c;
+        let (dim, angle, ell, radius) = (self.dim, *angle, *ell, *radius);
+        let half = 0.5 * angle;
+        let arc_start: Vec<f64> = (0..dim).map(|j| corner[j] - ell * dir[j]).collect();
+        let arc_end: Vec<f64> = (0..dim).map(|j| corner[j] + ell * next[j]).collect();
+        self.line(seg_start, &arc_start);
+        // Centre: from the corner along the bisector (d₁ − d₀)/‖d₁ − d₀‖, at r / cos(α/2).
+        let mut bis: Vec<f64> = (0..dim).map(|j| next[j] - dir[j]).collect();
+        let nb = bis.iter().map(|v| v * v).sum::<f64>().sqrt();
+        bis.iter_mut().for_each(|v| *v /= nb);
+        let cdist = radius / half.cos();
+        let center: Vec<f64> = (0..dim).map(|j| corner[j] + cdist * bis[j]).collect();
+        let x: Vec<f64> = (0..dim)
+            .map(|j| (arc_start[j] - center[j]) / radius)
+            .collect();
+        self.arc(&center, &x, dir, radius, angle);
+        arc_end
     }
 
     fn arc(&mut self, center: &[f64], x: &[f64], y: &[f64], radius: f64, angle: f64) {

@@ -60,7 +60,9 @@
 //! `grid.rs` chooses gridpoints (always with the path's breakpoints; the default `Auto` doubles
 //! equal intervals per path piece until the duration settles within 1e-4); `lp.rs` is an exact
 //! two-variable Seidel LP; `toppra.rs` runs the backward (controllable sets) and forward passes,
-//! returning a `Profile` (`parametrized.rs`). `between.rs` makes the limits hold between
+//! returning a `PhaseProfile` (`parametrized.rs`); its `stage.rs` reads a stage's half-planes
+//! straight from the gridpoint rows and takes the greedy forward step (shared with `ni/`), its
+//! `explain.rs` names the constraints in an infeasibility error. `between.rs` makes the limits hold between
 //! gridpoints: on paths that are polynomials of degree ≤ 3 between breakpoints
 //! (`Path::piecewise_degree`) each stage gets the interior Bernstein coefficients of joint
 //! velocity and acceleration along its interval as extra rows (`Constraint::hold_on_cubic`), so
@@ -88,7 +90,7 @@
 //! shared `Stage`) whose knots on the limit curve are the switching points, forward integration
 //! at the largest step (`largest_step`, shared with TOPP-RA's forward pass) with crossings
 //! located exactly, closed-form steps where the constraints are constant, event checks between
-//! knots with bounded refinement; output is the same `Profile`. Bounded steps (TOTG's arcs) are
+//! knots with bounded refinement; output is the same `PhaseProfile`. Bounded steps (TOTG's arcs) are
 //! cut where their excess bound exceeds the problem's cut threshold τ (`tighten_max`: from the
 //! first sweep's share of time on varying steps), else their knots are tightened by twice the
 //! bound; refinement rounds reuse the rows of kept knots. After convergence `loss_estimate`
@@ -98,7 +100,7 @@
 //! converged solution as fallback). `totg.rs` = `BlendedPath` +
 //! joint velocity/acceleration constraints + `ni` with TOTG's knots; arc knots hold limits
 //! tightened by the analytic bound of the excess between knots (initial arc step 0.04 rad); `plan_totg` splits waypoints at stops into a `Sequence`. Flow: waypoints → messy (dedup,
-//! stops) → `Path` + `Limits` → constraints → `Toppra` | `ni` | (blend → totg) → `Profile` →
+//! stops) → `Path` + `Limits` → constraints → `Toppra` | `ni` | (blend → totg) → `PhaseProfile` →
 //! `Retimed` → jerk → `Trajectory`. The solver's hot loop evaluates σ′ and σ″ together
 //! (`Path::eval_derivatives`) and scans each stage's rows in place (`HalfPlanes::first_violated`).
 

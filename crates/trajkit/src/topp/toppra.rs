@@ -61,6 +61,13 @@
 //!   below the continuous optimum T*, and it converges to it at about first order in the
 //!   spacing; the default grid ([`Gridpoints::Auto`], 1e-4) stops where successive grids agree
 //!   within 1e-4, tested against 5·10⁴ and 2·10⁵ uniform intervals (measured 2–5e-5 above).
+//!
+//! Files: this one holds the options, the problem builder and the passes; `toppra/stage.rs`
+//! the stage's half-planes, the greedy step and the record of checked steps; `toppra/explain.rs`
+//! the infeasibility diagnostics.
+
+mod explain;
+mod stage;
 
 use super::constraint::{Constraint, ConstraintRows, PathPoint};
 use super::grid::Gridpoints;
@@ -69,6 +76,7 @@ use super::parametrized::{Parametrized, PhaseProfile};
 use super::rescale::Retimed;
 use crate::error::{Error, Result};
 use crate::{Limits, Path};
+pub(crate) use stage::{largest_step, CleanSteps, Stage};
 
 /// How constraints are enforced on an interval.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -750,234 +758,6 @@ impl Workspace {
         }
         Ok(())
     }
-
-    fn name_of<P: Path>(&self, prob: &Toppra<'_, P>, k: usize) -> String {
-        prob.constraints
-            .get(k)
-            .map_or_else(|| "no constraint".into(), |c| c.name())
-    }
-
-    /// Why stage i has an empty controllable set.
-    fn explain_stage<P: Path>(&mut self, prob: &Toppra<'_, P>, grid: &[f64], i: usize) -> Error {
-        let delta = grid[i + 1] - grid[i];
-        let (klo, khi) = (self.klo[i + 1], self.khi[i + 1]);
-        let xhi = self.xhi[i].min(X_BIG);
-        let xlo = self.xlo[i];
-        let lo = [(klo - xhi) / (2.0 * delta), xlo];
-        let hi = [(khi - xlo) / (2.0 * delta), xhi];
-        let tol = 1e-10 * (self.scale + khi);
-        let mut culprits = Vec::new();
-        for k in 0..self.nc {
-            let stage = self.stage(i, delta, prob.options.discretization, Some(k), khi, klo);
-            if lp::maximize([0.0, 1.0], &stage, lo, hi, [BOX, BOX], tol).is_none() {
-                culprits.push(prob.constraints[k].name());
-            }
-        }
-        let who = if culprits.is_empty() {
-            "the constraints together".to_string()
-        } else {
-            format!("'{}'", culprits.join("', '"))
-        };
-        Error::Infeasible(format!(
-            "at s = {} (between gridpoints {i} and {}): {who} leave no admissible path acceleration that reaches the velocities controllable at s = {} (ṡ in [{}, {}])",
-            grid[i],
-            i + 1,
-            grid[i + 1],
-            klo.sqrt(),
-            khi.sqrt()
-        ))
-    }
-
-    /// Why the path cannot move on interval i (x = 0 at both ends).
-    fn explain_stall<P: Path>(&mut self, prob: &Toppra<'_, P>, grid: &[f64], i: usize) -> Error {
-        let mut who: Vec<String> = Vec::new();
-        // Joint-level explanations from the constraints themselves.
-        for &s in &grid[i..=i + 1] {
-            prob.path.eval(s, 0, &mut self.q);
-            prob.path.eval(s, 1, &mut self.dq);
-            prob.path.eval(s, 2, &mut self.ddq);
-            let p = PathPoint {
-                s,
-                q: &self.q,
-                dq: &self.dq,
-                ddq: &self.ddq,
-            };
-            for c in &prob.constraints {
-                if let Some(why) = c.diagnose(&p) {
-                    if !who.contains(&why) {
-                        who.push(why);
-                    }
-                }
-            }
-        }
-        if who.is_empty() {
-            for j in [i, i + 1] {
-                if self.xhi[j] <= 0.0 {
-                    who.push(format!(
-                        "'{}' allows only ṡ = 0",
-                        self.name_of(prob, self.xhi_by[j])
-                    ));
-                }
-            }
-            for k in 0..self.nc {
-                // From rest (x = 0), a row a·u ≤ g with a > 0 and g ≤ 0 forbids starting.
-                if self.rows_of(i, k).iter().any(|r| r[0] > 0.0 && r[2] <= 0.0) {
-                    who.push(format!(
-                        "'{}' allows no path acceleration from rest",
-                        prob.constraints[k].name()
-                    ));
-                }
-            }
-            who.dedup();
-        }
-        let who = if who.is_empty() {
-            "the constraints allow only ṡ = 0".to_string()
-        } else {
-            who.join("; ")
-        };
-        Error::Infeasible(format!(
-            "the path cannot move between s = {} and s = {}: {who}",
-            grid[i],
-            grid[i + 1]
-        ))
-    }
-}
-
-/// Steps (s_i, s_{i+1}, x_i, x_{i+1}) found within the limits by the last check between
-/// gridpoints, in path order. A step unchanged since (same ends, x within 1e-9 relative) is
-/// not checked again.
-#[derive(Default)]
-pub(crate) struct CleanSteps {
-    previous: Vec<[f64; 4]>,
-    current: Vec<[f64; 4]>,
-    p: usize,
-}
-
-impl CleanSteps {
-    /// Starts a check round: the steps marked in the last round become the reference.
-    pub(crate) fn start_round(&mut self) {
-        self.previous = std::mem::take(&mut self.current);
-        self.p = 0;
-    }
-
-    /// Whether `step` was found clean in the last round (it is then marked clean again).
-    /// Steps must be asked in path order.
-    pub(crate) fn unchanged(&mut self, step: [f64; 4]) -> bool {
-        let same = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
-        while self.p < self.previous.len() && self.previous[self.p][0] < step[0] {
-            self.p += 1;
-        }
-        if let Some(c) = self.previous.get(self.p) {
-            if c[0] == step[0] && c[1] == step[1] && same(c[2], step[2]) && same(c[3], step[3]) {
-                self.current.push(step);
-                return true;
-            }
-        }
-        false
-    }
-
-    /// Records `step` as found within the limits.
-    pub(crate) fn mark(&mut self, step: [f64; 4]) {
-        self.current.push(step);
-    }
-}
-
-/// The half-planes of one stage, computed on the fly from the gridpoint rows: the rows at s_i,
-/// the rows at s_{i+1} with x_{i+1} = x + 2Δu substituted, rows of interior points already in
-/// (u, x_i) (added where the check between gridpoints found an excess), and
-/// x_{i+1} ∈ [klo, khi].
-pub(crate) struct Stage<'a> {
-    pub(crate) here: &'a [[f64; 3]],
-    pub(crate) next: &'a [[f64; 3]],
-    pub(crate) mid: &'a [[f64; 3]],
-    pub(crate) two_delta: f64,
-    pub(crate) khi: f64,
-    pub(crate) klo: f64,
-}
-
-impl lp::HalfPlanes for Stage<'_> {
-    #[inline]
-    fn count(&self) -> usize {
-        self.here.len() + self.next.len() + self.mid.len() + 2
-    }
-    #[inline]
-    fn get(&self, k: usize) -> [f64; 3] {
-        let h = self.here.len();
-        let n = self.next.len();
-        let m = self.mid.len();
-        if k < h {
-            self.here[k]
-        } else if k < h + n {
-            let [a, b, g] = self.next[k - h];
-            [a + self.two_delta * b, b, g]
-        } else if k < h + n + m {
-            self.mid[k - h - n]
-        } else if k == h + n + m {
-            [self.two_delta, 1.0, self.khi]
-        } else {
-            [-self.two_delta, -1.0, -self.klo]
-        }
-    }
-    /// Scans the row slices directly (the solver's hot loop).
-    #[inline]
-    fn first_violated(&self, from: usize, v: [f64; 2], tol: f64) -> Option<usize> {
-        let h = self.here.len();
-        let n = self.next.len();
-        let m = self.mid.len();
-        if from < h {
-            for (j, &r) in self.here[from..].iter().enumerate() {
-                if lp::violates(r, v, tol) {
-                    return Some(from + j);
-                }
-            }
-        }
-        let start = from.max(h) - h;
-        if start < n {
-            for (j, &[a, b, g]) in self.next[start..].iter().enumerate() {
-                if lp::violates([a + self.two_delta * b, b, g], v, tol) {
-                    return Some(h + start + j);
-                }
-            }
-        }
-        let start = from.max(h + n) - h - n;
-        if start < m {
-            for (j, &r) in self.mid[start..].iter().enumerate() {
-                if lp::violates(r, v, tol) {
-                    return Some(h + n + start + j);
-                }
-            }
-        }
-        (from.max(h + n + m)..h + n + m + 2).find(|&k| lp::violates(self.get(k), v, tol))
-    }
-}
-
-/// The largest constant path acceleration u ≤ `cap` on an interval of length Δ (`two_delta` =
-/// 2Δ) from x = `x` at its start, holding the rows `here` at the start (a·u + b·x ≤ g) and
-/// `next` at the end, where x becomes x + 2Δu. Only rows that bound u from above are used.
-pub(crate) fn largest_step(
-    here: &[[f64; 3]],
-    next: &[[f64; 3]],
-    two_delta: f64,
-    x: f64,
-    cap: f64,
-) -> f64 {
-    let mut u = cap;
-    // rhs/a < u ⇔ rhs < u·a for a > 0: divide only where the bound improves.
-    let mut bound = |a: f64, rhs: f64| {
-        if a > 0.0 && rhs < u * a {
-            let v = rhs / a;
-            if v < u {
-                u = v;
-            }
-        }
-    };
-    for &[a, b, g] in here {
-        bound(a, g - b * x);
-    }
-    for &[a, b, g] in next {
-        bound(a + two_delta * b, g - b * x);
-    }
-    u
 }
 
 pub(crate) fn check_path_values(s: f64, q: &[f64], dq: &[f64], ddq: &[f64]) -> Result<()> {
@@ -1000,53 +780,4 @@ pub(crate) fn check_path_values(s: f64, q: &[f64], dq: &[f64], ddq: &[f64]) -> R
         }
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::rng::SplitMix64;
-
-    /// The stage's direct row scan finds the same violated rows as the generic one, so the
-    /// programs solved through it give the same optimum as on the materialized rows.
-    #[test]
-    fn stage_scan_equals_materialized_rows() {
-        let mut rng = SplitMix64::new(5);
-        for _ in 0..2000 {
-            let row = |rng: &mut SplitMix64| {
-                [
-                    rng.uniform(-3.0, 3.0),
-                    rng.uniform(-3.0, 3.0),
-                    rng.uniform(-1.0, 4.0),
-                ]
-            };
-            let here: Vec<[f64; 3]> = (0..rng.below(6)).map(|_| row(&mut rng)).collect();
-            let next: Vec<[f64; 3]> = (0..rng.below(6)).map(|_| row(&mut rng)).collect();
-            let mid: Vec<[f64; 3]> = (0..rng.below(4)).map(|_| row(&mut rng)).collect();
-            let stage = Stage {
-                here: &here,
-                next: &next,
-                mid: &mid,
-                two_delta: rng.uniform(0.001, 0.5),
-                khi: rng.uniform(0.5, 3.0),
-                klo: rng.uniform(-0.5, 0.4),
-            };
-            let rows: Vec<[f64; 3]> = (0..lp::HalfPlanes::count(&stage))
-                .map(|k| lp::HalfPlanes::get(&stage, k))
-                .collect();
-            let v = [rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0)];
-            for from in 0..=rows.len() {
-                assert_eq!(
-                    lp::HalfPlanes::first_violated(&stage, from, v, 1e-10),
-                    lp::HalfPlanes::first_violated(rows.as_slice(), from, v, 1e-10)
-                );
-            }
-            let hint = [rng.below(rows.len() as u64 + 1) as usize, BOX];
-            for c in [[0.0, 1.0], [0.0, -1.0], [1.0, 0.3]] {
-                let a = lp::maximize(c, &stage, [-5.0, 0.0], [5.0, 5.0], hint, 1e-10);
-                let b = lp::maximize(c, rows.as_slice(), [-5.0, 0.0], [5.0, 5.0], hint, 1e-10);
-                assert_eq!(a, b);
-            }
-        }
-    }
 }

@@ -181,18 +181,7 @@ fn forward<P: Path + ?Sized>(
         } else if xf <= back[i + 1] {
             xf.max(0.0)
         } else {
-            let ub = (back[i + 1] - back[i]) / (2.0 * delta);
-            // The backward line from knot i is certified by the LP only where its backward
-            // row is active there (back[i] + 2Δu* = back[i + 1]); below a point of the limit
-            // curve the step is the plain one to back[i + 1], admissible by convexity.
-            if uf > ub && x < back[i] && bound[i] == Bound::Integrated {
-                let tau = (back[i] - x) / (2.0 * (uf - ub));
-                if tau > 1e-9 * delta && tau < delta * (1.0 - 1e-9) {
-                    out.s.push(knots[i] + tau);
-                    out.x.push(x + 2.0 * uf * tau);
-                    out.step.push(i);
-                }
-            }
+            record_crossing(knots, back, bound, i, x, uf, &mut out);
             back[i + 1]
         };
         let last = out.x[out.x.len() - 1];
@@ -226,6 +215,32 @@ fn forward<P: Path + ?Sized>(
         x = next;
     }
     Ok(out)
+}
+
+/// Where the forward line from `x` at knot `i` (path acceleration `uf`) meets the backward
+/// line of step `i` strictly inside the step, records the crossing as a point of the sweep.
+fn record_crossing(
+    knots: &[f64],
+    back: &[f64],
+    bound: &[Bound],
+    i: usize,
+    x: f64,
+    uf: f64,
+    out: &mut Sweep,
+) {
+    let delta = knots[i + 1] - knots[i];
+    let ub = (back[i + 1] - back[i]) / (2.0 * delta);
+    // The backward line from knot i is certified by the LP only where its backward
+    // row is active there (back[i] + 2Δu* = back[i + 1]); below a point of the limit
+    // curve the step is the plain one to back[i + 1], admissible by convexity.
+    if uf > ub && x < back[i] && bound[i] == Bound::Integrated {
+        let tau = (back[i] - x) / (2.0 * (uf - ub));
+        if tau > 1e-9 * delta && tau < delta * (1.0 - 1e-9) {
+            out.s.push(knots[i] + tau);
+            out.x.push(x + 2.0 * uf * tau);
+            out.step.push(i);
+        }
+    }
 }
 
 /// The error for a path that cannot move from rest over knot step `i`, with the
