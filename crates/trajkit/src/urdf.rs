@@ -34,53 +34,80 @@
 use crate::error::{Error, Location, Result};
 use std::sync::Arc;
 
-/// An attribute as written: its text and the line of its value.
-#[derive(Debug, Clone, PartialEq)]
+/// The attribute names trajkit reads; attributes of other names are not kept.
+const NAMES: [&str; 16] = [
+    "name", "type", "link", "xyz", "rpy", "value", "ixx", "ixy", "ixz", "iyy", "iyz", "izz",
+    "lower", "upper", "velocity", "effort",
+];
+
+/// The index of `name` in [`NAMES`].
+fn name_id(name: &str) -> Option<u8> {
+    NAMES.iter().position(|n| *n == name).map(|i| i as u8)
+}
+
+/// An attribute as written: its name (index in [`NAMES`]), its text (a range of
+/// [`Doc::values`]) and the line of its value.
+#[derive(Debug, Clone, Copy, PartialEq)]
 struct Attr {
-    name: String,
-    text: String,
+    name: u8,
+    start: usize,
+    end: usize,
     line: usize,
 }
 
-/// One element: its line and its attributes.
-#[derive(Debug, Clone, PartialEq)]
+/// One element: its line and its attributes (a range of [`Doc::attrs`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
 struct Tag {
     line: usize,
+    first: usize,
+    last: usize,
+}
+
+/// What one parse keeps, shared by every element of the robot: the file's name for errors,
+/// the kept attributes' texts one after the other, and the attributes.
+///
+/// Reading a UR5e-sized file stays close to the cost of roxmltree's parse: no allocation per
+/// element or attribute (a `String` per attribute doubled the reading time), and numbers are
+/// parsed only when a getter asks for them.
+#[derive(Debug, PartialEq)]
+struct Doc {
+    source: Box<str>,
+    values: String,
     attrs: Vec<Attr>,
 }
 
-impl Tag {
-    fn read(lines: &Lines, node: roxmltree::Node<'_, '_>) -> Tag {
+/// Collects the tags of one document.
+struct Reader {
+    lines: Lines,
+    values: String,
+    attrs: Vec<Attr>,
+}
+
+impl Reader {
+    fn tag(&mut self, node: roxmltree::Node<'_, '_>) -> Tag {
+        let first = self.attrs.len();
+        for a in node.attributes() {
+            let Some(name) = name_id(a.name()) else {
+                continue;
+            };
+            let start = self.values.len();
+            self.values.push_str(a.value());
+            self.attrs.push(Attr {
+                name,
+                start,
+                end: self.values.len(),
+                line: self.lines.line_of(a.range_value().start),
+            });
+        }
         Tag {
-            line: lines.line_of(node.range().start),
-            attrs: node
-                .attributes()
-                .map(|a| Attr {
-                    name: a.name().to_string(),
-                    text: a.value().to_string(),
-                    line: lines.line_of(a.range_value().start),
-                })
-                .collect(),
+            line: self.lines.line_of(node.range().start),
+            first,
+            last: self.attrs.len(),
         }
     }
 
-    fn attr(&self, name: &str) -> Option<&Attr> {
-        self.attrs.iter().find(|a| a.name == name)
-    }
-
-    fn text(&self, name: &str) -> Option<&str> {
-        self.attr(name).map(|a| a.text.as_str())
-    }
-
-    /// The `name` attribute of this `<element>`; errors name the element when it is missing.
-    fn name<'a>(&'a self, src: &Src, element: &str) -> Result<&'a str> {
-        self.text("name").ok_or_else(|| {
-            src.error(
-                self.line,
-                format!("<{element} name>"),
-                format!("the {element} has no name attribute"),
-            )
-        })
+    fn child(&mut self, node: roxmltree::Node<'_, '_>, tag: &str) -> Option<Tag> {
+        child(node, tag).map(|n| self.tag(n))
     }
 }
 
@@ -114,15 +141,27 @@ fn child<'a, 'input>(
         .find(|c| c.is_element() && c.tag_name().name() == tag)
 }
 
-/// Where errors point: the file's name, shared by every element of one robot.
+/// Where errors point and what the tags refer to, shared by every element of one robot.
 #[derive(Debug, Clone, PartialEq)]
-struct Src(Arc<str>);
+struct Src(Arc<Doc>);
+
+/// An error about the whole document (no field), before its tags are kept.
+fn src_error(source: &str, line: usize, message: String) -> Error {
+    Error::Parse {
+        location: Location {
+            source: source.to_string(),
+            line,
+            field: String::new(),
+        },
+        message,
+    }
+}
 
 impl Src {
     fn error(&self, line: usize, field: impl Into<String>, message: impl Into<String>) -> Error {
         Error::Parse {
             location: Location {
-                source: self.0.to_string(),
+                source: self.0.source.to_string(),
                 line,
                 field: field.into(),
             },
@@ -130,20 +169,43 @@ impl Src {
         }
     }
 
+    fn attr(&self, tag: &Tag, name: &str) -> Option<&Attr> {
+        let id = name_id(name)?;
+        self.0.attrs[tag.first..tag.last]
+            .iter()
+            .find(|a| a.name == id)
+    }
+
+    fn text_of(&self, a: &Attr) -> &str {
+        &self.0.values[a.start..a.end]
+    }
+
+    fn text(&self, tag: &Tag, name: &str) -> Option<&str> {
+        self.attr(tag, name).map(|a| self.text_of(a))
+    }
+
+    /// The `name` attribute of this `<element>`; errors name the element when it is missing.
+    fn name(&self, tag: &Tag, element: &str) -> Result<&str> {
+        self.text(tag, "name").ok_or_else(|| {
+            self.error(
+                tag.line,
+                format!("<{element} name>"),
+                format!("the {element} has no name attribute"),
+            )
+        })
+    }
+
     /// One number (`None` when the attribute is absent); surrounding white space is allowed.
     /// Messages quote the attribute as written.
     fn number(&self, tag: &Tag, attr: &str, field: impl FnOnce() -> String) -> Result<Option<f64>> {
-        let Some(a) = tag.attr(attr) else {
+        let Some(a) = self.attr(tag, attr) else {
             return Ok(None);
         };
-        match a.text.trim().parse::<f64>() {
+        let text = self.text_of(a);
+        match text.trim().parse::<f64>() {
             Ok(x) if x.is_finite() => Ok(Some(x)),
-            Ok(_) => Err(self.error(
-                a.line,
-                field(),
-                format!("'{}' is not a finite number", a.text),
-            )),
-            Err(_) => Err(self.error(a.line, field(), format!("'{}' is not a number", a.text))),
+            Ok(_) => Err(self.error(a.line, field(), format!("'{text}' is not a finite number"))),
+            Err(_) => Err(self.error(a.line, field(), format!("'{text}' is not a number"))),
         }
     }
 
@@ -155,26 +217,28 @@ impl Src {
         attr: &str,
         field: impl Fn() -> String,
     ) -> Result<Option<[f64; N]>> {
-        let Some(a) = tag.attr(attr) else {
+        let Some(a) = self.attr(tag, attr) else {
             return Ok(None);
         };
-        let raw = a.text.as_str();
+        let raw = self.text_of(a);
         let mut out = [0.0; N];
         let mut count = 0;
         for word in raw.split_whitespace() {
-            let quoted = if raw.trim() == word {
-                format!("'{word}'")
-            } else {
-                format!("'{word}' in '{raw}'")
+            let quoted = || {
+                if raw.trim() == word {
+                    format!("'{word}'")
+                } else {
+                    format!("'{word}' in '{raw}'")
+                }
             };
-            let x: f64 = word
-                .parse()
-                .map_err(|_| self.error(a.line, field(), format!("{quoted} is not a number")))?;
+            let x: f64 = word.parse().map_err(|_| {
+                self.error(a.line, field(), format!("{} is not a number", quoted()))
+            })?;
             if !x.is_finite() {
                 return Err(self.error(
                     a.line,
                     field(),
-                    format!("{quoted} is not a finite number"),
+                    format!("{} is not a finite number", quoted()),
                 ));
             }
             if count < N {
@@ -193,28 +257,29 @@ impl Src {
     }
 
     /// A required single number (written as a list of one).
-    fn required(&self, tag: &Tag, attr: &str, field: String) -> Result<f64> {
-        match self.numbers::<1>(tag, attr, || field.clone())? {
+    fn required(&self, tag: &Tag, attr: &str, field: impl Fn() -> String) -> Result<f64> {
+        match self.numbers::<1>(tag, attr, &field)? {
             Some([x]) => Ok(x),
             None => Err(self.error(
                 tag.line,
-                field,
+                field(),
                 format!("the attribute '{attr}' is missing"),
             )),
         }
     }
 
-    /// `<origin xyz rpy>` (zero where absent) as written in `tag`.
-    fn pose(&self, origin: Option<&Tag>, owner: &str) -> Result<Pose> {
+    /// `<origin xyz rpy>` (zero where absent) as written in `tag`; `owner` names the element
+    /// in messages.
+    fn pose(&self, origin: Option<&Tag>, owner: impl Fn() -> String) -> Result<Pose> {
         let Some(o) = origin else {
             return Ok(Pose::default());
         };
         Ok(Pose {
             xyz: self
-                .numbers::<3>(o, "xyz", || format!("{owner} <origin xyz>"))?
+                .numbers::<3>(o, "xyz", || format!("{} <origin xyz>", owner()))?
                 .unwrap_or_default(),
             rpy: self
-                .numbers::<3>(o, "rpy", || format!("{owner} <origin rpy>"))?
+                .numbers::<3>(o, "rpy", || format!("{} <origin rpy>", owner()))?
                 .unwrap_or_default(),
         })
     }
@@ -279,17 +344,17 @@ impl Joint {
 
     /// The joint's name. Errors: the attribute is missing.
     pub fn name(&self) -> Result<&str> {
-        self.tag.name(&self.src, "joint")
+        self.src.name(&self.tag, "joint")
     }
 
     /// `joint 'name'` for fields in messages.
     fn owner(&self) -> String {
-        format!("joint '{}'", self.tag.text("name").unwrap_or(""))
+        format!("joint '{}'", self.src.text(&self.tag, "name").unwrap_or(""))
     }
 
     /// The joint's type. Errors: a missing or unknown `type`, quoted.
     pub fn joint_type(&self) -> Result<JointType> {
-        Ok(match self.tag.text("type").unwrap_or("") {
+        Ok(match self.src.text(&self.tag, "type").unwrap_or("") {
             "revolute" => JointType::Revolute,
             "continuous" => JointType::Continuous,
             "prismatic" => JointType::Prismatic,
@@ -319,12 +384,14 @@ impl Joint {
     }
 
     fn link<'a>(&'a self, tag: &str, el: &'a Option<Tag>) -> Result<&'a str> {
-        el.as_ref().and_then(|t| t.text("link")).ok_or_else(|| {
-            self.error(
-                format!("{} <{tag} link>", self.owner()),
-                format!("the joint has no <{tag} link=...>"),
-            )
-        })
+        el.as_ref()
+            .and_then(|t| self.src.text(t, "link"))
+            .ok_or_else(|| {
+                self.error(
+                    format!("{} <{tag} link>", self.owner()),
+                    format!("the joint has no <{tag} link=...>"),
+                )
+            })
     }
 
     /// The name of the parent link (`<parent link>`). Errors: it is missing.
@@ -340,7 +407,7 @@ impl Joint {
     /// The joint frame in the parent link's frame (`<origin>`; zero when absent). Errors: a
     /// value that is not three finite numbers.
     pub fn origin(&self) -> Result<Pose> {
-        self.src.pose(self.origin.as_ref(), &self.owner())
+        self.src.pose(self.origin.as_ref(), || self.owner())
     }
 
     /// The axis as written (`<axis xyz>`, not normalized); `None` when absent (URDF's
@@ -360,7 +427,7 @@ impl Joint {
         let Some(l) = &self.limit else {
             return Ok(None);
         };
-        let line = l.attr(attr).map_or(0, |a| a.line);
+        let line = self.src.attr(l, attr).map_or(0, |a| a.line);
         let field = || format!("{} <limit {attr}>", self.owner());
         Ok(self.src.number(l, attr, field)?.map(|x| (x, line)))
     }
@@ -423,7 +490,7 @@ impl Link {
 
     /// The link's name. Errors: the attribute is missing.
     pub fn name(&self) -> Result<&str> {
-        self.tag.name(&self.src, "link")
+        self.src.name(&self.tag, "link")
     }
 
     /// The inertial parameters; `None` for a link without `<inertial>` (massless). Errors: a
@@ -432,29 +499,29 @@ impl Link {
         let Some(i) = &self.inertial else {
             return Ok(None);
         };
-        let owner = format!("link '{}'", self.tag.text("name").unwrap_or(""));
-        let origin = self.src.pose(i.origin.as_ref(), &owner)?;
+        let owner = || format!("link '{}'", self.src.text(&self.tag, "name").unwrap_or(""));
+        let origin = self.src.pose(i.origin.as_ref(), owner)?;
         let Some(m) = &i.mass else {
             return Err(self.src.error(
                 i.tag.line,
-                format!("{owner} <mass>"),
+                format!("{} <mass>", owner()),
                 "the <inertial> element has no <mass>",
             ));
         };
         let mass = self
             .src
-            .required(m, "value", format!("{owner} <mass value>"))?;
+            .required(m, "value", || format!("{} <mass value>", owner()))?;
         if mass < 0.0 {
             return Err(self.src.error(
                 m.line,
-                format!("{owner} <mass value>"),
+                format!("{} <mass value>", owner()),
                 format!("{mass} is negative"),
             ));
         }
         let Some(t) = &i.inertia else {
             return Err(self.src.error(
                 i.tag.line,
-                format!("{owner} <inertia>"),
+                format!("{} <inertia>", owner()),
                 "the <inertial> element has no <inertia>",
             ));
         };
@@ -465,7 +532,7 @@ impl Link {
         {
             *v = self
                 .src
-                .required(t, attr, format!("{owner} <inertia {attr}>"))?;
+                .required(t, attr, || format!("{} <inertia {attr}>", owner()))?;
         }
         Ok(Some(Inertial {
             origin,
@@ -496,54 +563,78 @@ impl Robot {
     /// Errors: [`Error::Parse`] with the line for text that is not well-formed XML, or whose
     /// root element is not `<robot>`. Everything else is checked by the getters, when read.
     pub fn parse(text: &str, source: &str) -> Result<Robot> {
-        let src = Src(Arc::from(source));
         let doc = roxmltree::Document::parse(text).map_err(|e| {
-            src.error(
+            src_error(
+                source,
                 e.pos().row as usize,
-                "",
                 format!("not well-formed XML: {e}"),
             )
         })?;
-        let lines = Lines::new(text);
+        let mut reader = Reader {
+            lines: Lines::new(text),
+            values: String::with_capacity(text.len() / 4),
+            attrs: Vec::new(),
+        };
         let root = doc.root_element();
-        let root_tag = Tag::read(&lines, root);
+        let root_tag = reader.tag(root);
         if root.tag_name().name() != "robot" {
-            return Err(src.error(
+            return Err(src_error(
+                source,
                 root_tag.line,
-                "",
                 format!(
                     "the root element is <{}>, a URDF's is <robot>",
                     root.tag_name().name()
                 ),
             ));
         }
-        let tag_of = |n: Option<roxmltree::Node<'_, '_>>| n.map(|n| Tag::read(&lines, n));
         let elements = |name: &'static str| {
             root.children()
                 .filter(move |n| n.is_element() && n.tag_name().name() == name)
         };
-        let links = elements("link")
-            .map(|node| Link {
-                src: src.clone(),
-                tag: Tag::read(&lines, node),
-                inertial: child(node, "inertial").map(|i| InertialTags {
-                    tag: Tag::read(&lines, i),
-                    origin: tag_of(child(i, "origin")),
-                    mass: tag_of(child(i, "mass")),
-                    inertia: tag_of(child(i, "inertia")),
-                }),
+        let links: Vec<_> = elements("link")
+            .map(|node| {
+                let tag = reader.tag(node);
+                let inertial = child(node, "inertial").map(|i| InertialTags {
+                    tag: reader.tag(i),
+                    origin: reader.child(i, "origin"),
+                    mass: reader.child(i, "mass"),
+                    inertia: reader.child(i, "inertia"),
+                });
+                (tag, inertial)
             })
             .collect();
-        let joints = elements("joint")
-            .map(|node| Joint {
+        let joints: Vec<_> = elements("joint")
+            .map(|node| {
+                let tag = reader.tag(node);
+                let children = ["parent", "child", "origin", "axis", "limit"]
+                    .map(|name| reader.child(node, name));
+                (tag, children, child(node, "mimic").is_some())
+            })
+            .collect();
+        let src = Src(Arc::new(Doc {
+            source: source.into(),
+            values: reader.values,
+            attrs: reader.attrs,
+        }));
+        let links = links
+            .into_iter()
+            .map(|(tag, inertial)| Link {
                 src: src.clone(),
-                tag: Tag::read(&lines, node),
-                parent: tag_of(child(node, "parent")),
-                child: tag_of(child(node, "child")),
-                origin: tag_of(child(node, "origin")),
-                axis: tag_of(child(node, "axis")),
-                limit: tag_of(child(node, "limit")),
-                mimic: child(node, "mimic").is_some(),
+                tag,
+                inertial,
+            })
+            .collect();
+        let joints = joints
+            .into_iter()
+            .map(|(tag, [parent, child, origin, axis, limit], mimic)| Joint {
+                src: src.clone(),
+                tag,
+                parent,
+                child,
+                origin,
+                axis,
+                limit,
+                mimic,
             })
             .collect();
         Ok(Robot {
@@ -566,7 +657,7 @@ impl Robot {
 
     /// The name that errors give as the file.
     pub fn source(&self) -> &str {
-        &self.src.0
+        &self.src.0.source
     }
 
     /// The `<link>` elements, in document order.

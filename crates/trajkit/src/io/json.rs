@@ -1,4 +1,11 @@
 //! JSON: waypoints and sample tables (see the [parent module](super) for the format).
+//!
+//! Both readers walk a `serde_json::Value` instead of deriving `Deserialize` for the file's
+//! shape: the messages name the field and quote the value (`waypoints[2][1]: "a" is not a
+//! number`), check a row's length before its values, and suggest the closest known key for an
+//! unknown one; a derive (even with `serde_path_to_error` for the path) gives serde's own
+//! messages (`invalid type: string "a", expected f64`) in its own order. Errors found in the
+//! tree carry no line (0): the tree keeps none; syntax errors carry serde_json's line.
 
 use super::{parse_err, Waypoints, PREFIX};
 use crate::error::Result;

@@ -74,57 +74,89 @@ impl<'de> DeserializeSeed<'de> for MoveItJointSeed<'_> {
     }
 }
 
+// Hand-written rather than derived: a derived `Deserialize` (with `serde_path_to_error` for the
+// path) does not give the same errors. Its unknown-field message has no closest-name
+// suggestion (`deny_unknown_fields`) or silently accepts the key (without it), where MoveIt's
+// own extra keys must be accepted and any other refused; its duplicate-field message is
+// serde's, not "is given twice"; and each value must be checked while the format still points
+// at it (see `FieldSeed`), so that the error carries the value's line — a derived field type
+// would need a hand-written `Deserialize` of its own for that. The reading (`read`, per key)
+// and the checks across keys (`into_joint`) are separate functions.
 impl<'de> Visitor<'de> for MoveItJointSeed<'_> {
     type Value = MoveItJoint;
     fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "joint_limits.{} to be a mapping", self.name)
     }
     fn visit_map<A: MapAccess<'de>>(self, mut m: A) -> std::result::Result<MoveItJoint, A::Error> {
-        let name = self.name;
-        let mut flags: Vec<(String, bool)> = Vec::new();
-        let mut nums: Vec<(String, f64)> = Vec::new();
+        let mut entries = MoveItEntries::default();
         while let Some(key) = m.next_key::<String>()? {
-            let field = format!("joint_limits.{name}.{key}");
-            if flags.iter().any(|(k, _)| *k == key) || nums.iter().any(|(k, _)| *k == key) {
-                m.next_value::<IgnoredAny>()?;
-                return Err(located(&field, "is given twice"));
+            entries.read(self.name, key, &mut m)?;
+        }
+        entries.into_joint(self.name)
+    }
+}
+
+/// The flags and numbers of one MoveIt entry, as read (each key at most once).
+#[derive(Default)]
+struct MoveItEntries {
+    flags: Vec<(String, bool)>,
+    nums: Vec<(String, f64)>,
+}
+
+impl MoveItEntries {
+    /// Reads the value of `key` of joint `name`, checking it where it is written.
+    fn read<'de, A: MapAccess<'de>>(
+        &mut self,
+        name: &str,
+        key: String,
+        m: &mut A,
+    ) -> std::result::Result<(), A::Error> {
+        let field = format!("joint_limits.{name}.{key}");
+        if self.flags.iter().any(|(k, _)| *k == key) || self.nums.iter().any(|(k, _)| *k == key) {
+            m.next_value::<IgnoredAny>()?;
+            return Err(located(&field, "is given twice"));
+        }
+        match key.as_str() {
+            "has_velocity_limits"
+            | "has_acceleration_limits"
+            | "has_jerk_limits"
+            | "has_position_limits"
+            | "has_effort_limits" => {
+                if let Val::Bool(b) = m.next_value_seed(FieldSeed {
+                    field: &field,
+                    kind: Kind::Bool,
+                })? {
+                    self.flags.push((key, b));
+                }
             }
-            match key.as_str() {
-                "has_velocity_limits"
-                | "has_acceleration_limits"
-                | "has_jerk_limits"
-                | "has_position_limits"
-                | "has_effort_limits" => {
-                    if let Val::Bool(b) = m.next_value_seed(FieldSeed {
-                        field: &field,
-                        kind: Kind::Bool,
-                    })? {
-                        flags.push((key, b));
-                    }
+            "max_velocity" | "max_acceleration" | "max_jerk" | "min_position" | "max_position"
+            | "max_effort" => {
+                if let Val::Num(x) = m.next_value_seed(FieldSeed {
+                    field: &field,
+                    kind: Kind::Number,
+                })? {
+                    self.nums.push((key, x));
                 }
-                "max_velocity" | "max_acceleration" | "max_jerk" | "min_position"
-                | "max_position" | "max_effort" => {
-                    if let Val::Num(x) = m.next_value_seed(FieldSeed {
-                        field: &field,
-                        kind: Kind::Number,
-                    })? {
-                        nums.push((key, x));
-                    }
-                }
-                k if MOVEIT_IGNORED.contains(&k) => {
-                    m.next_value::<IgnoredAny>()?;
-                }
-                _ => {
-                    m.next_value_seed(FieldSeed {
-                        field: &field,
-                        kind: Kind::Unknown(MOVEIT_FIELDS),
-                    })?;
-                }
+            }
+            k if MOVEIT_IGNORED.contains(&k) => {
+                m.next_value::<IgnoredAny>()?;
+            }
+            _ => {
+                m.next_value_seed(FieldSeed {
+                    field: &field,
+                    kind: Kind::Unknown(MOVEIT_FIELDS),
+                })?;
             }
         }
-        let flag = |k: &str| flags.iter().any(|(f, b)| f == k && *b);
-        let num = |k: &str| -> std::result::Result<f64, A::Error> {
-            nums.iter()
+        Ok(())
+    }
+
+    /// The limits of joint `name` whose `has_…` flag is true, each checked.
+    fn into_joint<E: serde::de::Error>(self, name: &str) -> std::result::Result<MoveItJoint, E> {
+        let flag = |k: &str| self.flags.iter().any(|(f, b)| f == k && *b);
+        let num = |k: &str| -> std::result::Result<f64, E> {
+            self.nums
+                .iter()
                 .find(|(f, _)| f == k)
                 .map(|(_, x)| *x)
                 .ok_or_else(|| {
@@ -134,7 +166,7 @@ impl<'de> Visitor<'de> for MoveItJointSeed<'_> {
                     )
                 })
         };
-        let positive = |k: &str| -> std::result::Result<f64, A::Error> {
+        let positive = |k: &str| -> std::result::Result<f64, E> {
             let x = num(k)?;
             if x > 0.0 && x.is_finite() {
                 Ok(x)

@@ -94,6 +94,11 @@ pub(super) fn yaml_error(source: &str, e: serde_yaml_ng::Error) -> Error {
 // ---------------------------------------------------------------------------------------------
 // A scalar (or small list) as written in the file, kept for validation and quoting.
 
+/// A value as written, for checks and quoting.
+///
+/// Its `Deserialize` is hand-written: a derived `#[serde(untagged)]` enum would first buffer
+/// each value (a mapping's whole contents too) and then try the variants one by one, where
+/// this visitor takes the value as the format hands it.
 #[derive(Debug, Clone, PartialEq)]
 pub(super) enum Raw {
     Null,
@@ -289,6 +294,13 @@ pub(super) fn check(kind: Kind, raw: &Raw) -> std::result::Result<Val, String> {
 
 /// Deserializes one field value and checks it inside the format's deserializer, so that an
 /// error carries the line of the value.
+///
+/// A visitor rather than derived field types: the check must run while the format still
+/// points at the value, and the messages quote the value as written (`'fast' is not a
+/// number`, `[1, 0]: the upper end is not above the lower end`) where serde's derived
+/// messages say `invalid type: string "fast", expected f64` and know nothing of the limit's
+/// meaning (positive maximum, negative minimum, unbounded `null`). `serde_path_to_error`
+/// would give the path, but the path is already the field named here.
 pub(super) struct FieldSeed<'a> {
     pub(super) field: &'a str,
     pub(super) kind: Kind,
