@@ -61,7 +61,7 @@
 //! equal intervals per path piece until the duration settles within 1e-4); `lp.rs` is an exact
 //! two-variable Seidel LP; `toppra.rs` runs the backward (controllable sets) and forward passes,
 //! returning a `Profile` (`parametrized.rs`). `between.rs` makes the limits hold between
-//! gridpoints: on paths that are polynomials of degree ≤ 3 between breakpoints
+//! gridpoints: on paths that are polynomials of degree ≤ 5 between breakpoints
 //! (`Path::piecewise_degree`) each stage gets the interior Bernstein coefficients of joint
 //! velocity and acceleration along its interval as extra rows (`Constraint::hold_on_cubic`), so
 //! one solve holds them everywhere; an exact check (`Constraint::excess_on_cubic`, closed-form
