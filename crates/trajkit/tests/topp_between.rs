@@ -8,7 +8,7 @@ mod topp_common;
 
 use topp_common::{fixture_path, fixtures, floats, worst_ratios};
 use trajkit::rng::SplitMix64;
-use trajkit::spline::{CubicSpline, PchipSpline};
+use trajkit::spline::{BoundedSpline, CubicSpline, PchipSpline};
 use trajkit::topp::{
     Constraint, ConstraintRows, CubicPiece, Discretization, Gridpoints, JointAcceleration,
     JointVelocity, LinearPath, Toppra, ToppraOptions,
@@ -427,4 +427,36 @@ fn default_grid_is_within_its_duration_tolerance() {
 #[ignore = "long: every fixture problem and 20 random paths against 2·10⁵ intervals (run with --release)"]
 fn default_grid_is_within_its_duration_tolerance_all_problems() {
     auto_suite(None, 20, 200_000);
+}
+
+/// Natural splines through random Panda waypoints that leave a position range are repaired
+/// into quintic pieces ([`BoundedSpline`]); the default solve holds joint velocity and
+/// acceleration on them as exactly as on cubic ones (sampled at 10 kHz).
+#[test]
+fn limits_hold_on_range_repaired_paths() {
+    let lim = Limits::preset("panda").unwrap();
+    let lo: Vec<f64> = lim.joints().iter().map(|j| j.position_min).collect();
+    let hi: Vec<f64> = lim.joints().iter().map(|j| j.position_max).collect();
+    let mut repaired = 0;
+    for case in 0..40u64 {
+        let n = 4 + (case as usize % 4);
+        let wp = random_waypoints(5000 + case, n, &lim);
+        let ss: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
+        let natural = CubicSpline::natural(&ss, &wp, 7).unwrap();
+        let bounded = BoundedSpline::new(natural.as_ppoly(), &lo, &hi).unwrap();
+        if bounded.repairs().is_empty() {
+            continue;
+        }
+        assert_eq!(bounded.piecewise_degree(), Some(5));
+        repaired += 1;
+        let traj = Toppra::with_limits(&bounded, &lim)
+            .unwrap()
+            .solve()
+            .unwrap_or_else(|e| panic!("case {case}: {e}"));
+        assert_within(&traj, &lim, 1e-4, EXACT, &format!("case {case} repaired"));
+        if repaired == 4 {
+            break;
+        }
+    }
+    assert!(repaired >= 2, "only {repaired} paths needed a repair");
 }
