@@ -8,7 +8,7 @@ mod topp_common;
 
 use topp_common::{fixture_path, fixtures, floats, worst_ratios};
 use trajkit::rng::SplitMix64;
-use trajkit::spline::{CubicSpline, PchipSpline};
+use trajkit::spline::{BoundedSpline, CubicSpline, PchipSpline};
 use trajkit::topp::{
     Constraint, ConstraintRows, CubicPiece, Discretization, Gridpoints, JointAcceleration,
     JointVelocity, LinearPath, Toppra, ToppraOptions,
@@ -19,15 +19,22 @@ use trajkit::{Limits, Order, Path, Trajectory};
 struct PieceData {
     s0: f64,
     h: f64,
-    d: [Vec<f64>; 4],
+    d: [Vec<f64>; 6],
 }
 
 impl PieceData {
-    fn random(rng: &mut SplitMix64, dim: usize) -> Self {
+    /// A random cubic piece, or with `quintic` one of degree 5 (σ⁗ and σ⁽⁵⁾ nonzero, scaled
+    /// to the piece's length so that they shape it).
+    fn random(rng: &mut SplitMix64, dim: usize, quintic: bool) -> Self {
         let s0 = rng.uniform(-1.0, 1.0);
         let h = 10f64.powf(rng.uniform(-3.0, 0.0));
         let mut v = |r: f64| (0..dim).map(|_| rng.uniform(-r, r)).collect::<Vec<f64>>();
-        let d = [vec![0.0; dim], v(3.0), v(30.0), v(300.0)];
+        let (r4, r5) = if quintic {
+            (300.0 / h, 300.0 / (h * h))
+        } else {
+            (0.0, 0.0)
+        };
+        let d = [vec![0.0; dim], v(3.0), v(30.0), v(300.0), v(r4), v(r5)];
         PieceData { s0, h, d }
     }
 
@@ -39,6 +46,8 @@ impl PieceData {
             d1: &self.d[1],
             d2: &self.d[2],
             d3: &self.d[3],
+            d4: &self.d[4],
+            d5: &self.d[5],
         }
     }
 }
@@ -58,7 +67,12 @@ fn sampled(
         let s = piece.s0 + (piece.s1 - piece.s0) * k as f64 / samples as f64;
         let x = (x0 + 2.0 * u * (s - piece.s0)).max(0.0);
         for j in 0..vlim.len() {
-            let (d1, d2) = piece.derivatives(j, s);
+            // σ′ and σ″ from the Taylor data directly (not the library's evaluation).
+            let t = s - piece.s0;
+            let (c1, c2, c3) = (piece.d1[j], piece.d2[j], piece.d3[j]);
+            let (c4, c5) = (piece.d4[j], piece.d5[j]);
+            let d1 = c1 + c2 * t + c3 * t * t / 2.0 + c4 * t.powi(3) / 6.0 + c5 * t.powi(4) / 24.0;
+            let d2 = c2 + c3 * t + c4 * t * t / 2.0 + c5 * t.powi(3) / 6.0;
             ev = ev.max((d1 * x.sqrt()).abs() / vlim[j] - 1.0);
             let a = d1 * u + d2 * x;
             ea = ea.max(a.abs() / alim[j] - 1.0);
@@ -81,14 +95,24 @@ fn three_joint_constraints() -> (JointVelocity, JointAcceleration) {
 
 #[test]
 fn exact_extrema_match_dense_sampling() {
+    exact_extrema_suite(false);
+}
+
+#[test]
+fn exact_extrema_match_dense_sampling_on_quintic_pieces() {
+    exact_extrema_suite(true);
+}
+
+fn exact_extrema_suite(quintic: bool) {
     let mut rng = SplitMix64::new(21);
     let dim = 3;
     let (vlim, alim) = (VLIM, ALIM);
     let (vel, acc) = three_joint_constraints();
     let mut found = [0usize; 2];
     for case in 0..400 {
-        let data = PieceData::random(&mut rng, dim);
+        let data = PieceData::random(&mut rng, dim, quintic);
         let (piece, h) = (data.piece(), data.h);
+        assert_eq!(piece.is_cubic(), !quintic);
         let x0 = rng.uniform(0.0, 0.5);
         let u = rng.uniform(-0.5, 0.5) * (x0 + 0.1) / h;
         if x0 + 2.0 * u * h < 0.0 {
@@ -149,13 +173,22 @@ fn end_rows(c: &dyn Constraint, piece: &CubicPiece<'_>, out: &mut Vec<[f64; 3]>)
 
 #[test]
 fn sufficient_rows_imply_the_limits_on_the_whole_piece() {
+    sufficient_rows_suite(false);
+}
+
+#[test]
+fn sufficient_rows_imply_the_limits_on_the_whole_quintic_piece() {
+    sufficient_rows_suite(true);
+}
+
+fn sufficient_rows_suite(quintic: bool) {
     let mut rng = SplitMix64::new(22);
     let dim = 3;
     let (vlim, alim) = (VLIM, ALIM);
     let (vel, acc) = three_joint_constraints();
     let mut tested = 0;
     for case in 0..300 {
-        let data = PieceData::random(&mut rng, dim);
+        let data = PieceData::random(&mut rng, dim, quintic);
         let (piece, h) = (data.piece(), data.h);
         let mut rows = Vec::new();
         for c in [&vel as &dyn Constraint, &acc] {
@@ -166,7 +199,8 @@ fn sufficient_rows_imply_the_limits_on_the_whole_piece() {
             rows.extend_from_slice(r.half_planes());
         }
         // Random points of (u, x0); those meeting every row must hold the limits everywhere.
-        for _ in 0..40 {
+        // (Quintic pieces bend more: fewer points meet their rows, so draw more.)
+        for _ in 0..if quintic { 80 } else { 40 } {
             let x0 = rng.uniform(0.0, 0.3);
             let u = rng.uniform(-0.5, 0.5) * (x0 + 0.05) / h;
             let x1 = x0 + 2.0 * u * h;
@@ -393,4 +427,36 @@ fn default_grid_is_within_its_duration_tolerance() {
 #[ignore = "long: every fixture problem and 20 random paths against 2·10⁵ intervals (run with --release)"]
 fn default_grid_is_within_its_duration_tolerance_all_problems() {
     auto_suite(None, 20, 200_000);
+}
+
+/// Natural splines through random Panda waypoints that leave a position range are repaired
+/// into quintic pieces ([`BoundedSpline`]); the default solve holds joint velocity and
+/// acceleration on them as exactly as on cubic ones (sampled at 10 kHz).
+#[test]
+fn limits_hold_on_range_repaired_paths() {
+    let lim = Limits::preset("panda").unwrap();
+    let lo: Vec<f64> = lim.joints().iter().map(|j| j.position_min).collect();
+    let hi: Vec<f64> = lim.joints().iter().map(|j| j.position_max).collect();
+    let mut repaired = 0;
+    for case in 0..40u64 {
+        let n = 4 + (case as usize % 4);
+        let wp = random_waypoints(5000 + case, n, &lim);
+        let ss: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
+        let natural = CubicSpline::natural(&ss, &wp, 7).unwrap();
+        let bounded = BoundedSpline::new(natural.as_ppoly(), &lo, &hi).unwrap();
+        if bounded.repairs().is_empty() {
+            continue;
+        }
+        assert_eq!(bounded.piecewise_degree(), Some(5));
+        repaired += 1;
+        let traj = Toppra::with_limits(&bounded, &lim)
+            .unwrap()
+            .solve()
+            .unwrap_or_else(|e| panic!("case {case}: {e}"));
+        assert_within(&traj, &lim, 1e-4, EXACT, &format!("case {case} repaired"));
+        if repaired == 4 {
+            break;
+        }
+    }
+    assert!(repaired >= 2, "only {repaired} paths needed a repair");
 }

@@ -4,10 +4,12 @@
 //! The discretized problem enforces the constraints at gridpoints; between them the profile
 //! has constant u = s̈ and x = ṡ² linear in s, and a constraint can be exceeded there. After
 //! each solve every interval that changed is checked:
-//! - **exactly** where the path is a polynomial of degree ≤ 3 on the interval
-//!   ([`crate::Path::piecewise_degree`], no breakpoint inside) and the constraint can bound
-//!   itself on such a piece ([`Constraint::excess_on_cubic`]: joint velocity and joint
-//!   acceleration, in closed form). An interval whose worst value exceeds the limit by more
+//! - **exactly** where the path is a polynomial of degree ≤ 5 on the interval
+//!   ([`crate::Path::piecewise_degree`], no breakpoint inside; quintic pieces come from the
+//!   range repair of [`crate::spline::BoundedSpline`]) and the constraint can bound itself on
+//!   such a piece ([`Constraint::excess_on_cubic`]: joint velocity and joint acceleration, in
+//!   closed form on cubic pieces, from the exactly isolated roots of the acceleration quartic
+//!   or its derivative on quintic ones, [`Constraint::handles_quintic`]). An interval whose worst value exceeds the limit by more
 //!   than [`EXACT_TOL`] relative gets that constraint's rows *at the worst point* added to its
 //!   stage, written in (u, x_i) with x = x_i + 2u(s − s_i) — the same substitution the
 //!   interpolation scheme makes at s_{i+1} — and the problem is solved again on the same grid.
@@ -46,16 +48,20 @@ pub(super) enum Check {
     Split(Vec<f64>),
 }
 
-/// The path's Taylor data on every interval of the grid: σ, σ′, σ″, σ‴ at the interval's
-/// start, from inside (`4·dim` numbers per interval), for intervals where the exact check
+/// The path's Taylor data on every interval of the grid: σ, σ′, …, σ⁽⁵⁾ at the interval's
+/// start, from inside (`6·dim` numbers per interval; σ⁗ and σ⁽⁵⁾ zero on paths of degree ≤ 3,
+/// on quintic paths all from the midpoint as at breakpoints), for intervals where the exact check
 /// applies. Between ordinary gridpoints one cubic covers both ends: the gridpoint values give
 /// σ, σ′, σ″ and (σ″(s_{i+1}) − σ″(s_i))/Δ gives σ‴. At a breakpoint the path is evaluated at
 /// the interval's midpoint (so that no convention about which piece a breakpoint belongs to
 /// matters) and the expansion moved to the start.
 #[derive(Default)]
 pub(super) struct Pieces {
-    /// Per interval: whether the path is a polynomial of degree ≤ 3 on it.
+    /// Per interval: whether the path is a polynomial of degree ≤ 5 on it.
     exact: Vec<bool>,
+    /// Whether the path's pieces may have degree 4 or 5 (then only constraints that
+    /// [`Constraint::handles_quintic`] get them).
+    pub(super) quintic: bool,
     /// Per interval: whether an end is a breakpoint of the path (where σ″ may jump, so the
     /// gridpoint's rows may belong to the neighbouring piece).
     at_break: Vec<bool>,
@@ -72,14 +78,18 @@ impl Pieces {
         self.exact.clear();
         self.at_break.clear();
         self.built = true;
-        if path.piecewise_degree().is_none_or(|d| d > 3) {
+        let degree = path.piecewise_degree();
+        if degree.is_none_or(|d| d > 5) {
             self.exact.resize(n, false);
             self.at_break.resize(n, true);
             return;
         }
+        self.quintic = degree.is_some_and(|d| d > 3);
         let breaks = path.breakpoints();
-        // Every entry of an exact interval is written below (σ only when needed: zeros then).
-        self.data.resize(n * 4 * dim, 0.0);
+        // Every entry of an exact interval is written below (σ only when needed, σ⁗ and σ⁽⁵⁾
+        // only on quintic paths: zeros then).
+        self.data.clear();
+        self.data.resize(n * 6 * dim, 0.0);
         let mut b = 0;
         for i in 0..n {
             let (s0, s1) = (grid[i], grid[i + 1]);
@@ -97,10 +107,17 @@ impl Pieces {
             if inside {
                 continue;
             }
-            let d = &mut self.data[i * 4 * dim..(i + 1) * 4 * dim];
+            let d = &mut self.data[i * 6 * dim..(i + 1) * 6 * dim];
+            if self.quintic {
+                if !quintic_taylor(path, s0, s1, need_q, d) {
+                    self.exact[i] = false;
+                }
+                continue;
+            }
             let (d0, rest) = d.split_at_mut(dim);
             let (d1, rest) = rest.split_at_mut(dim);
-            let (d2, d3) = rest.split_at_mut(dim);
+            let (d2, rest) = rest.split_at_mut(dim);
+            let d3 = &mut rest[..dim];
             if !(starts_at_break || ends_at_break) {
                 let here = &at_points[3 * dim * i..3 * dim * (i + 1)];
                 let next_ddq = &at_points[3 * dim * (i + 1) + 2 * dim..3 * dim * (i + 2)];
@@ -142,16 +159,70 @@ impl Pieces {
             return None;
         }
         let dim = self.dim;
-        let d = &self.data[i * 4 * dim..(i + 1) * 4 * dim];
+        let d = &self.data[i * 6 * dim..(i + 1) * 6 * dim];
         Some(CubicPiece {
             s0: grid[i],
             s1: grid[i + 1],
             d0: &d[..dim],
             d1: &d[dim..2 * dim],
             d2: &d[2 * dim..3 * dim],
-            d3: &d[3 * dim..],
+            d3: &d[3 * dim..4 * dim],
+            d4: &d[4 * dim..5 * dim],
+            d5: &d[5 * dim..],
         })
     }
+
+    /// The piece of interval i for constraint `c`: none where the path is not a polynomial
+    /// of degree ≤ 5 there, or where it may have degree 4 or 5 and `c` handles cubics only.
+    fn piece_for(&self, grid: &[f64], i: usize, c: &dyn Constraint) -> Option<CubicPiece<'_>> {
+        if self.quintic && !c.handles_quintic() {
+            return None;
+        }
+        self.piece(grid, i)
+    }
+}
+
+/// The Taylor data σ, σ′, …, σ⁽⁵⁾ at `s0` (into `d`, `6·dim` numbers) of a path that is a
+/// polynomial of degree ≤ 5 on [s0, s1]: evaluated at the midpoint (so that no convention
+/// about which piece a breakpoint belongs to matters) and moved to s0. σ is written only when
+/// `need_q` (zeros otherwise). Returns whether every value is finite.
+fn quintic_taylor<P: Path>(path: &P, s0: f64, s1: f64, need_q: bool, d: &mut [f64]) -> bool {
+    let dim = path.dim();
+    let sm = 0.5 * (s0 + s1);
+    {
+        let (q, rest) = d.split_at_mut(dim);
+        let (d1, rest) = rest.split_at_mut(dim);
+        let (d2, rest) = rest.split_at_mut(dim);
+        if need_q {
+            path.eval(sm, 0, q);
+        }
+        path.eval_derivatives(sm, d1, d2);
+        for k in 3..6 {
+            path.eval(sm, k, &mut rest[(k - 3) * dim..(k - 2) * dim]);
+        }
+    }
+    // From the midpoint to s0: t = −h/2, each derivative by its Taylor series (exact for a
+    // quintic).
+    let t = s0 - sm;
+    for j in 0..dim {
+        let v: [f64; 6] = std::array::from_fn(|k| d[k * dim + j]);
+        let mut moved = [0.0; 6];
+        for (m, out) in moved.iter_mut().enumerate() {
+            // Σ_{k ≥ m} v_k t^{k−m}/(k−m)!, by Horner from the top.
+            let mut acc = 0.0;
+            for k in (m..6).rev() {
+                acc = v[k] + acc * t / ((k - m + 1) as f64);
+            }
+            *out = acc;
+        }
+        for (k, m) in moved.into_iter().enumerate() {
+            d[k * dim + j] = m;
+        }
+    }
+    if !need_q {
+        d[..dim].iter_mut().for_each(|v| *v = 0.0);
+    }
+    d.iter().all(|v| v.is_finite())
 }
 
 impl Workspace {
@@ -194,6 +265,9 @@ impl Workspace {
             let x_max = [xhi[i], xhi[i + 1]];
             for (k, c) in cons.iter().enumerate() {
                 self.cr.clear();
+                if pieces.quintic && !c.handles_quintic() {
+                    continue;
+                }
                 if !c.hold_on_cubic(&piece, x_max, &mut self.cr) {
                     continue;
                 }
@@ -236,12 +310,12 @@ impl Workspace {
             }
             let delta = grid[i + 1] - grid[i];
             let u = (x[i + 1] - x[i]) / (2.0 * delta);
-            let piece = pieces.piece(grid, i);
             let mut sampled = false;
             let mut failed = false;
             self.sample.clear();
             let proved_here = disc == Discretization::Interpolation && !pieces.at_break[i];
             for (k, c) in cons.iter().enumerate() {
+                let piece = pieces.piece_for(grid, i, &**c);
                 if proved_here && piece.is_some() && self.proved.get(k) == Some(&true) {
                     self.sample.push(false);
                     continue;

@@ -22,13 +22,18 @@
 //! is a polynomial of degree ≤ 3 ([`CubicPiece`]), the joint acceleration σ′u + σ″x is then a
 //! quadratic in s and the squared joint velocity σ′²x has its extrema where that acceleration
 //! is zero: [`JointVelocity`] and [`JointAcceleration`] find their worst value on a whole
-//! interval in closed form ([`Constraint::excess_on_cubic`]).
+//! interval in closed form ([`Constraint::excess_on_cubic`]). On pieces of degree 4 or 5 (the
+//! range-repaired splines of [`crate::spline::BoundedSpline`]) the acceleration is a quartic
+//! and σ′²x has degree 9: the same two constraints bound them from Bernstein coefficients
+//! (degree 4 and 9 in θ = (s − s0)/Δ, linear in (u, x0)) and from the roots of a quartic or
+//! cubic isolated by [`crate::roots::roots_in`] ([`Constraint::handles_quintic`]).
 //!
 //! # Precision contract
 //! Rows are written exactly as the formulas above (no linearisation or padding); a limit of
 //! `±∞` writes no row. [`Constraint::excess_on_cubic`] of the built-ins is the exact maximum
 //! over the closed interval up to rounding (the candidates are the two ends and the real roots
-//! of one quadratic per joint, in the stable form). Zero limits are allowed here (they make the problem infeasible when the
+//! of one quadratic per joint, in the stable form; on quintic pieces the roots of one quartic
+//! or cubic per joint, bracketed to 4 ulp). Zero limits are allowed here (they make the problem infeasible when the
 //! joint must move, which the solver reports with the path position and this constraint's
 //! name).
 
@@ -36,6 +41,8 @@ use crate::error::{Error, Result};
 pub use crate::inverse_dynamics::InverseDynamics;
 use crate::limits::Limits;
 use crate::Order;
+
+mod quintic;
 
 /// The path's derivatives at one path point, handed to every constraint.
 #[derive(Debug, Clone, Copy)]
@@ -51,10 +58,12 @@ pub struct PathPoint<'a> {
 }
 
 /// One interval `[s0, s1]` between gridpoints on which the path is a polynomial of degree at
-/// most 3, given by its Taylor coefficients at `s0` (the limits from inside the interval): with
-/// t = s − s0, σ(s) = d0 + d1·t + d2·t²/2 + d3·t³/6, so σ′(s) = d1 + d2·t + d3·t²/2 and
+/// most 5, given by its Taylor coefficients at `s0` (the limits from inside the interval): with
+/// t = s − s0, σ(s) = d0 + d1·t + d2·t²/2 + d3·t³/6 + d4·t⁴/24 + d5·t⁵/120. On a cubic piece
+/// (`d4` and `d5` all zero, [`CubicPiece::is_cubic`]) σ′(s) = d1 + d2·t + d3·t²/2 and
 /// σ″(s) = d2 + d3·t. Each slice has one entry per joint; `d0` holds zeros when no constraint
-/// of the problem reads the position.
+/// of the problem reads the position. The solver hands pieces of degree 4 or 5 only to
+/// constraints that say they handle them ([`Constraint::handles_quintic`]).
 #[derive(Debug, Clone, Copy)]
 pub struct CubicPiece<'a> {
     /// Start of the interval.
@@ -67,20 +76,72 @@ pub struct CubicPiece<'a> {
     pub d1: &'a [f64],
     /// σ″(s0).
     pub d2: &'a [f64],
-    /// σ‴ (constant on the interval).
+    /// σ‴(s0) (constant on the interval when the piece is cubic).
     pub d3: &'a [f64],
+    /// σ⁗(s0): zeros on a cubic piece.
+    pub d4: &'a [f64],
+    /// σ⁽⁵⁾ (constant on the interval): zeros on a cubic or quartic piece.
+    pub d5: &'a [f64],
 }
 
 impl CubicPiece<'_> {
+    /// Whether the piece is a polynomial of degree ≤ 3 (`d4` and `d5` all zero).
+    pub fn is_cubic(&self) -> bool {
+        self.d4.iter().chain(self.d5).all(|&v| v == 0.0)
+    }
+
     /// Joint j's σ′ and σ″ at s.
     #[inline]
     pub fn derivatives(&self, j: usize, s: f64) -> (f64, f64) {
         let t = s - self.s0;
-        let d3 = self.d3[j];
+        let (d3, d4, d5) = (self.d3[j], self.d4[j], self.d5[j]);
         (
-            self.d1[j] + t * (self.d2[j] + 0.5 * t * d3),
-            self.d2[j] + t * d3,
+            self.d1[j] + t * (self.d2[j] + t * (0.5 * d3 + t * (d4 / 6.0 + t * d5 / 24.0))),
+            self.d2[j] + t * (d3 + t * (0.5 * d4 + t * d5 / 6.0)),
         )
+    }
+
+    /// Joint j's acceleration σ′u + σ″x along the interval, with x = x0 + 2u(s − s0), as the
+    /// quartic `[c0, …, c4]` in t = s − s0 (lowest order first): with σ′ = Σ p_k t^k and
+    /// σ″ = Σ q_k t^k, c_k = u·p_k + x0·q_k + 2u·q_{k−1}.
+    pub fn acceleration_quartic(&self, j: usize, u: f64, x0: f64) -> [f64; 5] {
+        let (a, b) = self.acceleration_rows(j);
+        std::array::from_fn(|k| a[k] * u + b[k] * x0)
+    }
+
+    /// The acceleration quartic's coefficients (in t) as rows in (u, x0): c_k = α_k·u + β_k·x0.
+    fn acceleration_rows(&self, j: usize) -> ([f64; 5], [f64; 5]) {
+        let p = [
+            self.d1[j],
+            self.d2[j],
+            0.5 * self.d3[j],
+            self.d4[j] / 6.0,
+            self.d5[j] / 24.0,
+        ];
+        let q = [
+            self.d2[j],
+            self.d3[j],
+            0.5 * self.d4[j],
+            self.d5[j] / 6.0,
+            0.0,
+        ];
+        let alpha = std::array::from_fn(|k| p[k] + if k > 0 { 2.0 * q[k - 1] } else { 0.0 });
+        (alpha, q)
+    }
+
+    /// Joint j's σ′ as a quartic in θ = (s − s0)/(s1 − s0) ∈ [0, 1], in Bernstein form
+    /// `[b0, …, b4]` (σ′ = Σ C(4,k)·b_k·θ^k(1 − θ)^(4−k); it lies between the least and the
+    /// largest of them).
+    pub fn first_bernstein4(&self, j: usize) -> [f64; 5] {
+        let h = self.s1 - self.s0;
+        let p = [
+            self.d1[j],
+            self.d2[j] * h,
+            0.5 * self.d3[j] * h * h,
+            self.d4[j] / 6.0 * h * h * h,
+            self.d5[j] / 24.0 * h * h * h * h,
+        ];
+        quintic::power_to_bernstein4(p)
     }
 
     /// Joint j's acceleration σ′u + σ″x along the interval, with x = x0 + 2u(s − s0), as the
@@ -106,9 +167,10 @@ impl CubicPiece<'_> {
         let t = s - self.s0;
         for j in 0..self.d1.len() {
             let (d0, d1, d2, d3) = (self.d0[j], self.d1[j], self.d2[j], self.d3[j]);
-            q[j] = d0 + t * (d1 + t * (0.5 * d2 + t * d3 / 6.0));
-            dq[j] = d1 + t * (d2 + 0.5 * t * d3);
-            ddq[j] = d2 + t * d3;
+            let (d4, d5) = (self.d4[j], self.d5[j]);
+            q[j] =
+                d0 + t * (d1 + t * (0.5 * d2 + t * (d3 / 6.0 + t * (d4 / 24.0 + t * d5 / 120.0))));
+            (dq[j], ddq[j]) = self.derivatives(j, s);
         }
     }
 }
@@ -357,7 +419,8 @@ pub trait Constraint {
     }
 
     /// The worst value of the constraint over a whole interval on which the path is a
-    /// polynomial of degree ≤ 3, timed with constant path acceleration `u` and
+    /// polynomial of degree ≤ 3 (≤ 5 when [`Constraint::handles_quintic`]), timed with
+    /// constant path acceleration `u` and
     /// x = ṡ² = `x0` + 2u(s − s0): `Some((e, s))` with the largest relative excess e (as the
     /// value relative to the limit, e.g. |q̇|/v_max − 1) and a point s where it occurs. When the constraint holds everywhere the value may instead be any upper bound
     /// ≤ 0 of the worst excess (a cheap enclosure suffices). It must be rigorous (not sampled):
@@ -383,6 +446,13 @@ pub trait Constraint {
         out: &mut ConstraintRows,
     ) -> bool {
         let _ = (piece, x_max, out);
+        false
+    }
+
+    /// Whether [`Constraint::excess_on_cubic`] and [`Constraint::hold_on_cubic`] handle pieces
+    /// of degree 4 and 5 (`d4`, `d5` of [`CubicPiece`] nonzero). Default `false`: the solver
+    /// then hands such a constraint cubic pieces only and checks it at sample points elsewhere.
+    fn handles_quintic(&self) -> bool {
         false
     }
 }
@@ -413,6 +483,9 @@ impl<C: Constraint + ?Sized> Constraint for Box<C> {
         out: &mut ConstraintRows,
     ) -> bool {
         (**self).hold_on_cubic(piece, x_max, out)
+    }
+    fn handles_quintic(&self) -> bool {
+        (**self).handles_quintic()
     }
 }
 
@@ -544,6 +617,32 @@ impl JointVelocity {
         let (lo, hi) = ranges_from(limits, Order::Velocity);
         JointVelocity { lo, hi }
     }
+
+    /// Raises `worst` (squared ratio v²/limit², where) to joint j's values at the offsets `ts`
+    /// from the piece's start.
+    fn worst_at(
+        &self,
+        piece: &CubicPiece<'_>,
+        j: usize,
+        u: f64,
+        x0: f64,
+        ts: &[f64],
+        worst: &mut (f64, f64),
+    ) {
+        for &t in ts {
+            let x = (x0 + 2.0 * u * t).max(0.0);
+            let (d1, _) = piece.derivatives(j, piece.s0 + t);
+            let limit = if d1 > 0.0 { self.hi[j] } else { self.lo[j] };
+            let r2 = if d1 == 0.0 || x == 0.0 {
+                0.0
+            } else {
+                d1 * d1 * x / (limit * limit)
+            };
+            if r2 > worst.0 {
+                *worst = (r2, piece.s0 + t);
+            }
+        }
+    }
 }
 
 impl Constraint for JointVelocity {
@@ -578,6 +677,9 @@ impl Constraint for JointVelocity {
     /// σ′_j·u + σ″_j·x (a quadratic in s), is zero. Joints whose Bernstein bound is within
     /// the limit are not solved for.
     fn excess_on_cubic(&self, piece: &CubicPiece<'_>, u: f64, x0: f64) -> Option<(f64, f64)> {
+        if !piece.is_cubic() {
+            return Some(self.excess_quintic(piece, u, x0));
+        }
         let h = piece.s1 - piece.s0;
         let x1 = x0 + 2.0 * u * h;
         // The worst squared ratio v²/limit² and where.
@@ -594,19 +696,7 @@ impl Constraint for JointVelocity {
             }
             let (roots, nr) = quadratic_roots_in(piece.acceleration_quadratic(j, u, x0), 0.0, h);
             let candidates = [0.0, h, roots[0], roots[1]];
-            for &t in &candidates[..2 + nr] {
-                let x = (x0 + 2.0 * u * t).max(0.0);
-                let (d1, _) = piece.derivatives(j, piece.s0 + t);
-                let limit = if d1 > 0.0 { self.hi[j] } else { self.lo[j] };
-                let r2 = if d1 == 0.0 || x == 0.0 {
-                    0.0
-                } else {
-                    d1 * d1 * x / (limit * limit)
-                };
-                if r2 > worst.0 {
-                    worst = (r2, piece.s0 + t);
-                }
-            }
+            self.worst_at(piece, j, u, x0, &candidates[..2 + nr], &mut worst);
         }
         Some((worst.0.sqrt() - 1.0, worst.1))
     }
@@ -620,6 +710,10 @@ impl Constraint for JointVelocity {
         x_max: [f64; 2],
         out: &mut ConstraintRows,
     ) -> bool {
+        if !piece.is_cubic() {
+            self.hold_quintic(piece, x_max, out);
+            return true;
+        }
         let h = piece.s1 - piece.s0;
         for j in 0..self.hi.len() {
             let c = piece.first_bernstein(j);
@@ -652,6 +746,9 @@ impl Constraint for JointVelocity {
         }
         true
     }
+    fn handles_quintic(&self) -> bool {
+        true
+    }
 }
 
 /// Joint acceleration limits `lo_j ≤ σ′_j·u + σ″_j·x ≤ hi_j` (direction-dependent minima).
@@ -682,6 +779,41 @@ impl JointAcceleration {
         let (lo, hi) = ranges_from(limits, Order::Acceleration);
         JointAcceleration { lo, hi }
     }
+
+    /// Raises `worst` (relative excess, where) to joint j's values at the offsets `ts` from
+    /// the piece's start.
+    fn worst_at(
+        &self,
+        piece: &CubicPiece<'_>,
+        j: usize,
+        u: f64,
+        x0: f64,
+        ts: &[f64],
+        worst: &mut (f64, f64),
+    ) {
+        for &t in ts {
+            let x = (x0 + 2.0 * u * t).max(0.0);
+            let (d1, d2) = piece.derivatives(j, piece.s0 + t);
+            let a = d1 * u + d2 * x;
+            let terms = (d1 * u).abs().max((d2 * x).abs());
+            for (limit, sign) in [(self.hi[j], 1.0), (self.lo[j], -1.0)] {
+                if limit.is_infinite() {
+                    continue;
+                }
+                // Relative to the limit (its extreme is the acceleration's); a zero limit is
+                // measured against the terms.
+                let scale = if limit != 0.0 { limit.abs() } else { terms };
+                let e = if scale > 0.0 {
+                    sign * (a - limit) / scale
+                } else {
+                    -1.0
+                };
+                if e > worst.0 {
+                    *worst = (e, piece.s0 + t);
+                }
+            }
+        }
+    }
 }
 
 impl Constraint for JointAcceleration {
@@ -704,6 +836,9 @@ impl Constraint for JointAcceleration {
     /// ends and at its vertex. Joints whose Bernstein bound is within the limits are not solved
     /// for.
     fn excess_on_cubic(&self, piece: &CubicPiece<'_>, u: f64, x0: f64) -> Option<(f64, f64)> {
+        if !piece.is_cubic() {
+            return Some(self.excess_quintic(piece, u, x0));
+        }
         let h = piece.s1 - piece.s0;
         let mut worst = (f64::NEG_INFINITY, piece.s0);
         let ratio = |v: f64, l: f64| {
@@ -732,28 +867,7 @@ impl Constraint for JointAcceleration {
             };
             let candidates = [0.0, h, vertex];
             let n = if vertex > 0.0 && vertex < h { 3 } else { 2 };
-            for &t in &candidates[..n] {
-                let x = (x0 + 2.0 * u * t).max(0.0);
-                let (d1, d2) = piece.derivatives(j, piece.s0 + t);
-                let a = d1 * u + d2 * x;
-                let terms = (d1 * u).abs().max((d2 * x).abs());
-                for (limit, sign) in [(self.hi[j], 1.0), (self.lo[j], -1.0)] {
-                    if limit.is_infinite() {
-                        continue;
-                    }
-                    // Relative to the limit (its extreme is the acceleration's); a zero
-                    // limit is measured against the terms.
-                    let scale = if limit != 0.0 { limit.abs() } else { terms };
-                    let e = if scale > 0.0 {
-                        sign * (a - limit) / scale
-                    } else {
-                        -1.0
-                    };
-                    if e > worst.0 {
-                        worst = (e, piece.s0 + t);
-                    }
-                }
-            }
+            self.worst_at(piece, j, u, x0, &candidates[..n], &mut worst);
         }
         Some(worst)
     }
@@ -777,6 +891,10 @@ impl Constraint for JointAcceleration {
                 u_max = u_max.min((self.hi[k].max(-self.lo[k]) + d2 * x0_max) / d1);
             }
         }
+        if !piece.is_cubic() {
+            self.hold_quintic(piece, u_max, x0_max, out);
+            return true;
+        }
         for j in 0..self.hi.len() {
             let (d1, d2, d3) = (piece.d1[j], piece.d2[j], piece.d3[j]);
             let (a, b) = (d1 + 1.5 * h * d2, d2 + 0.5 * h * d3);
@@ -787,6 +905,9 @@ impl Constraint for JointAcceleration {
             }
             out.interval(a, b, 0.0, self.lo[j], self.hi[j]);
         }
+        true
+    }
+    fn handles_quintic(&self) -> bool {
         true
     }
 }

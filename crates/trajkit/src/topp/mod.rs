@@ -62,8 +62,8 @@
 //! two-variable Seidel LP; `toppra.rs` runs the backward (controllable sets) and forward passes,
 //! returning a `PhaseProfile` (`parametrized.rs`); its `stage.rs` reads a stage's half-planes
 //! straight from the gridpoint rows and takes the greedy forward step (shared with `ni/`), its
-//! `explain.rs` names the constraints in an infeasibility error. `between.rs` makes the limits hold between
-//! gridpoints: on paths that are polynomials of degree ≤ 3 between breakpoints
+//! `explain.rs` names the constraints in an infeasibility error. `between.rs` makes the limits
+//! hold between gridpoints: on paths that are polynomials of degree ≤ 5 between breakpoints
 //! (`Path::piecewise_degree`) each stage gets the interior Bernstein coefficients of joint
 //! velocity and acceleration along its interval as extra rows (`Constraint::hold_on_cubic`), so
 //! one solve holds them everywhere; an exact check (`Constraint::excess_on_cubic`, closed-form

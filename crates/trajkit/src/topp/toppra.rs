@@ -10,7 +10,7 @@
 //! 3. **forward pass**: from x_0 = ṡ_start², takes the largest admissible u that stays in
 //!    K_{i+1} (a one-variable program: the smallest upper bound);
 //! 4. with [`ToppraOptions::refine`] (the default) the limits hold between gridpoints too
-//!    (module `topp::between`): on paths that are polynomials of degree ≤ 3 between
+//!    (module `topp::between`): on paths that are polynomials of degree ≤ 5 between
 //!    breakpoints (trajkit's splines and polylines) each stage also carries the interior
 //!    Bernstein coefficients of the joint velocity and acceleration along the interval (rows
 //!    linear in (u, x_i)), so the one solve holds them everywhere, and an exact check (closed-
@@ -37,7 +37,7 @@
 //!   get the same relative precision): at every gridpoint, every constraint holds for the
 //!   interval's u on both sides within 1e-9 relative.
 //! - Between gridpoints, with [`ToppraOptions::refine`] on (the default):
-//!   - on paths that are polynomials of degree ≤ 3 between breakpoints
+//!   - on paths that are polynomials of degree ≤ 5 between breakpoints
 //!     ([`crate::Path::piecewise_degree`]) with gridpoints at the breakpoints (every grid but
 //!     a [`Gridpoints::Given`] one), joint velocity and joint acceleration limits hold on the
 //!     whole continuous trajectory within 1e-8 relative, up to rounding: by construction
