@@ -465,6 +465,10 @@ pub struct Inertial {
     pub inertia: [f64; 6],
 }
 
+/// The tags of one joint: its own, those of `<parent>`, `<child>`, `<origin>`, `<axis>`,
+/// `<limit>` when present, and whether it has a `<mimic>`.
+type JointTags = (Tag, [Option<Tag>; 5], bool);
+
 /// An `<inertial>` element with its children.
 #[derive(Debug, Clone, PartialEq)]
 struct InertialTags {
@@ -616,6 +620,23 @@ impl Robot {
             values: reader.values,
             attrs: reader.attrs,
         }));
+        Ok(Robot::assemble(
+            src,
+            root_tag,
+            links,
+            joints,
+            text.contains("xacro"),
+        ))
+    }
+
+    /// The robot from its tags, each link and joint sharing the document `src`.
+    fn assemble(
+        src: Src,
+        root: Tag,
+        links: Vec<(Tag, Option<InertialTags>)>,
+        joints: Vec<JointTags>,
+        mentions_xacro: bool,
+    ) -> Robot {
         let links = links
             .into_iter()
             .map(|(tag, inertial)| Link {
@@ -637,13 +658,13 @@ impl Robot {
                 mimic,
             })
             .collect();
-        Ok(Robot {
+        Robot {
             src,
-            root: root_tag,
+            root,
             links,
             joints,
-            mentions_xacro: text.contains("xacro"),
-        })
+            mentions_xacro,
+        }
     }
 
     /// Reads a URDF file.

@@ -60,8 +60,8 @@ pub fn roots_in(c: &[f64], a: f64, b: f64, out: &mut [f64; MAX_DEGREE]) -> usize
         }
     };
     for k in 0..=nc {
-        let (mut lo, mut hi) = (pts[k], pts[k + 1]);
-        let mut flo = horner(c, lo);
+        let (lo, hi) = (pts[k], pts[k + 1]);
+        let flo = horner(c, lo);
         let fhi = horner(c, hi);
         if flo == 0.0 {
             push(lo, out, &mut count);
@@ -80,27 +80,31 @@ pub fn roots_in(c: &[f64], a: f64, b: f64, out: &mut [f64; MAX_DEGREE]) -> usize
             }
             continue;
         }
-        loop {
-            let mid = 0.5 * (lo + hi);
-            if mid <= lo || mid >= hi {
-                break;
-            }
-            let fm = horner(c, mid);
-            if fm == 0.0 {
-                lo = mid;
-                hi = mid;
-                break;
-            }
-            if (fm > 0.0) == (flo > 0.0) {
-                lo = mid;
-                flo = fm;
-            } else {
-                hi = mid;
-            }
-        }
-        push(0.5 * (lo + hi), out, &mut count);
+        push(bisect(c, lo, hi, flo), out, &mut count);
     }
     count
+}
+
+/// The root of `c` in `[lo, hi]`, where `c` is monotone with a sign change and `flo` = p(lo) ≠ 0:
+/// bisection until the midpoint no longer moves (a bracket of a few ulp), its midpoint returned.
+fn bisect(c: &[f64], mut lo: f64, mut hi: f64, mut flo: f64) -> f64 {
+    loop {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        let fm = horner(c, mid);
+        if fm == 0.0 {
+            return mid;
+        }
+        if (fm > 0.0) == (flo > 0.0) {
+            lo = mid;
+            flo = fm;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
 }
 
 /// The largest |p(x)| over `[a, b]` and where it occurs (the first place, scanning from `a`).
