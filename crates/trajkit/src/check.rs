@@ -352,13 +352,53 @@ impl LimitReport {
     }
 }
 
-/// The peak of a series against the limits of `order`: largest ratio, ties (e.g. all zero for
-/// an unlimited joint) broken by the largest magnitude, then by the earliest time.
-fn peak_of(jl: &JointLimits, order: Order, times: &[f64], values: &[f64]) -> Option<Peak> {
-    let mut best: Option<Peak> = None;
-    for (&time, &value) in times.iter().zip(values) {
-        let ratio = jl.ratio(order, value);
-        let better = match &best {
+/// A running peak of a series of (time, value) against the directional limits of one
+/// order: largest ratio, ties (e.g. all zero for an unlimited joint) broken by the largest
+/// magnitude, then by the earliest time.
+trait PeakScan: Sized {
+    /// Empty, for limits `(lo, hi)` (see [`JointLimits::range`]).
+    fn new(lo: f64, hi: f64) -> Self;
+    /// The next element (times increase).
+    fn push(&mut self, time: f64, value: f64);
+    /// The peak so far; valid only when [`PeakScan::exact`].
+    fn peak(&self) -> Option<Peak>;
+    /// True when [`PeakScan::peak`] is the peak the definition gives.
+    fn exact(&self) -> bool;
+}
+
+/// [`JointLimits::ratio`] for limits `(lo, hi)` read once.
+#[inline]
+fn ratio_of(lo: f64, hi: f64, value: f64) -> f64 {
+    if value >= 0.0 {
+        if hi.is_infinite() {
+            0.0
+        } else {
+            value / hi
+        }
+    } else if lo.is_infinite() {
+        0.0
+    } else {
+        value / lo
+    }
+}
+
+/// The definition, element by element (one division each).
+#[derive(Debug, Clone, Copy)]
+struct PeakTracker {
+    lo: f64,
+    hi: f64,
+    best: Option<Peak>,
+}
+
+impl PeakScan for PeakTracker {
+    fn new(lo: f64, hi: f64) -> Self {
+        PeakTracker { lo, hi, best: None }
+    }
+
+    #[inline]
+    fn push(&mut self, time: f64, value: f64) {
+        let ratio = ratio_of(self.lo, self.hi, value);
+        let better = match &self.best {
             None => true,
             // A NaN ratio (only from overflowing differences) wins, so that it gets reported.
             Some(b) if b.ratio.is_nan() => false,
@@ -369,45 +409,206 @@ fn peak_of(jl: &JointLimits, order: Order, times: &[f64], values: &[f64]) -> Opt
             }
         };
         if better {
-            best = Some(Peak { ratio, value, time });
+            self.best = Some(Peak { ratio, value, time });
         }
     }
-    best
-}
 
-/// Divided differences of a series, attributed to the interval midpoints.
-fn divided_difference(times: &[f64], values: &[f64]) -> (Vec<f64>, Vec<f64>) {
-    let n = times.len().saturating_sub(1);
-    let mut t = Vec::with_capacity(n);
-    let mut v = Vec::with_capacity(n);
-    for i in 0..n {
-        let dt = times[i + 1] - times[i];
-        t.push(0.5 * (times[i] + times[i + 1]));
-        v.push((values[i + 1] - values[i]) / dt);
+    fn peak(&self) -> Option<Peak> {
+        self.best
     }
-    (t, v)
+
+    fn exact(&self) -> bool {
+        true
+    }
 }
 
-fn check_position(jl: &JointLimits, times: &[f64], q: &[f64]) -> PositionCheck {
-    let mut min = f64::INFINITY;
-    let mut max = f64::NEG_INFINITY;
-    // Signed distance beyond the nearest bound: negative inside the range.
-    let mut beyond = f64::NEG_INFINITY;
-    let mut time = times.first().copied().unwrap_or(0.0);
-    for (&t, &x) in times.iter().zip(q) {
-        min = min.min(x);
-        max = max.max(x);
-        let d = (jl.position_min - x).max(x - jl.position_max);
-        if d > beyond {
-            beyond = d;
-            time = t;
+/// The first largest and the first smallest value and their times: comparisons only.
+///
+/// When every value is finite and neither limit is 0, a ratio is never NaN, and a correctly
+/// rounded division by a constant is monotone: among non-negative values the largest ratio,
+/// then the largest magnitude, belongs to the largest value, among negative ones to the
+/// smallest value. The peak is then the better of these two candidates by the definition's
+/// rule (the earlier one on a full tie), found with two divisions instead of one per value.
+/// Otherwise [`PeakScan::exact`] is false and the caller scans again with [`PeakTracker`].
+#[derive(Debug, Clone, Copy)]
+struct Extremes {
+    lo: f64,
+    hi: f64,
+    /// (value, time) of the first largest and the first smallest value; `None` when empty.
+    max: Option<(f64, f64)>,
+    min: (f64, f64),
+    finite: bool,
+}
+
+impl PeakScan for Extremes {
+    fn new(lo: f64, hi: f64) -> Self {
+        Extremes {
+            lo,
+            hi,
+            max: None,
+            min: (f64::NAN, f64::NAN),
+            finite: lo != 0.0 && hi != 0.0,
         }
     }
-    PositionCheck {
-        min,
-        max,
-        excursion: beyond.max(0.0),
-        time,
+
+    #[inline]
+    fn push(&mut self, time: f64, value: f64) {
+        self.finite &= value.is_finite();
+        match self.max {
+            None => {
+                self.max = Some((value, time));
+                self.min = (value, time);
+            }
+            Some((m, _)) => {
+                if value > m {
+                    self.max = Some((value, time));
+                }
+                if value < self.min.0 {
+                    self.min = (value, time);
+                }
+            }
+        }
+    }
+
+    fn peak(&self) -> Option<Peak> {
+        let (max, t_max) = self.max?;
+        let (min, t_min) = self.min;
+        let peak = |(value, time): (f64, f64)| Peak {
+            ratio: ratio_of(self.lo, self.hi, value),
+            value,
+            time,
+        };
+        let candidates = [
+            (max >= 0.0).then(|| peak((max, t_max))),
+            (min < 0.0).then(|| peak((min, t_min))),
+        ];
+        let (first, second) = match candidates {
+            [Some(a), Some(b)] if b.time < a.time => (b, Some(a)),
+            [Some(a), b] => (a, b),
+            [None, b] => (b?, None),
+        };
+        Some(match second {
+            Some(b)
+                if b.ratio > first.ratio
+                    || (b.ratio == first.ratio && b.value.abs() > first.value.abs()) =>
+            {
+                b
+            }
+            _ => first,
+        })
+    }
+
+    fn exact(&self) -> bool {
+        self.finite
+    }
+}
+
+/// One joint's check in one pass over the rows: its position range, and per derivative
+/// order the pointwise and finite-difference peaks, with the last element of each order's
+/// series (the table's column, or the finite difference of the order below when the column
+/// is absent).
+struct JointScan<S: PeakScan> {
+    position_min: f64,
+    position_max: f64,
+    min: f64,
+    max: f64,
+    /// Signed distance beyond the nearest bound: negative inside the range.
+    beyond: f64,
+    time: f64,
+    pointwise: [S; 3],
+    finite_difference: [S; 3],
+    /// The previous element (time, value) of the series of position, velocity, acceleration.
+    prev: [Option<(f64, f64)>; 3],
+}
+
+const DERIVATIVES: [Order; 3] = [Order::Velocity, Order::Acceleration, Order::Jerk];
+
+impl<S: PeakScan> JointScan<S> {
+    fn new(jl: &JointLimits, t0: f64) -> Self {
+        let scan = |o: Order| {
+            let (lo, hi) = jl.range(o);
+            S::new(lo, hi)
+        };
+        JointScan {
+            position_min: jl.position_min,
+            position_max: jl.position_max,
+            min: f64::INFINITY,
+            max: f64::NEG_INFINITY,
+            beyond: f64::NEG_INFINITY,
+            time: t0,
+            pointwise: DERIVATIVES.map(scan),
+            finite_difference: DERIVATIVES.map(scan),
+            prev: [None; 3],
+        }
+    }
+
+    /// Takes one sample: time `t`, position `q`, and the table's velocity, acceleration and
+    /// jerk where present. The divided difference of two consecutive elements of a series,
+    /// `(x₁ − x₀)/(t₁ − t₀)`, is attributed to the midpoint of their times.
+    #[inline]
+    fn push(&mut self, t: f64, q: f64, own: [Option<f64>; 3]) {
+        self.min = self.min.min(q);
+        self.max = self.max.max(q);
+        let d = (self.position_min - q).max(q - self.position_max);
+        if d > self.beyond {
+            self.beyond = d;
+            self.time = t;
+        }
+        let mut elem = Some((t, q));
+        for k in 0..3 {
+            let fd = match (elem, self.prev[k]) {
+                (Some(e), Some(p)) => Some((0.5 * (p.0 + e.0), (e.1 - p.1) / (e.0 - p.0))),
+                _ => None,
+            };
+            if elem.is_some() {
+                self.prev[k] = elem;
+            }
+            if let Some((ft, fv)) = fd {
+                self.finite_difference[k].push(ft, fv);
+            }
+            elem = match own[k] {
+                Some(v) => {
+                    self.pointwise[k].push(t, v);
+                    Some((t, v))
+                }
+                None => fd,
+            };
+        }
+    }
+
+    /// Scans joint `j` of `table`: its position check and derivative checks, and whether
+    /// every peak is exact (see [`Extremes`]).
+    fn run(
+        table: &SampleTable,
+        jl: &JointLimits,
+        j: usize,
+    ) -> (PositionCheck, [DerivativeCheck; 3], bool) {
+        let (dof, times) = (table.dof(), table.times());
+        let q = table.matrix(Order::Position).unwrap_or_default();
+        let own = DERIVATIVES.map(|o| table.matrix(o));
+        let mut scan = Self::new(jl, times[0]);
+        for (i, &t) in times.iter().enumerate() {
+            let at = i * dof + j;
+            let x = q.get(at).copied().unwrap_or(f64::NAN);
+            scan.push(t, x, own.map(|m| m.map(|m| m[at])));
+        }
+        let exact = scan
+            .pointwise
+            .iter()
+            .chain(&scan.finite_difference)
+            .all(S::exact);
+        let position = PositionCheck {
+            min: scan.min,
+            max: scan.max,
+            excursion: scan.beyond.max(0.0),
+            time: scan.time,
+        };
+        let derivatives = [0, 1, 2].map(|k| DerivativeCheck {
+            order: DERIVATIVES[k],
+            pointwise: scan.pointwise[k].peak(),
+            finite_difference: scan.finite_difference[k].peak(),
+        });
+        (position, derivatives, exact)
     }
 }
 
@@ -416,6 +617,9 @@ fn check_position(jl: &JointLimits, times: &[f64], q: &[f64]) -> PositionCheck {
 /// When the table and the limits both name their joints, columns take the limits of their
 /// name, in any order (limit joints no column names are not used); otherwise they pair by
 /// position ([`crate::limits::match_names`]).
+///
+/// One pass over the rows per joint, comparisons only per value (see [`Extremes`]; a joint
+/// whose differences overflow is scanned again value by value); nothing allocated per row.
 ///
 /// Errors: [`Error::JointNames`] for a named column without limits of its name;
 /// [`Error::DimensionMismatch`] when unnamed tables and limits have different joint counts;
@@ -432,52 +636,28 @@ pub fn check_samples(table: &SampleTable, limits: &Limits) -> Result<LimitReport
             reason: "is too small to check (at least 1 sample is needed)",
         });
     }
-    let dof = table.dof();
-    let rows = table.len();
-    let times = table.times();
-    let column = |order: Order, j: usize| -> Option<Vec<f64>> {
-        table
-            .matrix(order)
-            .map(|m| (0..rows).map(|i| m[i * dof + j]).collect())
-    };
-    let mut joints = Vec::with_capacity(dof);
-    for j in 0..dof {
-        let jl = limits.joint(j);
-        let q = column(Order::Position, j).unwrap_or_default();
-        let position = check_position(jl, times, &q);
-        // The series one order below the current one: (times, values).
-        let mut lower: (Vec<f64>, Vec<f64>) = (times.to_vec(), q);
-        let mut derivatives = [DerivativeCheck {
-            order: Order::Velocity,
-            pointwise: None,
-            finite_difference: None,
-        }; 3];
-        for (k, d) in derivatives.iter_mut().enumerate() {
-            let order = Order::ALL[k + 1];
-            let own = column(order, j);
-            let fd = divided_difference(&lower.0, &lower.1);
-            d.order = order;
-            d.pointwise = own.as_ref().and_then(|v| peak_of(jl, order, times, v));
-            d.finite_difference = peak_of(jl, order, &fd.0, &fd.1);
-            lower = match own {
-                Some(v) => (times.to_vec(), v),
-                None => fd,
+    let joints = (0..table.dof())
+        .map(|j| {
+            let jl = limits.joint(j);
+            let (mut position, mut derivatives, exact) = JointScan::<Extremes>::run(table, jl, j);
+            if !exact {
+                (position, derivatives, _) = JointScan::<PeakTracker>::run(table, jl, j);
+            }
+            let name = match table.names().get(j) {
+                Some(n) if !n.is_empty() => n.clone(),
+                _ => jl.name.clone(),
             };
-        }
-        let name = match table.names().get(j) {
-            Some(n) if !n.is_empty() => n.clone(),
-            _ => jl.name.clone(),
-        };
-        joints.push(JointReport {
-            joint: j,
-            name,
-            position,
-            derivatives,
-        });
-    }
+            JointReport {
+                joint: j,
+                name,
+                position,
+                derivatives,
+            }
+        })
+        .collect();
     Ok(LimitReport {
         joints,
-        samples: rows,
+        samples: table.len(),
         duration: table.duration(),
     })
 }
@@ -736,6 +916,140 @@ mod tests {
         // A column whose name the limits do not have.
         let e = check_samples(&tb, &Limits::new(vec![a, c]).unwrap()).unwrap_err();
         assert!(matches!(e, Error::JointNames { .. }), "{e}");
+    }
+
+    /// The definition, series by series: the peak of each (time, value) series by one ratio
+    /// per value, finite differences as whole series.
+    fn reference(
+        table: &SampleTable,
+        limits: &Limits,
+    ) -> Vec<(PositionCheck, [DerivativeCheck; 3])> {
+        let peak_of = |jl: &JointLimits, order: Order, times: &[f64], values: &[f64]| {
+            let mut t = PeakTracker::new(jl.range(order).0, jl.range(order).1);
+            for (&time, &value) in times.iter().zip(values) {
+                t.push(time, value);
+            }
+            t.best
+        };
+        let diff = |times: &[f64], values: &[f64]| -> (Vec<f64>, Vec<f64>) {
+            (1..times.len())
+                .map(|i| {
+                    let dt = times[i] - times[i - 1];
+                    (
+                        0.5 * (times[i - 1] + times[i]),
+                        (values[i] - values[i - 1]) / dt,
+                    )
+                })
+                .unzip()
+        };
+        let (dof, rows, times) = (table.dof(), table.len(), table.times());
+        let column = |o: Order, j: usize| {
+            table
+                .matrix(o)
+                .map(|m| (0..rows).map(|i| m[i * dof + j]).collect::<Vec<f64>>())
+        };
+        (0..dof)
+            .map(|j| {
+                let jl = limits.joint(j);
+                let q = column(Order::Position, j).unwrap();
+                let mut position = PositionCheck {
+                    min: f64::INFINITY,
+                    max: f64::NEG_INFINITY,
+                    excursion: f64::NEG_INFINITY,
+                    time: times[0],
+                };
+                for (&t, &x) in times.iter().zip(&q) {
+                    position.min = position.min.min(x);
+                    position.max = position.max.max(x);
+                    let d = (jl.position_min - x).max(x - jl.position_max);
+                    if d > position.excursion {
+                        position.excursion = d;
+                        position.time = t;
+                    }
+                }
+                position.excursion = position.excursion.max(0.0);
+                let mut lower = (times.to_vec(), q);
+                let derivatives = DERIVATIVES.map(|order| {
+                    let own = column(order, j);
+                    let fd = diff(&lower.0, &lower.1);
+                    let d = DerivativeCheck {
+                        order,
+                        pointwise: own.as_ref().and_then(|v| peak_of(jl, order, times, v)),
+                        finite_difference: peak_of(jl, order, &fd.0, &fd.1),
+                    };
+                    lower = match own {
+                        Some(v) => (times.to_vec(), v),
+                        None => fd,
+                    };
+                    d
+                });
+                (position, derivatives)
+            })
+            .collect()
+    }
+
+    /// The one-pass check equals the definition exactly on seeded random tables: missing
+    /// columns, directional and unlimited limits, repeated extremes (ties), overflowing
+    /// differences.
+    #[test]
+    fn one_pass_check_equals_the_definition() {
+        let mut rng = crate::rng::SplitMix64::new(14);
+        for case in 0..300 {
+            let dof = 1 + case % 3;
+            let rows = 1 + (rng.next_u64() % 40) as usize;
+            let mut t = 0.0;
+            let times: Vec<f64> = (0..rows)
+                .map(|_| {
+                    t += rng.uniform(1e-3, 0.1);
+                    t
+                })
+                .collect();
+            // Few distinct values: ties between samples and between signs.
+            let levels = [-2.0, -1.0, -0.5, 0.0, 0.5, 1.0, 2.0, -1e307, 1e307];
+            let span = if case % 5 == 0 { 9 } else { 7 };
+            let mut col = || -> Vec<f64> {
+                (0..rows * dof)
+                    .map(|_| levels[(rng.next_u64() % span) as usize])
+                    .collect()
+            };
+            let present = case % 8;
+            let data = [
+                Some(col()),
+                (present & 1 != 0).then(&mut col),
+                (present & 2 != 0).then(&mut col),
+                (present & 4 != 0).then(&mut col),
+            ];
+            let table = SampleTable::new(dof, times, data).unwrap();
+            let joints = (0..dof)
+                .map(|j| {
+                    let mut jl = JointLimits::symmetric(1.5, 1.0, 2.0);
+                    jl.position_min = -1.0;
+                    jl.position_max = 1.0;
+                    match (case + j) % 4 {
+                        0 => jl.min_velocity = Some(-0.75),
+                        1 => jl.jerk = f64::INFINITY,
+                        2 => jl.min_acceleration = Some(-2.0),
+                        _ => {}
+                    }
+                    jl
+                })
+                .collect();
+            let limits = Limits::new(joints).unwrap();
+            let got = check_samples(&table, &limits).unwrap();
+            let want = reference(&table, &limits);
+            for (jr, (position, derivatives)) in got.joints.iter().zip(&want) {
+                assert_eq!(
+                    format!("{:?}", jr.position),
+                    format!("{position:?}"),
+                    "case {case}"
+                );
+                assert_eq!(
+                    format!("{:?}", jr.derivatives),
+                    format!("{derivatives:?}"),
+                    "case {case}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -263,11 +263,26 @@ pub fn svg(table: &SampleTable, limits: Option<&Limits>, opts: &PlotOptions) -> 
     }
     let lay = Layout::new(table, opts)?;
     let (width, height) = (lay.width, lay.height);
-    let dof = table.dof();
-    let rows = table.len();
-
     let mut s = String::new();
-    // `write!` into a String cannot fail; its results are ignored below.
+    document_head(&mut s, &lay, &opts.title);
+    let mut series = vec![0.0; table.len()];
+    for j in 0..table.dof() {
+        joint_row(&mut s, &lay, table, limits, j, &mut series);
+    }
+    // `write!` into a String cannot fail; its results are ignored here and below.
+    let _ = writeln!(
+        s,
+        r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">t [s]</text>"#,
+        LABEL_W + (width - LABEL_W) / 2.0,
+        height - 6.0
+    );
+    s.push_str("</svg>\n");
+    Ok(s)
+}
+
+/// The `<svg>` element, its background, the title (when not empty) and the column headers.
+fn document_head(s: &mut String, lay: &Layout, title: &str) {
+    let (width, height) = (lay.width, lay.height);
     let _ = writeln!(
         s,
         r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="10">"#
@@ -276,12 +291,12 @@ pub fn svg(table: &SampleTable, limits: Option<&Limits>, opts: &PlotOptions) -> 
         s,
         r#"<rect width="{width}" height="{height}" fill="white"/>"#
     );
-    if !opts.title.is_empty() {
+    if !title.is_empty() {
         let _ = writeln!(
             s,
             r#"<text x="{:.1}" y="20" font-size="14" text-anchor="middle">{}</text>"#,
             width / 2.0,
-            escape(&opts.title)
+            escape(title)
         );
     }
     for (c, &order) in lay.orders.iter().enumerate() {
@@ -293,70 +308,53 @@ pub fn svg(table: &SampleTable, limits: Option<&Limits>, opts: &PlotOptions) -> 
             escape(header(order))
         );
     }
-
-    let mut series = vec![0.0; rows];
-    for j in 0..dof {
-        let jl = limits.map(|l| l.joint(j));
-        let name = match (table.names().get(j), jl) {
-            (Some(n), _) if !n.is_empty() => n.clone(),
-            (_, Some(l)) if !l.name.is_empty() => l.name.clone(),
-            _ => format!("joint {}", j + 1),
-        };
-        let _ = writeln!(
-            s,
-            r#"<text class="joint" x="6" y="{:.1}" font-size="11">{}</text>"#,
-            lay.py(j) + lay.plot_h / 2.0 + 4.0,
-            escape(&name)
-        );
-        for (c, &order) in lay.orders.iter().enumerate() {
-            let Some(m) = table.matrix(order) else {
-                continue;
-            };
-            for (i, x) in series.iter_mut().enumerate() {
-                *x = m[i * dof + j];
-            }
-            let limit_values: Vec<f64> = match jl {
-                Some(l) => {
-                    let (lo, hi) = l.range(order);
-                    [lo, hi].into_iter().filter(|x| x.is_finite()).collect()
-                }
-                None => Vec::new(),
-            };
-            let at = (lay.px(c), lay.py(j));
-            panel(
-                &mut s,
-                &lay,
-                at,
-                (j, order),
-                table.times(),
-                &series,
-                &limit_values,
-            );
-        }
-    }
-    let _ = writeln!(
-        s,
-        r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">t [s]</text>"#,
-        LABEL_W + (width - LABEL_W) / 2.0,
-        height - 6.0
-    );
-    s.push_str("</svg>\n");
-    Ok(s)
 }
 
-/// One panel at `(px, py)`: joint `j`'s `series` of `order` over `times`, the value range
-/// padded around the series and its finite `limit_values`, grid, ticks, frame, limit lines
-/// and the (decimated) curve.
-fn panel(
+/// Joint `j`'s row: its name and one panel per plotted order the table has (`series` is
+/// scratch of the table's length).
+fn joint_row(
     s: &mut String,
     lay: &Layout,
-    (px, py): (f64, f64),
-    (j, order): (usize, Order),
-    times: &[f64],
-    series: &[f64],
-    limit_values: &[f64],
+    table: &SampleTable,
+    limits: Option<&Limits>,
+    j: usize,
+    series: &mut [f64],
 ) {
-    let (t0, t1, plot_w, plot_h) = (lay.t0, lay.t1, lay.plot_w, lay.plot_h);
+    let dof = table.dof();
+    let jl = limits.map(|l| l.joint(j));
+    let name = match (table.names().get(j), jl) {
+        (Some(n), _) if !n.is_empty() => n.clone(),
+        (_, Some(l)) if !l.name.is_empty() => l.name.clone(),
+        _ => format!("joint {}", j + 1),
+    };
+    let _ = writeln!(
+        s,
+        r#"<text class="joint" x="6" y="{:.1}" font-size="11">{}</text>"#,
+        lay.py(j) + lay.plot_h / 2.0 + 4.0,
+        escape(&name)
+    );
+    for (c, &order) in lay.orders.iter().enumerate() {
+        let Some(m) = table.matrix(order) else {
+            continue;
+        };
+        for (i, x) in series.iter_mut().enumerate() {
+            *x = m[i * dof + j];
+        }
+        let limit_values: Vec<f64> = match jl {
+            Some(l) => {
+                let (lo, hi) = l.range(order);
+                [lo, hi].into_iter().filter(|x| x.is_finite()).collect()
+            }
+            None => Vec::new(),
+        };
+        let at = (lay.px(c), lay.py(j));
+        panel(s, lay, at, (j, order), table.times(), series, &limit_values);
+    }
+}
+
+/// The value range of a panel: `series` and `limit_values`, padded by 6 % (or around a
+/// constant).
+fn value_range(series: &[f64], limit_values: &[f64]) -> (f64, f64) {
     let (mut lo, mut hi) = series
         .iter()
         .chain(limit_values.iter())
@@ -372,14 +370,14 @@ fn panel(
         lo -= 0.06 * span;
         hi += 0.06 * span;
     }
+    (lo, hi)
+}
+
+/// A panel's grid with value and time ticks, and its frame, for values in `[lo, hi]`.
+fn panel_axes(s: &mut String, lay: &Layout, (px, py): (f64, f64), (lo, hi): (f64, f64)) {
+    let (t0, t1, plot_w, plot_h) = (lay.t0, lay.t1, lay.plot_w, lay.plot_h);
     let xmap = |t: f64| px + (t - t0) / (t1 - t0) * plot_w;
     let ymap = |v: f64| py + (hi - v) / (hi - lo) * plot_h;
-
-    let _ = writeln!(
-        s,
-        r#"<g class="panel" data-joint="{j}" data-order="{}">"#,
-        order.name()
-    );
     // Grid and value ticks.
     let (yt, yd) = ticks(lo, hi, (plot_h / 28.0).max(2.0));
     for v in yt {
@@ -409,6 +407,30 @@ fn panel(
         s,
         r#"<rect x="{px:.2}" y="{py:.2}" width="{plot_w:.2}" height="{plot_h:.2}" fill="none" stroke="{FRAME}"/>"#
     );
+}
+
+/// One panel at `(px, py)`: joint `j`'s `series` of `order` over `times`, the value range
+/// padded around the series and its finite `limit_values`, grid, ticks, frame, limit lines
+/// and the (decimated) curve.
+fn panel(
+    s: &mut String,
+    lay: &Layout,
+    (px, py): (f64, f64),
+    (j, order): (usize, Order),
+    times: &[f64],
+    series: &[f64],
+    limit_values: &[f64],
+) {
+    let (t0, t1, plot_w) = (lay.t0, lay.t1, lay.plot_w);
+    let (lo, hi) = value_range(series, limit_values);
+    let xmap = |t: f64| px + (t - t0) / (t1 - t0) * plot_w;
+    let ymap = |v: f64| py + (hi - v) / (hi - lo) * lay.plot_h;
+    let _ = writeln!(
+        s,
+        r#"<g class="panel" data-joint="{j}" data-order="{}">"#,
+        order.name()
+    );
+    panel_axes(s, lay, (px, py), (lo, hi));
     for v in limit_values {
         let y = ymap(*v);
         let _ = writeln!(

@@ -232,7 +232,8 @@ pub fn check_sample_memory(
     )
 }
 
-/// Samples `traj` at the given increasing times.
+/// Samples `traj` at the given increasing times ([`Trajectory::eval_rows`]: every row what
+/// [`Trajectory::eval`] gives).
 pub fn sample_at<T: Trajectory + ?Sized>(traj: &T, times: Vec<f64>) -> Result<SampleTable> {
     let dof = traj.dof();
     let rows = times.len();
@@ -242,19 +243,12 @@ pub fn sample_at<T: Trajectory + ?Sized>(traj: &T, times: Vec<f64>) -> Result<Sa
         8.0 * (1.0 + 4.0 * dof as f64),
         &format!("a sample of {dof} joint(s)"),
     )?;
-    let mut data: [Option<Vec<f64>>; 4] = [
-        Some(vec![0.0; rows * dof]),
-        Some(vec![0.0; rows * dof]),
-        Some(vec![0.0; rows * dof]),
-        Some(vec![0.0; rows * dof]),
-    ];
-    for (k, order) in Order::ALL.iter().enumerate() {
-        let col = data[k].as_mut().expect("allocated above");
-        for (i, &t) in times.iter().enumerate() {
-            traj.eval(t, *order, &mut col[i * dof..(i + 1) * dof]);
-        }
+    let mut cols = [0; 4].map(|_| vec![0.0; rows * dof]);
+    {
+        let [q, v, a, j] = &mut cols;
+        traj.eval_rows(&times, [q, v, a, j]);
     }
-    SampleTable::new(dof, times, data)
+    SampleTable::new(dof, times, cols.map(Some))
 }
 
 #[cfg(test)]

@@ -323,6 +323,33 @@ fn with_hint(e: trajkit::Error) -> CliError {
     }
 }
 
+/// The library's options from the arguments (no torque model yet).
+fn plan_options(a: &PlanArgs) -> PlanOptions {
+    PlanOptions {
+        method: a.method.into(),
+        path: a.path.into(),
+        gridpoints: a.gridpoints.clone(),
+        jerk: if a.no_jerk_limit {
+            JerkStage::Off
+        } else {
+            match a.jerk_stage {
+                JerkStageArg::Auto => JerkStage::Auto,
+                JerkStageArg::Filter => JerkStage::Filter,
+                JerkStageArg::ThirdOrder => JerkStage::ThirdOrder,
+            }
+        },
+        max_deviation: a.max_deviation.unwrap_or(0.1),
+        degree: a.degree.into(),
+        via_velocity: match a.via_velocity {
+            ViaArg::Heuristic => ViaVelocity::Heuristic,
+            ViaArg::Zero => ViaVelocity::Zero,
+        },
+        torque: None,
+        sample_rate: a.output.rate,
+        phase_plane: false,
+    }
+}
+
 /// Runs `trajkit plan`.
 pub fn run(a: &PlanArgs) -> CliResult<u8> {
     let (w, src) = load_waypoints(&a.waypoints)?;
@@ -349,29 +376,7 @@ pub fn run(a: &PlanArgs) -> CliResult<u8> {
     if a.no_jerk_limit {
         partial = partial.with_override(Order::Jerk, &[f64::INFINITY])?;
     }
-    let mut options = PlanOptions {
-        method: a.method.into(),
-        path: a.path.into(),
-        gridpoints: a.gridpoints.clone(),
-        jerk: if a.no_jerk_limit {
-            JerkStage::Off
-        } else {
-            match a.jerk_stage {
-                JerkStageArg::Auto => JerkStage::Auto,
-                JerkStageArg::Filter => JerkStage::Filter,
-                JerkStageArg::ThirdOrder => JerkStage::ThirdOrder,
-            }
-        },
-        max_deviation: a.max_deviation.unwrap_or(0.1),
-        degree: a.degree.into(),
-        via_velocity: match a.via_velocity {
-            ViaArg::Heuristic => ViaVelocity::Heuristic,
-            ViaArg::Zero => ViaVelocity::Zero,
-        },
-        torque: None,
-        sample_rate: a.output.rate,
-        phase_plane: false,
-    };
+    let mut options = plan_options(a);
     let limits = complete(&partial, options.needs())?;
     let torque = torque_model(a, &limits)?;
     options.torque = torque.as_ref().map(|(m, _)| m.clone());

@@ -332,27 +332,13 @@ pub fn plan_with_progress(
     options: &PlanOptions,
     progress: &mut dyn FnMut(Progress),
 ) -> Result<Plan> {
-    check_options(options, waypoints.dof())?;
-    let (limits, unused) = limits.for_joints("waypoint", waypoints.given_names())?;
-    limits.expect_dof(waypoints.dof(), "the waypoints")?;
-    let names = output_names(waypoints, &limits);
-    let mut w = waypoints.clone();
-    let repeats_removed = w.dedup(0.0);
-    if w.len() < 2 {
-        return Err(Error::TooFewWaypoints {
-            needed: 2,
-            found: w.len(),
-        });
-    }
-    check_waypoint_count(w.len(), w.dof())?;
-    limits.check_waypoints(waypoints.points(), None)?;
-    let mut notes = Vec::new();
-    if !unused.is_empty() {
-        notes.push(format!(
-            "limits of {} not used: no waypoint column has that name",
-            unused.join(", ")
-        ));
-    }
+    let Prepared {
+        w,
+        limits,
+        names,
+        repeats_removed,
+        mut notes,
+    } = prepare(waypoints, limits, options)?;
     progress(Progress {
         stage: Stage::Path,
         done: 0,
@@ -410,6 +396,50 @@ pub fn plan_with_progress(
         check_scale,
         notes,
         phase_plane,
+    })
+}
+
+/// The waypoints and limits [`plan_with_progress`] works with.
+struct Prepared {
+    /// Without consecutive repeats.
+    w: Waypoints,
+    /// One per waypoint column, in the waypoints' order.
+    limits: Limits,
+    names: Vec<String>,
+    repeats_removed: usize,
+    notes: Vec<String>,
+}
+
+/// Checks the options, pairs the limits with the waypoint columns, removes repeated
+/// waypoints and refuses too few, too many or out-of-range ones.
+fn prepare(waypoints: &Waypoints, limits: &Limits, options: &PlanOptions) -> Result<Prepared> {
+    check_options(options, waypoints.dof())?;
+    let (limits, unused) = limits.for_joints("waypoint", waypoints.given_names())?;
+    limits.expect_dof(waypoints.dof(), "the waypoints")?;
+    let names = output_names(waypoints, &limits);
+    let mut w = waypoints.clone();
+    let repeats_removed = w.dedup(0.0);
+    if w.len() < 2 {
+        return Err(Error::TooFewWaypoints {
+            needed: 2,
+            found: w.len(),
+        });
+    }
+    check_waypoint_count(w.len(), w.dof())?;
+    limits.check_waypoints(waypoints.points(), None)?;
+    let mut notes = Vec::new();
+    if !unused.is_empty() {
+        notes.push(format!(
+            "limits of {} not used: no waypoint column has that name",
+            unused.join(", ")
+        ));
+    }
+    Ok(Prepared {
+        w,
+        limits,
+        names,
+        repeats_removed,
+        notes,
     })
 }
 
@@ -688,59 +718,17 @@ fn jerk_stage(
         }
         JerkStage::Filter | JerkStage::Auto | JerkStage::ThirdOrder => {
             let lines_allowed = stage != JerkStage::Filter && !torque;
-            let options = crate::topp::jerk::JerkOptions::default();
-            let mut pieces = Vec::with_capacity(raw.pieces().len());
-            let (mut lines, mut third) = (0, 0);
-            for p in raw.pieces() {
-                let line = lines_allowed
-                    .then(|| line_motion(p.path(), limits))
-                    .flatten();
-                if let Some(m) = line {
-                    lines += 1;
-                    pieces.push(JerkPiece::Line(Box::new(m)));
-                    continue;
-                }
-                let filtered = crate::topp::jerk::limit_jerk(
-                    p.path().clone(),
-                    p.law().clone(),
-                    limits,
-                    &options,
-                )?;
-                let optimal = (stage == JerkStage::ThirdOrder)
-                    .then(|| {
-                        crate::topp::jerk_optimal::JerkOptimal::new(p.path().clone(), limits)
-                            .and_then(|prob| prob.solve())
-                            .ok()
-                    })
-                    .flatten()
-                    .and_then(|o| third_order_margin(o, limits))
-                    .filter(|o| o.duration() < filtered.duration());
-                pieces.push(match optimal {
-                    Some(o) => {
-                        third += 1;
-                        JerkPiece::ThirdOrder(Box::new(o))
-                    }
-                    None => JerkPiece::Filtered(filtered),
-                });
-            }
+            let raw_duration = raw.duration();
+            let pieces = raw
+                .into_pieces()
+                .into_iter()
+                .map(|p| jerk_piece(p, limits, stage, lines_allowed))
+                .collect::<Result<Vec<_>>>()?;
             let jl = Sequence::new(pieces)?;
-            let total = jl.pieces().len();
-            let mut parts = Vec::new();
-            if lines > 0 {
-                parts.push(format!("{lines} straight (exact jerk-limited optimum)"));
-            }
-            if third > 0 {
-                parts.push(format!("{third} third-order time-optimal"));
-            }
-            let filtered = total - lines - third;
-            if filtered > 0 {
-                parts.push(format!("{filtered} filtered and rescaled"));
-            }
-            let how = parts.join(", ");
             let note = format!(
-                "jerk: bounded ({name} {:.6} s; pieces: {how}; +{:.2}%)",
-                raw.duration(),
-                100.0 * (jl.duration() / raw.duration() - 1.0)
+                "jerk: bounded ({name} {raw_duration:.6} s; pieces: {}; +{:.2}%)",
+                piece_kinds(jl.pieces()),
+                100.0 * (jl.duration() / raw_duration - 1.0)
             );
             if let Some(plane) = phase {
                 phase::add_played(plane, &jl);
@@ -748,6 +736,63 @@ fn jerk_stage(
             Ok((Box::new(jl), note))
         }
     }
+}
+
+/// One rest-to-rest piece through the jerk stage `stage` (not [`JerkStage::Off`]): the exact
+/// line motion when `lines_allowed` and the path is a straight segment, else the filter, or
+/// the third-order planner's result when asked for and shorter.
+fn jerk_piece(
+    p: Parametrized<PiecePath>,
+    limits: &Limits,
+    stage: JerkStage,
+    lines_allowed: bool,
+) -> Result<JerkPiece> {
+    if let Some(m) = lines_allowed
+        .then(|| line_motion(p.path(), limits))
+        .flatten()
+    {
+        return Ok(JerkPiece::Line(Box::new(m)));
+    }
+    let optimal = (stage == JerkStage::ThirdOrder)
+        .then(|| {
+            crate::topp::jerk_optimal::JerkOptimal::new(p.path().clone(), limits)
+                .and_then(|prob| prob.solve())
+                .ok()
+        })
+        .flatten()
+        .and_then(|o| third_order_margin(o, limits));
+    let (path, law) = p.into_parts();
+    let options = crate::topp::jerk::JerkOptions::default();
+    let filtered = crate::topp::jerk::limit_jerk(path, law, limits, &options)?;
+    Ok(match optimal {
+        Some(o) if o.duration() < filtered.duration() => JerkPiece::ThirdOrder(Box::new(o)),
+        _ => JerkPiece::Filtered(filtered),
+    })
+}
+
+/// `2 straight (exact jerk-limited optimum), 1 filtered and rescaled`: how the pieces were
+/// bounded, for the note.
+fn piece_kinds(pieces: &[JerkPiece]) -> String {
+    let count = |f: fn(&JerkPiece) -> bool| pieces.iter().filter(|p| f(p)).count();
+    [
+        (
+            count(|p| matches!(p, JerkPiece::Line(_))),
+            "straight (exact jerk-limited optimum)",
+        ),
+        (
+            count(|p| matches!(p, JerkPiece::ThirdOrder(_))),
+            "third-order time-optimal",
+        ),
+        (
+            count(|p| matches!(p, JerkPiece::Filtered(_))),
+            "filtered and rescaled",
+        ),
+    ]
+    .iter()
+    .filter(|(n, _)| *n > 0)
+    .map(|(n, what)| format!("{n} {what}"))
+    .collect::<Vec<_>>()
+    .join(", ")
 }
 
 /// One rest-to-rest piece after the jerk stage.
@@ -813,6 +858,13 @@ impl Trajectory for JerkPiece {
             JerkPiece::Filtered(p) => p.eval(t, order, out),
             JerkPiece::Line(m) => m.eval(t, order, out),
             JerkPiece::ThirdOrder(o) => o.eval(t, order, out),
+        }
+    }
+    fn eval_rows(&self, times: &[f64], out: [&mut [f64]; 4]) {
+        match self {
+            JerkPiece::Filtered(p) => p.eval_rows(times, out),
+            JerkPiece::Line(m) => m.eval_rows(times, out),
+            JerkPiece::ThirdOrder(o) => o.eval_rows(times, out),
         }
     }
 }

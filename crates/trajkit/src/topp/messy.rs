@@ -182,6 +182,13 @@ impl Path for PiecePath {
             PiecePath::Linear(p) => p.eval_derivatives(s, first, second),
         }
     }
+    fn eval_many(&self, s: &[f64], order: usize, out: &mut [f64]) {
+        match self {
+            PiecePath::Cubic(p) => p.eval_many(s, order, out),
+            PiecePath::Bounded(p) => p.eval_many(s, order, out),
+            PiecePath::Linear(p) => p.eval_many(s, order, out),
+        }
+    }
     fn breakpoints(&self) -> Vec<f64> {
         match self {
             PiecePath::Cubic(p) => p.breakpoints(),
@@ -238,6 +245,11 @@ impl<T: Trajectory> Sequence<T> {
     pub fn boundaries(&self) -> &[f64] {
         &self.starts
     }
+
+    /// The pieces, moved out.
+    pub fn into_pieces(self) -> Vec<T> {
+        self.pieces
+    }
 }
 
 impl<T: Trajectory> Trajectory for Sequence<T> {
@@ -251,6 +263,29 @@ impl<T: Trajectory> Trajectory for Sequence<T> {
         let t = clamp_time(t, self.duration());
         let k = find_piece(&self.starts, t);
         self.pieces[k].eval(t - self.starts[k], order, out)
+    }
+
+    /// Runs of times in one piece go to that piece's `eval_rows` (in blocks of
+    /// [`crate::traj::ROW_BLOCK`]), shifted as in `eval`.
+    fn eval_rows(&self, times: &[f64], mut out: [&mut [f64]; 4]) {
+        use crate::traj::{row_block, ROW_BLOCK};
+        let (big_t, dof) = (self.duration(), self.dof());
+        let mut buf = [0.0; ROW_BLOCK];
+        let mut i = 0;
+        while i < times.len() {
+            let k = find_piece(&self.starts, clamp_time(times[i], big_t));
+            let mut m = 0;
+            while m < ROW_BLOCK && i + m < times.len() {
+                let t = clamp_time(times[i + m], big_t);
+                if find_piece(&self.starts, t) != k {
+                    break;
+                }
+                buf[m] = t - self.starts[k];
+                m += 1;
+            }
+            self.pieces[k].eval_rows(&buf[..m], row_block(&mut out, dof, i, i + m));
+            i += m;
+        }
     }
 }
 

@@ -48,6 +48,16 @@ pub trait TimeLaw {
     fn duration(&self) -> f64;
     /// `[s, ṡ, s̈, s⃛]` at `t`, with `t` clamped to `[0, duration]`. Must not allocate.
     fn eval(&self, t: f64) -> [f64; 4];
+
+    /// [`TimeLaw::eval`] at every time of `times` into `out` (at least as long): each entry
+    /// what `eval` returns. The default calls `eval` per time; a law whose pieces can be
+    /// found from the previous time's overrides it (same arithmetic, bitwise equal). Fastest
+    /// on non-decreasing times, correct on any. Must not allocate.
+    fn eval_many(&self, times: &[f64], out: &mut [[f64; 4]]) {
+        for (&t, o) in times.iter().zip(out.iter_mut()) {
+            *o = self.eval(t);
+        }
+    }
 }
 
 impl<L: TimeLaw + ?Sized> TimeLaw for &L {
@@ -56,6 +66,9 @@ impl<L: TimeLaw + ?Sized> TimeLaw for &L {
     }
     fn eval(&self, t: f64) -> [f64; 4] {
         (**self).eval(t)
+    }
+    fn eval_many(&self, times: &[f64], out: &mut [[f64; 4]]) {
+        (**self).eval_many(times, out)
     }
 }
 
@@ -88,6 +101,11 @@ impl<P: Path, L: TimeLaw> Retimed<P, L> {
     /// The timing law.
     pub fn law(&self) -> &L {
         &self.law
+    }
+
+    /// The path and the law, moved out.
+    pub fn into_parts(self) -> (P, L) {
+        (self.path, self.law)
     }
 }
 
@@ -134,6 +152,45 @@ impl<P: Path, L: TimeLaw> Trajectory for Retimed<P, L> {
                     for j in 0..n {
                         out[j] += sddd * tmp[j];
                     }
+                }
+            }
+        }
+    }
+
+    /// One law evaluation per time and one path sweep per order ([`Path::eval_many`]), in
+    /// blocks of [`crate::traj::ROW_BLOCK`] times; the chain rule as in `eval`, term by term.
+    fn eval_rows(&self, times: &[f64], mut out: [&mut [f64]; 4]) {
+        use crate::traj::{row_block, ROW_BLOCK};
+        let n = self.path.dim();
+        let mut law = [[0.0; 4]; ROW_BLOCK];
+        let mut s = [0.0; ROW_BLOCK];
+        for (b, chunk) in times.chunks(ROW_BLOCK).enumerate() {
+            let m = chunk.len();
+            let from = b * ROW_BLOCK;
+            self.law.eval_many(chunk, &mut law[..m]);
+            for (si, l) in s.iter_mut().zip(&law[..m]) {
+                *si = l[0];
+            }
+            let [q, v, a, jk] = row_block(&mut out, n, from, from + m);
+            self.path.eval_many(&s[..m], 0, q);
+            self.path.eval_many(&s[..m], 1, v);
+            self.path.eval_many(&s[..m], 2, a);
+            self.path.eval_many(&s[..m], 3, jk);
+            for (i, &[_, sd, sdd, sddd]) in law[..m].iter().enumerate() {
+                let r = i * n..(i + 1) * n;
+                let (d1, d2, d3) = (&mut v[r.clone()], &mut a[r.clone()], &mut jk[r]);
+                let (c3, c2, x) = (sd * sd * sd, 3.0 * sd * sdd, sd * sd);
+                for j in 0..n {
+                    let mut jerk = d3[j] * c3;
+                    if c2 != 0.0 {
+                        jerk += c2 * d2[j];
+                    }
+                    if sddd != 0.0 {
+                        jerk += sddd * d1[j];
+                    }
+                    d3[j] = jerk;
+                    d2[j] = d1[j] * sdd + d2[j] * x;
+                    d1[j] *= sd;
                 }
             }
         }
@@ -266,6 +323,26 @@ impl<T: Trajectory> Trajectory for Scaled<T> {
         let c = k.powi(-(order.index() as i32));
         if order != Order::Position {
             out[..self.inner.dof()].iter_mut().for_each(|v| *v *= c);
+        }
+    }
+
+    /// The inner rows at `t/k` in blocks of [`crate::traj::ROW_BLOCK`], then scaled as in
+    /// `eval`.
+    fn eval_rows(&self, times: &[f64], mut out: [&mut [f64]; 4]) {
+        use crate::traj::{row_block, ROW_BLOCK};
+        let (k, dof) = (self.factor, self.inner.dof());
+        let mut buf = [0.0; ROW_BLOCK];
+        for (b, chunk) in times.chunks(ROW_BLOCK).enumerate() {
+            for (x, &t) in buf.iter_mut().zip(chunk) {
+                *x = t / k;
+            }
+            let from = b * ROW_BLOCK;
+            let block = row_block(&mut out, dof, from, from + chunk.len());
+            self.inner.eval_rows(&buf[..chunk.len()], block);
+        }
+        for (order, col) in Order::ALL.into_iter().zip(out).skip(1) {
+            let c = k.powi(-(order.index() as i32));
+            col[..times.len() * dof].iter_mut().for_each(|v| *v *= c);
         }
     }
 }

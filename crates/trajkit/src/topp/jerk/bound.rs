@@ -157,6 +157,9 @@ struct Sweep<'a, P: Path> {
     ref_der: Vec<f64>,
     /// The path piece of the current segment.
     piece: usize,
+    /// Per segment, σ⁽ᵐ⁾ at its middle and bounds of |σ⁽ᵐ⁾| on it (index m·dim + j).
+    md: Vec<f64>,
+    sb: Vec<f64>,
     /// Largest certified ratio per order (velocity, acceleration, jerk), where it occurs.
     bound: [f64; 3],
     at: [(f64, usize); 3],
@@ -165,6 +168,22 @@ struct Sweep<'a, P: Path> {
     k_low: f64,
     threshold: [f64; 3],
     segments: usize,
+}
+
+/// What every joint of one segment shares in [`Sweep::poly_segment`].
+struct Segment {
+    /// Taylor weights dⁱ/i! (see `poly_segment`).
+    wts: [[f64; MAX_DEGREE + 1]; 5],
+    /// ṡ and s̈ at the start, middle and end; the constant s⃛.
+    sd: [f64; 3],
+    sdd: [f64; 3],
+    sddd: f64,
+    /// Bounds of |ṡ|, |s̈|, |s⃛| on the segment.
+    x: [f64; 3],
+    /// h³/(72√3): the remainder factor of the quadratic interpolation.
+    rem: f64,
+    /// The law's time at the middle.
+    at: f64,
 }
 
 /// Complete Bell polynomials B_{n,k}(x1, x2, x3, 0, 0, 0) for n = 4, 5, 6 and k = 2..=6 (x4 and
@@ -253,15 +272,13 @@ impl<P: Path> Sweep<'_, P> {
 
     /// [`Sweep::segment`] on a path of degree ≤ `D`.
     fn poly_segment<const D: usize>(&mut self, cub: &Cubic, t0: f64, t1: f64, time: f64) {
-        let dim = self.dim;
         let tm = 0.5 * (t0 + t1);
         let (s0, sm, s1) = (cub.s(t0), cub.s(tm), cub.s(t1));
         let sddd = cub.c[3];
         // Taylor weights dⁱ/i! of: the middle's offset from the piece's reference point, the
         // three points' offsets from the middle, and the largest of those.
-        let piece = self.piece;
         let offsets = [
-            sm - self.ref_s[piece],
+            sm - self.ref_s[self.piece],
             s0 - sm,
             0.0,
             s1 - sm,
@@ -286,85 +303,122 @@ impl<P: Path> Sweep<'_, P> {
                 x1 = x1.max(cub.sd(tv).abs());
             }
         }
-        let x3 = sddd.abs();
-        let mut bells: Option<[[f64; 7]; 3]> = None;
         let h = t1 - t0;
-        let rem = h * h * h / (72.0 * 3f64.sqrt());
-        let base = piece * (D + 1) * dim;
-        for j in 0..dim {
-            // σ⁽ᵐ⁾ at the middle, from the piece's reference point (exact for a polynomial).
-            let mut rd = [0.0f64; MAX_DEGREE + 1];
-            for m in 1..=D {
-                rd[m] = self.ref_der[base + m * dim + j];
-            }
-            let mut md = [0.0f64; MAX_DEGREE + 1];
-            let mut sb = [0.0f64; MAX_DEGREE + 1];
-            for m in 1..=D {
-                for mm in m..=D {
-                    md[m] += rd[mm] * wts[0][mm - m];
+        let seg = Segment {
+            wts,
+            sd,
+            sdd,
+            sddd,
+            x: [x1, x2, sddd.abs()],
+            rem: h * h * h / (72.0 * 3f64.sqrt()),
+            at: time + tm,
+        };
+        self.derivative_bounds::<D>(&seg.wts);
+        let mut bells = None;
+        for j in 0..self.dim {
+            self.poly_joint::<D>(&seg, j, &mut bells);
+        }
+    }
+
+    /// σ⁽ᵐ⁾ at the segment's middle from the piece's reference point (exact for a
+    /// polynomial) into `md`, and bounds of |σ⁽ᵏ⁾| on the segment into `sb`, for every joint
+    /// at once (index m·dim + j; joints innermost: independent sums that vectorize, each
+    /// joint's in the same order as one joint at a time).
+    #[inline]
+    fn derivative_bounds<const D: usize>(&mut self, wts: &[[f64; MAX_DEGREE + 1]; 5]) {
+        let dim = self.dim;
+        let base = self.piece * (D + 1) * dim;
+        let rd = &self.ref_der[base..base + (D + 1) * dim];
+        let (md, sb) = (&mut self.md[..(D + 1) * dim], &mut self.sb[..(D + 1) * dim]);
+        md.fill(0.0);
+        sb.fill(0.0);
+        for m in 1..=D {
+            let dst = &mut md[m * dim..(m + 1) * dim];
+            for mm in m..=D {
+                let w = wts[0][mm - m];
+                for (d, &r) in dst.iter_mut().zip(&rd[mm * dim..(mm + 1) * dim]) {
+                    *d += r * w;
                 }
             }
-            // |σ⁽ᵏ⁾| on the segment.
-            for k in 1..=D {
-                for m in k..=D {
-                    sb[k] += md[m].abs() * wts[4][m - k];
+        }
+        for k in 1..=D {
+            let dst = &mut sb[k * dim..(k + 1) * dim];
+            for m in k..=D {
+                let w = wts[4][m - k];
+                for (d, &x) in dst.iter_mut().zip(&md[m * dim..(m + 1) * dim]) {
+                    *d += x.abs() * w;
                 }
             }
-            // Interval bounds of |q̇|, |q̈|, |q⃛|: skip the joint when none can matter.
-            let cheap = [
-                sb[1] * x1 * self.inv.sym[0][j],
-                (sb[2] * x1 * x1 + sb[1] * x2) * self.inv.sym[1][j],
-                (sb[3] * x1 * x1 * x1 + 3.0 * sb[2] * x1 * x2 + sb[1] * x3) * self.inv.sym[2][j],
-            ];
-            if cheap[0] <= self.threshold[0]
-                && cheap[1] <= self.threshold[1]
-                && cheap[2] <= self.threshold[2]
-            {
+        }
+    }
+
+    /// One joint `j` of [`Sweep::poly_segment`] (after [`Sweep::derivative_bounds`]): a
+    /// cheap interval bound that skips the joint when it cannot raise the factor, else the
+    /// quadratic range plus the certified remainder per order.
+    /// `bells` (the segment's Bell polynomials) is computed on first need.
+    #[inline]
+    fn poly_joint<const D: usize>(
+        &mut self,
+        seg: &Segment,
+        j: usize,
+        bells: &mut Option<[[f64; 7]; 3]>,
+    ) {
+        let dim = self.dim;
+        let wts = &seg.wts;
+        let [x1, x2, x3] = seg.x;
+        let sb: [f64; MAX_DEGREE + 1] = std::array::from_fn(|k| self.sb[k * dim + j]);
+        // Interval bounds of |q̇|, |q̈|, |q⃛|: skip the joint when none can matter.
+        let cheap = [
+            sb[1] * x1 * self.inv.sym[0][j],
+            (sb[2] * x1 * x1 + sb[1] * x2) * self.inv.sym[1][j],
+            (sb[3] * x1 * x1 * x1 + 3.0 * sb[2] * x1 * x2 + sb[1] * x3) * self.inv.sym[2][j],
+        ];
+        if (0..3).all(|o| cheap[o] <= self.threshold[o]) {
+            return;
+        }
+        let md: [f64; MAX_DEGREE + 1] = std::array::from_fn(|m| self.md[m * dim + j]);
+        let value = |p: usize| -> [f64; 3] {
+            let wt = &wts[p + 1];
+            let mut d = [0.0f64; 3];
+            for k in 0..3 {
+                for m in (k + 1)..=D {
+                    d[k] += md[m] * wt[m - k - 1];
+                }
+            }
+            let (v, a) = (seg.sd[p], seg.sdd[p]);
+            [
+                d[0] * v,
+                d[1] * v * v + d[0] * a,
+                d[2] * v * v * v + 3.0 * d[1] * v * a + d[0] * seg.sddd,
+            ]
+        };
+        let f = [value(0), value(1), value(2)];
+        let bells = bells.get_or_insert_with(|| {
+            [
+                bell(4, x1, x2, x3),
+                bell(5, x1, x2, x3),
+                bell(6, x1, x2, x3),
+            ]
+        });
+        for o in 0..3 {
+            if cheap[o] <= self.threshold[o] {
                 continue;
             }
-            let value = |p: usize| -> [f64; 3] {
-                let wt = &wts[p + 1];
-                let mut d = [0.0f64; 3];
-                for k in 0..3 {
-                    for m in (k + 1)..=D {
-                        d[k] += md[m] * wt[m - k - 1];
-                    }
-                }
-                let (v, a) = (sd[p], sdd[p]);
-                [
-                    d[0] * v,
-                    d[1] * v * v + d[0] * a,
-                    d[2] * v * v * v + 3.0 * d[1] * v * a + d[0] * sddd,
-                ]
-            };
-            let f = [value(0), value(1), value(2)];
-            let bells = bells.get_or_insert_with(|| {
-                [
-                    bell(4, x1, x2, x3),
-                    bell(5, x1, x2, x3),
-                    bell(6, x1, x2, x3),
-                ]
-            });
-            for o in 0..3 {
-                if cheap[o] <= self.threshold[o] {
-                    continue;
-                }
-                let (mut lo, mut hi) = quadratic_range(f[0][o], f[1][o], f[2][o]);
-                let r = self.inv.ratio(o, j, lo, hi);
-                self.sampled(o, r);
-                let b = &bells[o];
-                let mut m3 = 0.0;
-                for k in 2..=D.min(o + 4) {
-                    m3 += sb[k] * b[k];
-                }
-                let e = m3 * rem;
-                lo -= e;
-                hi += e;
-                let r = self.inv.ratio(o, j, lo, hi);
-                if r > self.bound[o] {
-                    self.bound[o] = r;
-                    self.at[o] = (time + tm, j);
-                }
+            let (mut lo, mut hi) = quadratic_range(f[0][o], f[1][o], f[2][o]);
+            let r = self.inv.ratio(o, j, lo, hi);
+            self.sampled(o, r);
+            let b = &bells[o];
+            let mut m3 = 0.0;
+            for k in 2..=D.min(o + 4) {
+                m3 += sb[k] * b[k];
+            }
+            let e = m3 * seg.rem;
+            lo -= e;
+            hi += e;
+            let r = self.inv.ratio(o, j, lo, hi);
+            if r > self.bound[o] {
+                self.bound[o] = r;
+                self.at[o] = (seg.at, j);
             }
         }
     }
@@ -404,150 +458,213 @@ impl<P: Path> Sweep<'_, P> {
 /// The time-scale factor of `law` on `path` under `limits` (see the module documentation).
 /// `path` and `limits` must have the law's dimension (checked by the caller).
 pub fn scale_bound<P: Path>(path: &P, law: &FilteredProfile, limits: &Limits) -> ScaleBound {
-    let dim = path.dim();
-    let degree = path.piecewise_degree().filter(|&d| d <= MAX_DEGREE);
-    let breaks = path.breakpoints();
-    let (mut ref_s, mut ref_der) = (Vec::new(), Vec::new());
-    if let Some(d) = degree {
-        let pieces = breaks.len().saturating_sub(1);
-        ref_s.reserve(pieces);
-        ref_der.resize(pieces * (d + 1) * dim, 0.0);
-        for (p, pair) in breaks.windows(2).enumerate() {
-            let mid = 0.5 * (pair[0] + pair[1]);
-            ref_s.push(mid);
-            for m in 1..=d {
-                let at = (p * (d + 1) + m) * dim;
-                path.eval(mid, m, &mut ref_der[at..at + dim]);
+    let mut sw = Sweep::new(path, limits);
+    sw.sweep(law);
+    sw.result()
+}
+
+impl<'a, P: Path> Sweep<'a, P> {
+    /// The sweep's buffers: limit reciprocals, and on a piecewise polynomial of degree ≤ 6
+    /// the derivatives at the middle of every path piece.
+    fn new(path: &'a P, limits: &Limits) -> Self {
+        let dim = path.dim();
+        let degree = path.piecewise_degree().filter(|&d| d <= MAX_DEGREE);
+        let breaks = path.breakpoints();
+        let (mut ref_s, mut ref_der) = (Vec::new(), Vec::new());
+        if let Some(d) = degree {
+            let pieces = breaks.len().saturating_sub(1);
+            ref_s.reserve(pieces);
+            ref_der.resize(pieces * (d + 1) * dim, 0.0);
+            for (p, pair) in breaks.windows(2).enumerate() {
+                let mid = 0.5 * (pair[0] + pair[1]);
+                ref_s.push(mid);
+                for m in 1..=d {
+                    let at = (p * (d + 1) + m) * dim;
+                    path.eval(mid, m, &mut ref_der[at..at + dim]);
+                }
             }
         }
+        Sweep {
+            path,
+            inv: Inverse::new(limits),
+            dim,
+            degree,
+            breaks,
+            ref_s,
+            ref_der,
+            piece: 0,
+            md: vec![0.0; (MAX_DEGREE + 1) * dim],
+            sb: vec![0.0; (MAX_DEGREE + 1) * dim],
+            bound: [0.0; 3],
+            at: [(0.0, 0); 3],
+            k_low: 0.0,
+            threshold: [0.0; 3],
+            segments: 0,
+        }
     }
-    let mut sw = Sweep {
-        path,
-        inv: Inverse::new(limits),
-        dim,
-        degree,
-        breaks,
-        ref_s,
-        ref_der,
-        piece: 0,
-        bound: [0.0; 3],
-        at: [(0.0, 0); 3],
-        k_low: 0.0,
-        threshold: [0.0; 3],
-        segments: 0,
-    };
-    let p = law.profile();
-    let w = law.window();
-    let (gs, gsd, gu, gt) = (p.gridpoints(), p.velocities(), p.accelerations(), p.times());
-    let n = gu.len();
-    // Raw state (s, ṡ, s̈) in interval i (−1: before the start, n: after the end) at time t.
-    let raw = |i: isize, t: f64| -> [f64; 3] {
+
+    /// Bounds every segment of `law`, in time order: the kinks are the gridpoint times T_i
+    /// (index `i` of the raw interval at t) and T_i + w (index `k` at t − w), and the
+    /// segments between them are cut where s crosses a path breakpoint.
+    fn sweep(&mut self, law: &FilteredProfile) {
+        let raw = RawLaw::new(law);
+        let (gs, n, w) = (raw.p.gridpoints(), raw.n, raw.w);
+        let end = raw.p.times()[n] + w;
+        let (mut i, mut k) = (0isize, -1isize);
+        let mut a = 0.0;
+        let mut s_at_a = gs[0];
+        // First path breakpoint above the current s.
+        let mut bp = self.breaks.partition_point(|&b| b <= s_at_a);
+        let mut count = 0usize;
+        loop {
+            let b = raw.next_i(i).min(raw.next_k(k)).min(end);
+            if b > a {
+                if count % 256 == 0 && a > 0.0 {
+                    // Re-anchor the propagated s on the exact moving average.
+                    s_at_a = law.eval(a)[0];
+                }
+                count += 1;
+                let cub = raw.cubic(i, k, a, s_at_a);
+                let s_end = cub.s(b - a).clamp(gs[0], gs[n]);
+                self.cut_at_breakpoints(&cub, b - a, s_end, a, &mut bp);
+                s_at_a = s_end;
+            }
+            if b >= end {
+                break;
+            }
+            if raw.next_i(i) <= b {
+                i += 1;
+            }
+            if raw.next_k(k) <= b {
+                k += 1;
+            }
+            a = b;
+        }
+    }
+
+    /// Bounds the segment `[0, h]` of `cub` (the law from time `a` on), cut where s crosses
+    /// the path breakpoints from index `bp` on (advanced past them) up to `s_end`.
+    fn cut_at_breakpoints(&mut self, cub: &Cubic, h: f64, s_end: f64, a: f64, bp: &mut usize) {
+        let mut t_prev = 0.0;
+        let last_piece = self.breaks.len().saturating_sub(2);
+        while *bp < self.breaks.len() && self.breaks[*bp] < s_end {
+            let tc = cub.time_at(self.breaks[*bp], t_prev, h);
+            if tc > t_prev {
+                self.piece = bp.saturating_sub(1).min(last_piece);
+                self.segment(cub, t_prev, tc, a);
+                t_prev = tc;
+            }
+            *bp += 1;
+        }
+        self.piece = bp.saturating_sub(1).min(last_piece);
+        self.segment(cub, t_prev, h, a);
+    }
+
+    /// The factor and where it is reached.
+    fn result(&self) -> ScaleBound {
+        let roots = |r: [f64; 3]| r[0].max(r[1].sqrt()).max(r[2].cbrt());
+        let certified = roots(self.bound);
+        let factor = certified.max(self.k_low);
+        let which = if factor == self.bound[0] {
+            0
+        } else if factor == self.bound[1].sqrt() {
+            1
+        } else {
+            2
+        };
+        let (t_at, j_at) = self.at[which];
+        ScaleBound {
+            factor,
+            sampled: self.k_low,
+            certified: self.degree.is_some(),
+            segments: self.segments,
+            at: (
+                t_at,
+                j_at,
+                [Order::Velocity, Order::Acceleration, Order::Jerk][which],
+            ),
+        }
+    }
+}
+
+/// The unfiltered law by interval index (−1: before the start, n: after the end), for the
+/// sweep.
+struct RawLaw<'a> {
+    p: &'a crate::topp::parametrized::PhaseProfile,
+    n: usize,
+    w: f64,
+}
+
+impl<'a> RawLaw<'a> {
+    fn new(law: &'a FilteredProfile) -> Self {
+        let p = law.profile();
+        RawLaw {
+            p,
+            n: p.accelerations().len(),
+            w: law.window(),
+        }
+    }
+
+    /// (s, ṡ, s̈) in interval `i` at time `t`.
+    fn state(&self, i: isize, t: f64) -> [f64; 3] {
+        let gs = self.p.gridpoints();
         if i < 0 {
             [gs[0], 0.0, 0.0]
-        } else if i as usize >= n {
-            [gs[n], 0.0, 0.0]
+        } else if i as usize >= self.n {
+            [gs[self.n], 0.0, 0.0]
         } else {
             let i = i as usize;
-            let tau = t - gt[i];
-            let u = gu[i];
-            [gs[i] + tau * (gsd[i] + 0.5 * u * tau), gsd[i] + u * tau, u]
+            let tau = t - self.p.times()[i];
+            let u = self.p.accelerations()[i];
+            [
+                gs[i] + tau * (self.p.velocities()[i] + 0.5 * u * tau),
+                self.p.velocities()[i] + u * tau,
+                u,
+            ]
         }
-    };
-    let acc = |i: isize| -> f64 {
-        if i < 0 || i as usize >= n {
+    }
+
+    /// s̈ in interval `i`.
+    fn acc(&self, i: isize) -> f64 {
+        if i < 0 || i as usize >= self.n {
             0.0
         } else {
-            gu[i as usize]
+            self.p.accelerations()[i as usize]
         }
-    };
-    let next_i = |i: isize| -> f64 {
-        if (i as usize) < n {
-            gt[i as usize + 1]
-        } else {
-            f64::INFINITY
-        }
-    };
-    let next_k = |k: isize| -> f64 {
-        if k < n as isize {
-            gt[(k + 1) as usize] + w
-        } else {
-            f64::INFINITY
-        }
-    };
-    let end = gt[n] + w;
-    let (mut i, mut k) = (0isize, -1isize);
-    let mut a = 0.0;
-    let mut s_at_a = gs[0];
-    // First path breakpoint above the current s.
-    let mut bp = sw.breaks.partition_point(|&b| b <= s_at_a);
-    let mut count = 0usize;
-    loop {
-        let b = next_i(i).min(next_k(k)).min(end);
-        if b > a {
-            let now = raw(i, a);
-            let before = raw(k, a - w);
-            if count % 256 == 0 && a > 0.0 {
-                // Re-anchor the propagated s on the exact moving average.
-                s_at_a = law.eval(a)[0];
-            }
-            count += 1;
-            let cub = Cubic {
-                c: [
-                    s_at_a,
-                    ((now[0] - before[0]) / w).max(0.0),
-                    (now[1] - before[1]) / w,
-                    (acc(i) - acc(k)) / w,
-                ],
-            };
-            let h = b - a;
-            let s_end = cub.s(h).clamp(gs[0], gs[n]);
-            let mut t_prev = 0.0;
-            let last_piece = sw.breaks.len().saturating_sub(2);
-            while bp < sw.breaks.len() && sw.breaks[bp] < s_end {
-                let tc = cub.time_at(sw.breaks[bp], t_prev, h);
-                if tc > t_prev {
-                    sw.piece = bp.saturating_sub(1).min(last_piece);
-                    sw.segment(&cub, t_prev, tc, a);
-                    t_prev = tc;
-                }
-                bp += 1;
-            }
-            sw.piece = bp.saturating_sub(1).min(last_piece);
-            sw.segment(&cub, t_prev, h, a);
-            s_at_a = s_end;
-        }
-        if b >= end {
-            break;
-        }
-        if next_i(i) <= b {
-            i += 1;
-        }
-        if next_k(k) <= b {
-            k += 1;
-        }
-        a = b;
     }
-    let roots = |r: [f64; 3]| r[0].max(r[1].sqrt()).max(r[2].cbrt());
-    let certified = roots(sw.bound);
-    let factor = certified.max(sw.k_low);
-    let which = if factor == sw.bound[0] {
-        0
-    } else if factor == sw.bound[1].sqrt() {
-        1
-    } else {
-        2
-    };
-    let (t_at, j_at) = sw.at[which];
-    ScaleBound {
-        factor,
-        sampled: sw.k_low,
-        certified: degree.is_some(),
-        segments: sw.segments,
-        at: (
-            t_at,
-            j_at,
-            [Order::Velocity, Order::Acceleration, Order::Jerk][which],
-        ),
+
+    /// End of interval `i` (the next kink of t).
+    fn next_i(&self, i: isize) -> f64 {
+        if (i as usize) < self.n {
+            self.p.times()[i as usize + 1]
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// End of interval `k` shifted by the window (the next kink of t − w).
+    fn next_k(&self, k: isize) -> f64 {
+        if k < self.n as isize {
+            self.p.times()[(k + 1) as usize] + self.w
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    /// The filtered law from time `a` (t in interval `i`, t − w in interval `k`) with
+    /// s(a) = `s_at_a`.
+    fn cubic(&self, i: isize, k: isize, a: f64, s_at_a: f64) -> Cubic {
+        let now = self.state(i, a);
+        let before = self.state(k, a - self.w);
+        let w = self.w;
+        Cubic {
+            c: [
+                s_at_a,
+                ((now[0] - before[0]) / w).max(0.0),
+                (now[1] - before[1]) / w,
+                (self.acc(i) - self.acc(k)) / w,
+            ],
+        }
     }
 }
 

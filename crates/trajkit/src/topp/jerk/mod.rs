@@ -106,8 +106,26 @@ impl FilteredProfile {
         &self.profile
     }
 
-    /// `[s, ṡ, s̈]` of the unfiltered law at any t (rest outside `[0, T*]`).
-    fn raw(&self, t: f64) -> [f64; 3] {
+    /// The piece of the unfiltered profile that holds `t` ([`find_piece`] on its times),
+    /// searched first forward from piece `hint` (a few pieces: sorted sweeps), else by
+    /// bisection; `hint` out of range goes straight to bisection.
+    #[inline]
+    fn piece_from(&self, t: f64, hint: usize) -> usize {
+        let times = self.profile.times();
+        let n = times.len() - 1;
+        if hint < n && times[hint] <= t {
+            for i in hint..(hint + 8).min(n) {
+                if i + 1 == n || times[i + 1] > t {
+                    return i;
+                }
+            }
+        }
+        find_piece(times, t)
+    }
+
+    /// `[s, ṡ, s̈]` of the unfiltered law at any t (rest outside `[0, T*]`); `hint` is the
+    /// piece to search from, updated to the piece found.
+    fn raw(&self, t: f64, hint: &mut usize) -> [f64; 3] {
         let p = &self.profile;
         let (s, times) = (p.gridpoints(), p.times());
         let n = s.len() - 1;
@@ -117,7 +135,8 @@ impl FilteredProfile {
         if t >= times[n] {
             return [s[n], 0.0, 0.0];
         }
-        let i = find_piece(times, t);
+        let i = self.piece_from(t, *hint);
+        *hint = i;
         let tau = t - times[i];
         let u = p.accelerations()[i];
         let v0 = p.velocities()[i];
@@ -129,8 +148,8 @@ impl FilteredProfile {
     }
 
     /// ∫ (s*(τ) − s_ref) dτ over `[a, b]`, piece by piece, relative to `s_ref` to avoid
-    /// cancellation.
-    fn integral(&self, a: f64, b: f64, s_ref: f64) -> f64 {
+    /// cancellation; the first piece is searched from `hint`.
+    fn integral(&self, a: f64, b: f64, s_ref: f64, hint: usize) -> f64 {
         let p = &self.profile;
         let (s, times) = (p.gridpoints(), p.times());
         let n = s.len() - 1;
@@ -147,7 +166,7 @@ impl FilteredProfile {
         if lo >= hi {
             return total;
         }
-        let mut i = find_piece(times, lo);
+        let mut i = self.piece_from(lo, hint);
         let mut t0 = lo;
         while t0 < hi && i < n {
             let t1 = hi.min(times[i + 1]);
@@ -163,6 +182,24 @@ impl FilteredProfile {
         }
         total
     }
+
+    /// [`TimeLaw::eval`] with the pieces of t − w and t searched from `hints` (updated).
+    #[inline]
+    fn eval_from(&self, t: f64, hints: &mut [usize; 2]) -> [f64; 4] {
+        let t = crate::traj::clamp_time(t, self.duration());
+        let w = self.window;
+        let now = self.raw(t, &mut hints[1]);
+        let before = self.raw(t - w, &mut hints[0]);
+        // Relative to the position at t − w: the window integral is then of the size of the
+        // motion within the window, and s comes out accurate to rounding of that.
+        let s = before[0] + self.integral(t - w, t, before[0], hints[0]) / w;
+        [
+            s,
+            ((now[0] - before[0]) / w).max(0.0),
+            (now[1] - before[1]) / w,
+            (now[2] - before[2]) / w,
+        ]
+    }
 }
 
 impl TimeLaw for FilteredProfile {
@@ -170,19 +207,15 @@ impl TimeLaw for FilteredProfile {
         self.profile.duration() + self.window
     }
     fn eval(&self, t: f64) -> [f64; 4] {
-        let t = crate::traj::clamp_time(t, self.duration());
-        let w = self.window;
-        let now = self.raw(t);
-        let before = self.raw(t - w);
-        // Relative to the position at t − w: the window integral is then of the size of the
-        // motion within the window, and s comes out accurate to rounding of that.
-        let s = before[0] + self.integral(t - w, t, before[0]) / w;
-        [
-            s,
-            ((now[0] - before[0]) / w).max(0.0),
-            (now[1] - before[1]) / w,
-            (now[2] - before[2]) / w,
-        ]
+        self.eval_from(t, &mut [usize::MAX; 2])
+    }
+    /// The pieces of t and t − w are searched from the previous time's: O(1) per time on a
+    /// sorted sweep (plus the window integral's pieces), bitwise equal to `eval`.
+    fn eval_many(&self, times: &[f64], out: &mut [[f64; 4]]) {
+        let mut hints = [0; 2];
+        for (&t, o) in times.iter().zip(out.iter_mut()) {
+            *o = self.eval_from(t, &mut hints);
+        }
     }
 }
 
@@ -421,6 +454,55 @@ mod tests {
             jl.duration()
         );
         assert!(ratio > 1.0 && ratio < 1.3, "jerk limiting costs {ratio}");
+    }
+
+    /// Batched rows ([`Trajectory::eval_rows`]: the filtered law swept with cursors, the path
+    /// by `eval_many`, pieces and scaling in blocks) are bitwise what `eval` gives, on sorted
+    /// sweeps and on shuffled and out-of-range times.
+    #[test]
+    fn batched_rows_equal_eval_bitwise() {
+        use crate::topp::messy::{plan_waypoints, PlanOptions};
+        use crate::topp::Scaled;
+        let limits = Limits::preset("panda").unwrap();
+        let w = [
+            0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785, //
+            0.21, -0.52, 0.13, -2.10, 0.05, 1.69, 0.92, //
+            0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785, // back: a reversal, two pieces
+            0.83, -0.18, 0.22, -1.64, 0.41, 1.62, 1.35, //
+            1.02, 0.05, 0.05, -1.49, 0.63, 1.48, 1.21,
+        ];
+        let raw = plan_waypoints(&w, 7, &limits, &PlanOptions::default()).unwrap();
+        let jl = limit_jerk_sequence(&raw, &limits, &JerkOptions::default()).unwrap();
+        assert!(jl.pieces().len() >= 2);
+        let traj = Scaled::new(jl, 1.0 + 1e-7).unwrap();
+        let d = traj.duration();
+        let mut times: Vec<f64> = (0..=(d * 1000.0) as usize)
+            .map(|i| i as f64 / 1000.0)
+            .collect();
+        times.push(d);
+        let mut rng = crate::rng::SplitMix64::new(7);
+        let mut shuffled: Vec<f64> = (0..200).map(|_| rng.uniform(-0.5, d + 0.5)).collect();
+        shuffled.extend([0.0, d, -1.0, d + 1.0, d * 0.5]);
+        for ts in [&times, &shuffled] {
+            let mut cols = [0; 4].map(|_| vec![0.0; ts.len() * 7]);
+            {
+                let [a, b, c, e] = &mut cols;
+                traj.eval_rows(ts, [a, b, c, e]);
+            }
+            let mut one = [0.0; 7];
+            for (i, &t) in ts.iter().enumerate() {
+                for (k, order) in Order::ALL.into_iter().enumerate() {
+                    traj.eval(t, order, &mut one);
+                    let row = &cols[k][i * 7..(i + 1) * 7];
+                    assert!(
+                        row.iter()
+                            .zip(&one)
+                            .all(|(a, b)| a.to_bits() == b.to_bits()),
+                        "t = {t} {order:?}: {row:?} vs {one:?}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]
