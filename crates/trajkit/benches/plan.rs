@@ -10,7 +10,9 @@
 //!   on the standard problem's TOPP-RA result, by the per-segment bound
 //!   ([`trajkit::topp::jerk::scale_bound`]) and by sampling the filtered trajectory at 20 kHz
 //!   (what the filter did before the bound);
-//! - `toppra_default/std7`: the TOPP-RA stage alone (the paths and the auto-grid solve).
+//! - `toppra_default/std7`: the TOPP-RA stage alone (the paths and the auto-grid solve);
+//! - `toppra_default/random_W`: the same through W seeded random Panda waypoints (W = 10, 100,
+//!   1000): the cost per waypoint should stay flat.
 //!
 //! Run: `cargo bench -p trajkit --bench plan`.
 
@@ -68,13 +70,22 @@ fn bench(c: &mut Criterion) {
 
     let mo = messy::PlanOptions::default();
     let mut g = c.benchmark_group("toppra_default");
-    g.bench_function("std7", |b| {
-        b.iter(|| {
-            let paths = messy::piece_paths(std7.points(), 7, &limits, &mo).unwrap();
-            let raw = messy::time_pieces(paths, &limits, &mo, &mut |_, _| {}).unwrap();
-            black_box(raw.duration())
-        })
-    });
+    let mut cases = vec![("std7".to_string(), std7.clone())];
+    for n in [10usize, 100, 1000] {
+        cases.push((format!("random_{n}"), random_waypoints(n)));
+    }
+    for (name, w) in &cases {
+        if name == "random_1000" {
+            g.sample_size(10);
+        }
+        g.bench_with_input(BenchmarkId::from_parameter(name), w, |b, w| {
+            b.iter(|| {
+                let paths = messy::piece_paths(w.points(), 7, &limits, &mo).unwrap();
+                let raw = messy::time_pieces(paths, &limits, &mo, &mut |_, _| {}).unwrap();
+                black_box(raw.duration())
+            })
+        });
+    }
     g.finish();
 
     let paths = messy::piece_paths(std7.points(), 7, &limits, &mo).unwrap();

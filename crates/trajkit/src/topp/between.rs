@@ -48,13 +48,24 @@ pub(super) enum Check {
     Split(Vec<f64>),
 }
 
+/// What the check of one interval found.
+enum Interval {
+    /// Within the limits.
+    Clean,
+    /// Rows were added to its stage.
+    Tightened,
+    /// It must be cut into this many equal parts.
+    Split(usize),
+}
+
 /// The path's Taylor data on every interval of the grid: σ, σ′, …, σ⁽⁵⁾ at the interval's
-/// start, from inside (`6·dim` numbers per interval; σ⁗ and σ⁽⁵⁾ zero on paths of degree ≤ 3,
-/// on quintic paths all from the midpoint as at breakpoints), for intervals where the exact check
-/// applies. Between ordinary gridpoints one cubic covers both ends: the gridpoint values give
-/// σ, σ′, σ″ and (σ″(s_{i+1}) − σ″(s_i))/Δ gives σ‴. At a breakpoint the path is evaluated at
-/// the interval's midpoint (so that no convention about which piece a breakpoint belongs to
-/// matters) and the expansion moved to the start.
+/// start, from inside (`6·dim` numbers per interval; σ⁗ and σ⁽⁵⁾ zero on paths of degree ≤ 3),
+/// for intervals where the exact check applies. On quintic paths the path is evaluated once per
+/// path piece, at the piece's midpoint (so that no convention about which piece a breakpoint
+/// belongs to matters), and the expansion moved to each interval's start ([`PieceAnchor`]). On
+/// paths of degree ≤ 3, between ordinary gridpoints one cubic covers both ends: the gridpoint
+/// values give σ, σ′, σ″ and (σ″(s_{i+1}) − σ″(s_i))/Δ gives σ‴; at a breakpoint the path is
+/// evaluated at the interval's midpoint and the expansion moved to the start.
 #[derive(Default)]
 pub(super) struct Pieces {
     /// Per interval: whether the path is a polynomial of degree ≤ 5 on it.
@@ -66,11 +77,18 @@ pub(super) struct Pieces {
     /// gridpoint's rows may belong to the neighbouring piece).
     at_break: Vec<bool>,
     data: Vec<f64>,
+    /// Scratch: Taylor data at the midpoint of one path piece.
+    anchor: PieceAnchor,
     dim: usize,
     built: bool,
 }
 
 impl Pieces {
+    /// Bytes held (roughly).
+    pub(super) fn bytes(&self) -> usize {
+        8 * self.data.capacity() + self.exact.capacity() + self.at_break.capacity()
+    }
+
     fn build<P: Path>(&mut self, path: &P, grid: &[f64], need_q: bool, at_points: &[f64]) {
         let n = grid.len() - 1;
         let dim = path.dim();
@@ -90,6 +108,10 @@ impl Pieces {
         // only on quintic paths: zeros then).
         self.data.clear();
         self.data.resize(n * 6 * dim, 0.0);
+        // Quintic paths: the Taylor data of the path piece that holds the current interval, at
+        // the piece's midpoint (evaluated once per piece, moved to each interval's start).
+        let mut anchor = std::mem::take(&mut self.anchor);
+        anchor.reset(dim);
         let mut b = 0;
         for i in 0..n {
             let (s0, s1) = (grid[i], grid[i + 1]);
@@ -109,7 +131,17 @@ impl Pieces {
             }
             let d = &mut self.data[i * 6 * dim..(i + 1) * 6 * dim];
             if self.quintic {
-                if !quintic_taylor(path, s0, s1, need_q, d) {
+                let ok = if b >= 1 && b < breaks.len() {
+                    anchor
+                        .piece(path, &breaks, b, need_q)
+                        .is_some_and(|(sm, a)| {
+                            shift_taylor(a, s0 - sm, d);
+                            d.iter().all(|v| v.is_finite())
+                        })
+                } else {
+                    quintic_taylor(path, s0, s1, need_q, d)
+                };
+                if !ok {
                     self.exact[i] = false;
                 }
                 continue;
@@ -152,6 +184,7 @@ impl Pieces {
                 self.exact[i] = false;
             }
         }
+        self.anchor = anchor;
     }
 
     fn piece(&self, grid: &[f64], i: usize) -> Option<CubicPiece<'_>> {
@@ -182,6 +215,104 @@ impl Pieces {
     }
 }
 
+/// The Taylor data σ, σ′, …, σ⁽⁵⁾ (`6·dim` numbers) of one piece of a path that is a
+/// polynomial of degree ≤ 5 between breakpoints, at the piece's midpoint: evaluated once per
+/// piece and moved by [`shift_taylor`] to every point of the piece that needs it, instead of
+/// evaluating the path again there.
+#[derive(Default)]
+pub(super) struct PieceAnchor {
+    data: Vec<f64>,
+    /// The piece's index (its end is `breaks[b]`), its midpoint, and whether the data are
+    /// finite.
+    of: Option<(usize, f64, bool)>,
+}
+
+impl PieceAnchor {
+    /// Forgets the piece; sized for `dim` joints.
+    pub(super) fn reset(&mut self, dim: usize) {
+        self.data.clear();
+        self.data.resize(6 * dim, 0.0);
+        self.of = None;
+    }
+
+    /// The midpoint and Taylor data there of the piece `[breaks[b − 1], breaks[b]]` (`b ≥ 1`),
+    /// or `None` when they are not finite.
+    pub(super) fn piece<P: Path>(
+        &mut self,
+        path: &P,
+        breaks: &[f64],
+        b: usize,
+        need_q: bool,
+    ) -> Option<(f64, &[f64])> {
+        let (sm, ok) = match self.of {
+            Some((key, sm, ok)) if key == b => (sm, ok),
+            _ => {
+                let sm = 0.5 * (breaks[b - 1] + breaks[b]);
+                let ok = quintic_taylor(path, sm, sm, need_q, &mut self.data);
+                self.of = Some((b, sm, ok));
+                (sm, ok)
+            }
+        };
+        ok.then_some((sm, &self.data[..]))
+    }
+
+    /// σ (when `need_q`), σ′ and σ″ at `s`, strictly inside the piece ending at `breaks[b]`,
+    /// from the piece's Taylor data. Returns false (nothing written) when they are not finite.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn eval<P: Path>(
+        &mut self,
+        path: &P,
+        breaks: &[f64],
+        b: usize,
+        s: f64,
+        need_q: bool,
+        out: [&mut [f64]; 3],
+    ) -> bool {
+        let Some((sm, a)) = self.piece(path, breaks, b, need_q) else {
+            return false;
+        };
+        let dim = a.len() / 6;
+        let t = s - sm;
+        let [q, dq, ddq] = out;
+        for j in 0..dim {
+            let v: [f64; 6] = std::array::from_fn(|k| a[k * dim + j]);
+            let m = shift_one(v, t);
+            if need_q {
+                q[j] = m[0];
+            }
+            dq[j] = m[1];
+            ddq[j] = m[2];
+        }
+        true
+    }
+}
+
+/// Taylor data σ, σ′, …, σ⁽⁵⁾ of a polynomial of degree ≤ 5 (`src`, `6·dim` numbers, block k
+/// holding the k-th derivative of every joint) moved by `t` along the parameter into `dst`:
+/// each derivative by its Taylor series, exact up to rounding.
+fn shift_taylor(src: &[f64], t: f64, dst: &mut [f64]) {
+    let dim = src.len() / 6;
+    for j in 0..dim {
+        let moved = shift_one(std::array::from_fn(|k| src[k * dim + j]), t);
+        for (k, m) in moved.into_iter().enumerate() {
+            dst[k * dim + j] = m;
+        }
+    }
+}
+
+/// One joint's derivatives `v` (orders 0..5) of a quintic moved by `t`.
+#[inline]
+fn shift_one(v: [f64; 6], t: f64) -> [f64; 6] {
+    std::array::from_fn(|m| {
+        // Σ_{k ≥ m} v_k t^{k−m}/(k−m)!, by Horner from the top.
+        let mut acc = 0.0;
+        for k in (m..6).rev() {
+            acc = v[k] + acc * t / ((k - m + 1) as f64);
+        }
+        acc
+    })
+}
+
 /// The Taylor data σ, σ′, …, σ⁽⁵⁾ at `s0` (into `d`, `6·dim` numbers) of a path that is a
 /// polynomial of degree ≤ 5 on [s0, s1]: evaluated at the midpoint (so that no convention
 /// about which piece a breakpoint belongs to matters) and moved to s0. σ is written only when
@@ -197,24 +328,21 @@ fn quintic_taylor<P: Path>(path: &P, s0: f64, s1: f64, need_q: bool, d: &mut [f6
             path.eval(sm, 0, q);
         }
         path.eval_derivatives(sm, d1, d2);
+        // Derivatives above the path's degree are zero (not asked of the path).
+        let degree = path.piecewise_degree().unwrap_or(5);
         for k in 3..6 {
-            path.eval(sm, k, &mut rest[(k - 3) * dim..(k - 2) * dim]);
+            let out = &mut rest[(k - 3) * dim..(k - 2) * dim];
+            if k <= degree {
+                path.eval(sm, k, out);
+            } else {
+                out.iter_mut().for_each(|v| *v = 0.0);
+            }
         }
     }
-    // From the midpoint to s0: t = −h/2, each derivative by its Taylor series (exact for a
-    // quintic).
+    // From the midpoint to s0: t = −h/2 (exact for a quintic).
     let t = s0 - sm;
     for j in 0..dim {
-        let v: [f64; 6] = std::array::from_fn(|k| d[k * dim + j]);
-        let mut moved = [0.0; 6];
-        for (m, out) in moved.iter_mut().enumerate() {
-            // Σ_{k ≥ m} v_k t^{k−m}/(k−m)!, by Horner from the top.
-            let mut acc = 0.0;
-            for k in (m..6).rev() {
-                acc = v[k] + acc * t / ((k - m + 1) as f64);
-            }
-            *out = acc;
-        }
+        let moved = shift_one(std::array::from_fn(|k| d[k * dim + j]), t);
         for (k, m) in moved.into_iter().enumerate() {
             d[k * dim + j] = m;
         }
@@ -305,56 +433,21 @@ impl Workspace {
         self.clean.start_round();
         let pieces = std::mem::take(&mut self.pieces);
         for i in 0..n {
-            if self.clean.unchanged([grid[i], grid[i + 1], x[i], x[i + 1]]) {
+            let step = [grid[i], grid[i + 1], x[i], x[i + 1]];
+            if self.clean.unchanged(step) {
                 continue;
             }
-            let delta = grid[i + 1] - grid[i];
-            let u = (x[i + 1] - x[i]) / (2.0 * delta);
-            let mut sampled = false;
-            let mut failed = false;
-            self.sample.clear();
-            let proved_here = disc == Discretization::Interpolation && !pieces.at_break[i];
-            for (k, c) in cons.iter().enumerate() {
-                let piece = pieces.piece_for(grid, i, &**c);
-                if proved_here && piece.is_some() && self.proved.get(k) == Some(&true) {
-                    self.sample.push(false);
-                    continue;
-                }
-                match piece.and_then(|p| c.excess_on_cubic(&p, u, x[i])) {
-                    Some((e, s)) => {
-                        self.sample.push(false);
-                        if e > EXACT_TOL {
-                            self.add_rows_at(&**c, piece.as_ref(), path, grid, i, s, u, x[i]);
-                            failed = true;
-                        }
+            match self.check_interval(path, cons, &pieces, grid, x, i, disc) {
+                Interval::Split(parts) => {
+                    if split.is_empty() {
+                        split.resize(n, 1);
                     }
-                    None => {
-                        self.sample.push(true);
-                        sampled = true;
-                    }
+                    split[i] = parts;
                 }
-            }
-            let worst = if sampled {
-                self.sampled_excess(path, cons, grid, i, u, x[i], need_q)
-            } else {
-                0.0
-            };
-            if worst > REFINE_TOL {
-                // The excess of a smooth constraint shrinks with the square of the interval
-                // length: cut into enough parts to bring it a few times below the tolerance.
-                let parts = (worst / (0.5 * REFINE_TOL)).sqrt().ceil();
-                if split.is_empty() {
-                    split.resize(n, 1);
+                Interval::Tightened => {
+                    tightened = Some(tightened.map_or((i, i), |(lo, _)| (lo, i)));
                 }
-                split[i] = if parts.is_finite() {
-                    (parts as usize).clamp(2, 64)
-                } else {
-                    64
-                };
-            } else if failed {
-                tightened = Some(tightened.map_or((i, i), |(lo, _)| (lo, i)));
-            } else {
-                self.clean.mark([grid[i], grid[i + 1], x[i], x[i + 1]]);
+                Interval::Clean => self.clean.mark(step),
             }
         }
         self.pieces = pieces;
@@ -368,6 +461,67 @@ impl Workspace {
         match tightened {
             Some((lo, hi)) => Check::Tightened(lo, hi),
             None => Check::Clean,
+        }
+    }
+
+    /// Checks interval i against every constraint: exactly where a piece bound exists (adding
+    /// the rows at the worst point when it is exceeded), at sample points otherwise.
+    #[allow(clippy::too_many_arguments)]
+    fn check_interval<P: Path>(
+        &mut self,
+        path: &P,
+        cons: &[Box<dyn Constraint + '_>],
+        pieces: &Pieces,
+        grid: &[f64],
+        x: &[f64],
+        i: usize,
+        disc: Discretization,
+    ) -> Interval {
+        let delta = grid[i + 1] - grid[i];
+        let u = (x[i + 1] - x[i]) / (2.0 * delta);
+        let mut sampled = false;
+        let mut failed = false;
+        self.sample.clear();
+        let proved_here = disc == Discretization::Interpolation && !pieces.at_break[i];
+        for (k, c) in cons.iter().enumerate() {
+            let piece = pieces.piece_for(grid, i, &**c);
+            if proved_here && piece.is_some() && self.proved.get(k) == Some(&true) {
+                self.sample.push(false);
+                continue;
+            }
+            match piece.and_then(|p| c.excess_on_cubic(&p, u, x[i])) {
+                Some((e, s)) => {
+                    self.sample.push(false);
+                    if e > EXACT_TOL {
+                        self.add_rows_at(&**c, piece.as_ref(), path, grid, i, s, u, x[i]);
+                        failed = true;
+                    }
+                }
+                None => {
+                    self.sample.push(true);
+                    sampled = true;
+                }
+            }
+        }
+        let need_q = cons.iter().any(|c| c.uses_position());
+        let worst = if sampled {
+            self.sampled_excess(path, cons, grid, i, u, x[i], need_q)
+        } else {
+            0.0
+        };
+        if worst > REFINE_TOL {
+            // The excess of a smooth constraint shrinks with the square of the interval
+            // length: cut into enough parts to bring it a few times below the tolerance.
+            let parts = (worst / (0.5 * REFINE_TOL)).sqrt().ceil();
+            Interval::Split(if parts.is_finite() {
+                (parts as usize).clamp(2, 64)
+            } else {
+                64
+            })
+        } else if failed {
+            Interval::Tightened
+        } else {
+            Interval::Clean
         }
     }
 

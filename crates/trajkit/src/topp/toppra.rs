@@ -3,7 +3,10 @@
 //! With state x = ṡ² and control u = s̈, the path velocity evolves between gridpoints as
 //! x_{i+1} = x_i + 2Δ_i·u_i (constant s̈ on each interval). Each constraint gives half-planes in
 //! (u, x) at every gridpoint ([`crate::topp::Constraint`]). The solver
-//! 1. evaluates the path and all constraints at every gridpoint;
+//! 1. evaluates the path and all constraints at every gridpoint (on paths that are
+//!    polynomials of degree ≤ 5 between breakpoints, the path once per piece: σ, σ′, σ″ at the
+//!    gridpoints inside a piece come from its Taylor expansion at the piece's midpoint, exact
+//!    up to rounding);
 //! 2. **backward pass**: from the end set K_N = {ṡ_end²}, computes the controllable sets
 //!    K_i = [min, max] of the x from which some admissible u reaches K_{i+1} — two exact
 //!    two-variable linear programs per stage (`topp/lp.rs`);
@@ -61,6 +64,9 @@
 //!   below the continuous optimum T*, and it converges to it at about first order in the
 //!   spacing; the default grid ([`Gridpoints::Auto`], 1e-4) stops where successive grids agree
 //!   within 1e-4, tested against 5·10⁴ and 2·10⁵ uniform intervals (measured 2–5e-5 above).
+//!
+//! Repeated solves on one thread reuse the buffers of the previous one (up to 64 MB), so a
+//! solve neither grows them step by step nor asks the system for fresh pages.
 //!
 //! Files: this one holds the options, the problem builder and the passes; `toppra/stage.rs`
 //! the stage's half-planes, the greedy step and the record of checked steps; `toppra/explain.rs`
@@ -268,9 +274,10 @@ impl<'c, P: Path> Toppra<'c, P> {
             return self.solve_auto(tolerance);
         }
         let mut grid = o.gridpoints.points(&self.path)?;
-        let mut ws = Workspace::default();
-        let x = self.solve_on(&mut ws, &mut grid)?;
-        profile_from(&grid, &x)
+        let mut ws = Workspace::take_spare();
+        let x = self.solve_on(&mut ws, &mut grid);
+        ws.keep_spare();
+        profile_from(&grid, &x?)
     }
 
     /// Solves on `grid` (changed where the check between gridpoints cuts intervals); returns
@@ -317,18 +324,25 @@ impl<'c, P: Path> Toppra<'c, P> {
     /// (r − 1)·`tolerance`·T: with an error C·h^p, p ≥ 1, that bounds the finer grid's error by
     /// `tolerance` (see [`super::grid`]).
     fn solve_auto(&self, tolerance: f64) -> Result<PhaseProfile> {
-        use super::grid::{per_piece, piece_breaks, AUTO_START, MAX_AUTO_INTERVALS};
         crate::error::positive(|| "gridpoint tolerance".into(), tolerance)?;
+        let mut ws = Workspace::take_spare();
+        let result = self.auto_loop(&mut ws, tolerance);
+        ws.keep_spare();
+        result
+    }
+
+    /// The grid sequence of [`Toppra::solve_auto`] on the workspace `ws`.
+    fn auto_loop(&self, ws: &mut Workspace, tolerance: f64) -> Result<PhaseProfile> {
+        use super::grid::{per_piece, piece_breaks, AUTO_START, MAX_AUTO_INTERVALS};
         let breaks = piece_breaks(&self.path);
         let pieces = breaks.len() - 1;
         let mut m = AUTO_START;
-        let mut ws = Workspace::default();
         let mut previous: Option<(usize, f64)> = None;
         loop {
             let next = if m == AUTO_START { 4 * m } else { 2 * m };
             let last = next.saturating_mul(pieces) > MAX_AUTO_INTERVALS;
             let mut grid = per_piece(&breaks, m);
-            let x = match self.solve_on(&mut ws, &mut grid) {
+            let x = match self.solve_on(ws, &mut grid) {
                 Ok(x) => x,
                 // A coarse grid can miss a narrow feasible passage: try finer ones first.
                 Err(Error::Infeasible(_)) if m < 8 * AUTO_START && !last => {
@@ -396,6 +410,8 @@ pub(super) struct Workspace {
     pub(super) mid_add: Vec<(usize, [f64; 3])>,
     /// The path's Taylor data per interval, for exact checks (see the `between` module).
     pub(super) pieces: super::between::Pieces,
+    /// Taylor data of one path piece, for the values at gridpoints.
+    anchor: super::between::PieceAnchor,
     /// Per constraint, during a check: whether it is checked at sample points.
     pub(super) sample: Vec<bool>,
     /// Per constraint: whether its sufficient rows were prepared on the exact pieces.
@@ -405,6 +421,38 @@ pub(super) struct Workspace {
     pub(super) ddq: Vec<f64>,
     /// σ, σ′, σ″ at every gridpoint (`3·dim` numbers each; σ zero when no constraint reads it).
     pub(super) at_points: Vec<f64>,
+}
+
+/// Largest workspace (bytes, roughly) kept for the next solve on the same thread.
+const SPARE_BYTES: usize = 64 << 20;
+
+thread_local! {
+    /// The workspace of the last solve on this thread: its buffers (several MB on fine grids)
+    /// serve the next solve, which then neither asks the system for fresh pages nor grows them
+    /// step by step.
+    static SPARE: std::cell::RefCell<Option<Workspace>> = const { std::cell::RefCell::new(None) };
+}
+
+impl Workspace {
+    /// The spare workspace of this thread (a new one if there is none).
+    fn take_spare() -> Workspace {
+        SPARE
+            .try_with(|s| s.borrow_mut().take())
+            .ok()
+            .flatten()
+            .unwrap_or_default()
+    }
+
+    /// Keeps this workspace for the next solve on this thread, unless it is very large.
+    fn keep_spare(self) {
+        let f = std::mem::size_of::<f64>();
+        let bytes = 3 * f * (self.rows.capacity() + self.mid.capacity())
+            + f * (self.off.capacity() + self.at_points.capacity())
+            + self.pieces.bytes();
+        if bytes <= SPARE_BYTES {
+            let _ = SPARE.try_with(|s| *s.borrow_mut() = Some(self));
+        }
+    }
 }
 
 /// Whether two controllable-set bounds are the same up to rounding.
@@ -478,11 +526,29 @@ impl Workspace {
         self.q.iter_mut().for_each(|v| *v = 0.0);
         self.at_points.clear();
         self.at_points.reserve(3 * path.dim() * grid.len());
+        // On paths of degree ≤ 5 between breakpoints, points inside a piece take σ, σ′, σ″
+        // from the piece's Taylor data (one path evaluation per piece).
+        let polynomial = path.piecewise_degree().is_some_and(|d| d <= 5);
+        let breaks = if polynomial {
+            path.breakpoints()
+        } else {
+            Vec::new()
+        };
+        let mut anchor = std::mem::take(&mut self.anchor);
+        anchor.reset(path.dim());
+        let mut b = 0;
         for &s in grid {
-            if need_q {
-                path.eval(s, 0, &mut self.q);
+            while b < breaks.len() && breaks[b] <= s {
+                b += 1;
             }
-            path.eval_derivatives(s, &mut self.dq, &mut self.ddq);
+            let inside = b >= 1 && b < breaks.len() && breaks[b - 1] < s;
+            let out = [&mut self.q[..], &mut self.dq[..], &mut self.ddq[..]];
+            if !(inside && anchor.eval(path, &breaks, b, s, need_q, out)) {
+                if need_q {
+                    path.eval(s, 0, &mut self.q);
+                }
+                path.eval_derivatives(s, &mut self.dq, &mut self.ddq);
+            }
             check_path_values(s, &self.q, &self.dq, &self.ddq)?;
             self.at_points.extend_from_slice(&self.q);
             self.at_points.extend_from_slice(&self.dq);
@@ -524,6 +590,7 @@ impl Workspace {
             self.xhi.push(hi.max(lo));
             self.xhi_by.push(by);
         }
+        self.anchor = anchor;
         Ok(())
     }
 
