@@ -15,13 +15,12 @@
 //!
 //! Every profile is verified by integration exactly like step 1, plus |duration − T| ≤ 1e−12·T.
 
+use super::bracket::{first_at_root, Grid};
 use super::families::two_changes;
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
 use super::step1::{velocity_cap, velocity_window, verify, RestShape};
 use super::velocity_change::{fastest, kink, push_change, VelChange};
-use crate::roots::for_each_piece;
-use crate::roots::{find_roots, find_roots_coarse, MAX_ROOTS};
 
 /// A verified profile for `dof` (whose start state is safe) lasting `t` seconds, if one of the
 /// step-2 families has one.
@@ -284,10 +283,9 @@ fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile>
         }
         Some(pr)
     };
-    let mut f = |vc: f64| parts(vc).map(|(c1, c2, tau)| c1.dist + c2.dist + vc * tau.max(0.0) - d);
-    let mut roots = [0.0; MAX_ROOTS];
+    let f = |vc: f64| parts(vc).map(|(c1, c2, tau)| c1.dist + c2.dist + vc * tau.max(0.0) - d);
     let guess = if t > 0.0 { d / t } else { 0.0 };
-    let mut cuts = [
+    let cuts = [
         lo,
         hi,
         0.0,
@@ -295,22 +293,7 @@ fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile>
         kink(order, dof.v0, dof.a0, dof.jmax, 1.0),
         kink(order, dof.vf, dof.af, dof.jmax, -1.0),
     ];
-    let mut best: Option<Profile> = None;
-    for_each_piece(&mut cuts, |a, b| {
-        if best.is_some() {
-            return;
-        }
-        let n = find_roots_coarse(&mut f, a, b, &mut roots);
-        for &vc in &roots[..n] {
-            if let Some(pr) = build(vc) {
-                if ok(&pr) {
-                    best = Some(pr);
-                    return;
-                }
-            }
-        }
-    });
-    best
+    first_at_root(cuts, Grid::Coarse, f, |vc| build(vc).filter(|pr| ok(pr)))
 }
 
 /// Hold families (third order): a₀ ↗ α₁ ↘ α₂ ↗ a_f with a zero-jerk hold at the peak α₁
@@ -393,28 +376,12 @@ fn hold(
 /// The first profile, built by `build` at a root of `f` (bracketed on the pieces between
 /// `cuts`, in increasing order), that `ok` accepts.
 fn first_root<const N: usize>(
-    mut cuts: [f64; N],
-    mut f: impl FnMut(f64) -> Option<f64>,
+    cuts: [f64; N],
+    f: impl FnMut(f64) -> Option<f64>,
     build: &impl Fn(f64) -> Option<Profile>,
     ok: &impl Fn(&Profile) -> bool,
 ) -> Option<Profile> {
-    let mut roots = [0.0; MAX_ROOTS];
-    let mut best = None;
-    for_each_piece(&mut cuts, |lo, hi| {
-        if best.is_some() {
-            return;
-        }
-        let n = find_roots(&mut f, lo, hi, &mut roots);
-        for &x in &roots[..n] {
-            if let Some(pr) = build(x) {
-                if ok(&pr) {
-                    best = Some(pr);
-                    return;
-                }
-            }
-        }
-    });
-    best
+    first_at_root(cuts, Grid::Fine, f, |x| build(x).filter(|pr| ok(pr)))
 }
 
 /// Four ramps without a hold (third order): a₀ ↘ α₁ ↗ α₂ ↘ α₃ ↗ a_f under full jerk (the
