@@ -3,8 +3,9 @@
 //! Class, attribute, enum and method names, argument orders and return conventions are those
 //! of the `ruckig` wheel (lists out, `at_time` returning a tuple of lists, `Bound` extrema,
 //! `RuckigError` raised on bad input), so a Ruckig script runs after changing its import.
-//! `InputParameter` holds a `trajkit::otg::DynInputParameter` and hands it to
-//! `trajkit::otg::calculate_dyn` as it is (no conversion per call).
+//! `InputParameter` holds a `trajkit::otg::DynInputParameter` and hands it to the library as
+//! it is (no conversion per call); `Ruckig` is the library's `trajkit::otg::DynOtg`, whose
+//! storage is sized once, so neither `calculate` nor `update` allocates in the solver.
 //!
 //! Errors are raised as `RuckigError` (= `trajkit.TrajkitError`) with the library's message
 //! and three attributes: `result` (the Ruckig `Result` member of the failure:
@@ -18,22 +19,20 @@
 //! fields. A budget that runs out before any valid duration is known raises with `kind ==
 //! 'interrupted'` (and `update` sets `was_calculation_interrupted` first); one that runs out
 //! after gives the shortest valid trajectory found, and `update` reports
-//! `was_calculation_interrupted = True` whenever the calculation used its whole budget.
+//! `was_calculation_interrupted = True` when the library says the budget cut its search short
+//! (`DynOutputParameter::was_calculation_interrupted`, `Trajectory.was_interrupted`).
 //!
-//! `Ruckig.update` keeps Ruckig's (and `trajkit::otg::Otg::update`'s) contract for a run-time
-//! number of DOFs: it calculates when the input differs from the one it last calculated for,
-//! then advances one control period and writes the state there; the state it returns is
-//! written into its copy of the input, so feeding it back (`pass_to_input`) does not cause a
-//! new calculation.
-
-use std::time::Instant;
+//! `Ruckig.update` is `trajkit::otg::DynOtg::update` (Ruckig's contract): it calculates when
+//! the input differs from the one it last calculated for, then advances one control period and
+//! writes the state there; the state it returns is written into its copy of the input, so
+//! feeding it back (`pass_to_input`) does not cause a new calculation.
 
 use pyo3::exceptions::PyIndexError;
 use pyo3::prelude::*;
 use pyo3::types::PyTuple;
 use trajkit::otg::{
-    calculate_dyn, ControlInterface as CI, DurationDiscretization as DD, DynInputParameter,
-    DynTrajectory, OtgError, Synchronization as Sync_,
+    calculate_dyn, ControlInterface as CI, DurationDiscretization as DD, DynInputParameter, DynOtg,
+    DynOutputParameter, DynTrajectory, OtgError, OtgResult, Synchronization as Sync_,
 };
 
 use crate::convert::{bad, floats, Floats};
@@ -720,6 +719,14 @@ impl PyOtgTrajectory {
         self.traj.as_ref().map_or(0.0, |t| t.duration())
     }
 
+    /// True when the calculation budget (`interrupt_calculation_duration`) cut the search
+    /// for the common duration short: the trajectory is valid but may be longer than the
+    /// shortest (False before a calculation and without a budget).
+    #[getter]
+    fn was_interrupted(&self) -> bool {
+        self.traj.as_ref().is_some_and(|t| t.was_interrupted())
+    }
+
     /// Number of degrees of freedom.
     #[getter]
     fn degrees_of_freedom(&self) -> usize {
@@ -863,34 +870,22 @@ impl PyOtgTrajectory {
     }
 }
 
-/// Ruckig's `OutputParameter(dofs)`: the state after an `update`.
-#[pyclass(module = "trajkit.otg", name = "OutputParameter", get_all)]
+/// Ruckig's `OutputParameter(dofs)`: the state after an `update` (the library's
+/// `DynOutputParameter`, which `trajkit::otg::DynOtg::update` writes in place).
+#[pyclass(module = "trajkit.otg", name = "OutputParameter")]
 pub struct PyOutput {
-    /// Position at the new time.
-    new_position: Vec<f64>,
-    /// Velocity at the new time.
-    new_velocity: Vec<f64>,
-    /// Acceleration at the new time.
-    new_acceleration: Vec<f64>,
-    /// Jerk at the new time.
-    new_jerk: Vec<f64>,
-    /// Time since the trajectory was calculated.
-    time: f64,
-    /// Whether this update calculated a new trajectory.
-    new_calculation: bool,
-    /// True when the calculation used its whole `interrupt_calculation_duration` budget: the
-    /// trajectory is then the shortest valid one found within it (or, when none was found,
-    /// `update` raised `RuckigError` with `kind == 'interrupted'`). False without a budget.
-    was_calculation_interrupted: bool,
-    /// Wall-clock duration of the calculation in microseconds.
-    calculation_duration: f64,
+    inner: DynOutputParameter,
     /// Number of degrees of freedom.
+    #[pyo3(get)]
     degrees_of_freedom: usize,
     /// Section index (always 0: no intermediate waypoints).
+    #[pyo3(get)]
     new_section: usize,
     /// Always False (no intermediate waypoints).
+    #[pyo3(get)]
     did_section_change: bool,
     /// The trajectory being followed.
+    #[pyo3(get)]
     trajectory: Py<PyOtgTrajectory>,
 }
 
@@ -899,14 +894,7 @@ impl PyOutput {
     #[new]
     fn new(py: Python<'_>, dofs: usize) -> PyResult<Self> {
         Ok(PyOutput {
-            new_position: vec![0.0; dofs],
-            new_velocity: vec![0.0; dofs],
-            new_acceleration: vec![0.0; dofs],
-            new_jerk: vec![0.0; dofs],
-            time: 0.0,
-            new_calculation: false,
-            was_calculation_interrupted: false,
-            calculation_duration: 0.0,
+            inner: DynOutputParameter::new(dofs),
             degrees_of_freedom: dofs,
             new_section: 0,
             did_section_change: false,
@@ -914,42 +902,87 @@ impl PyOutput {
         })
     }
 
+    /// Position at the new time.
+    #[getter]
+    fn new_position(&self) -> Vec<f64> {
+        self.inner.new_position.clone()
+    }
+
+    /// Velocity at the new time.
+    #[getter]
+    fn new_velocity(&self) -> Vec<f64> {
+        self.inner.new_velocity.clone()
+    }
+
+    /// Acceleration at the new time.
+    #[getter]
+    fn new_acceleration(&self) -> Vec<f64> {
+        self.inner.new_acceleration.clone()
+    }
+
+    /// Jerk at the new time.
+    #[getter]
+    fn new_jerk(&self) -> Vec<f64> {
+        self.inner.new_jerk.clone()
+    }
+
+    /// Time since the trajectory was calculated.
+    #[getter]
+    fn time(&self) -> f64 {
+        self.inner.time
+    }
+
+    /// Whether this update calculated a new trajectory.
+    #[getter]
+    fn new_calculation(&self) -> bool {
+        self.inner.new_calculation
+    }
+
+    /// True when the calculation budget (`interrupt_calculation_duration`) cut this update's
+    /// calculation short, as the library reports it: the trajectory is then the shortest valid
+    /// one found within the budget (or, when none was found, `update` raised `RuckigError` with
+    /// `kind == 'interrupted'`). False without a budget and when nothing was calculated.
+    #[getter]
+    fn was_calculation_interrupted(&self) -> bool {
+        self.inner.was_calculation_interrupted
+    }
+
+    /// Wall-clock duration of the calculation in microseconds.
+    #[getter]
+    fn calculation_duration(&self) -> f64 {
+        self.inner.calculation_duration_us
+    }
+
     /// Copies the new state into `input`'s current state (the usual control loop).
     fn pass_to_input(&self, input: &mut PyInput) {
-        input.inner.current_position.clone_from(&self.new_position);
-        input.inner.current_velocity.clone_from(&self.new_velocity);
-        input
-            .inner
-            .current_acceleration
-            .clone_from(&self.new_acceleration);
+        self.inner.pass_to_input(&mut input.inner);
     }
 
     fn __repr__(&self) -> String {
+        let o = &self.inner;
         format!(
             "out.new_position = {:?}\nout.new_velocity = {:?}\nout.new_acceleration = {:?}\nout.new_jerk = {:?}\nout.time = {}\nout.calculation_duration = {}\n",
-            self.new_position,
-            self.new_velocity,
-            self.new_acceleration,
-            self.new_jerk,
-            self.time,
-            self.calculation_duration
+            o.new_position,
+            o.new_velocity,
+            o.new_acceleration,
+            o.new_jerk,
+            o.time,
+            o.calculation_duration_us
         )
     }
 }
 
-/// Ruckig's `Ruckig(dofs, delta_time)`: the online trajectory generator.
+/// Ruckig's `Ruckig(dofs, delta_time)`: the online trajectory generator (the library's
+/// `DynOtg`, whose storage is sized once: `calculate` and `update` reuse it).
 #[pyclass(module = "trajkit.otg", name = "Ruckig")]
 pub struct PyRuckig {
     /// Number of degrees of freedom.
     #[pyo3(get)]
     degrees_of_freedom: usize,
-    /// Control period in seconds.
-    #[pyo3(get, set)]
-    delta_time: f64,
-    /// The input of the last calculation in `update` (with the state it advanced to).
-    last: Option<DynInputParameter>,
-    traj: Option<DynTrajectory>,
-    time: f64,
+    otg: DynOtg,
+    /// Storage `calculate` writes into before swapping it with the target trajectory's (so a
+    /// failed calculation leaves that trajectory as it was).
+    spare_traj: Option<DynTrajectory>,
 }
 
 impl PyRuckig {
@@ -961,6 +994,18 @@ impl PyRuckig {
             )));
         }
         Ok(())
+    }
+}
+
+/// Records in `slot` the input and control period a trajectory was calculated from (for
+/// pickling), reusing its storage.
+fn set_source(slot: &mut Option<(DynInputParameter, f64)>, input: &DynInputParameter, dt: f64) {
+    match slot {
+        Some((inp, d)) => {
+            inp.clone_from(input);
+            *d = dt;
+        }
+        None => *slot = Some((input.clone(), dt)),
     }
 }
 
@@ -978,30 +1023,49 @@ impl PyRuckig {
         }
         Ok(PyRuckig {
             degrees_of_freedom: dofs,
-            delta_time,
-            last: None,
-            traj: None,
-            time: 0.0,
+            otg: DynOtg::new(dofs, delta_time),
+            spare_traj: None,
         })
     }
 
+    /// Control period in seconds.
+    #[getter]
+    fn delta_time(&self) -> f64 {
+        self.otg.delta_time
+    }
+
+    #[setter]
+    fn set_delta_time(&mut self, dt: f64) {
+        self.otg.delta_time = dt;
+    }
+
     /// Calculates the trajectory for `input` into `trajectory`; returns `Result.Working`.
-    /// Raises `RuckigError` (= `trajkit.TrajkitError`) with trajkit's message on failure.
+    /// Raises `RuckigError` (= `trajkit.TrajkitError`) with trajkit's message on failure
+    /// (then `trajectory` is left as it was).
     fn calculate(
-        &self,
+        &mut self,
         input: PyRef<'_, PyInput>,
         mut trajectory: PyRefMut<'_, PyOtgTrajectory>,
     ) -> PyResult<PyResult_> {
-        self.check_dofs(input.inner.dof(), "the input")?;
-        let t = calculate_dyn(&input.inner, self.delta_time).map_err(otg_err)?;
-        trajectory.dofs = t.dof();
-        trajectory.traj = Some(t);
-        trajectory.source = Some((input.inner.clone(), self.delta_time));
+        let n = input.inner.dof();
+        self.check_dofs(n, "the input")?;
+        let mut t = self
+            .spare_traj
+            .take()
+            .unwrap_or_else(|| DynTrajectory::new(n));
+        if let Err(e) = self.otg.calculate_into(&input.inner, &mut t) {
+            self.spare_traj = Some(t);
+            return Err(otg_err(e));
+        }
+        self.spare_traj = trajectory.traj.replace(t);
+        trajectory.dofs = n;
+        set_source(&mut trajectory.source, &input.inner, self.otg.delta_time);
         Ok(PyResult_::Working)
     }
 
-    /// One control cycle: calculate if `input` changed, advance by `delta_time`, write the new
-    /// state into `output`. Returns `Result.Working` or `Result.Finished`.
+    /// One control cycle (the library's `DynOtg::update`): calculate if `input` changed,
+    /// advance by `delta_time`, write the new state into `output`. Returns `Result.Working` or
+    /// `Result.Finished`.
     fn update(
         &mut self,
         py: Python<'_>,
@@ -1009,54 +1073,28 @@ impl PyRuckig {
         mut output: PyRefMut<'_, PyOutput>,
     ) -> PyResult<PyResult_> {
         self.check_dofs(input.inner.dof(), "the input")?;
-        output.new_calculation = false;
-        output.calculation_duration = 0.0;
-        output.was_calculation_interrupted = false;
-        if self.last.as_ref() != Some(&input.inner) || self.traj.is_none() {
-            let start = Instant::now();
-            let r = calculate_dyn(&input.inner, self.delta_time);
-            output.calculation_duration = start.elapsed().as_secs_f64() * 1e6;
-            // The library stops its search once the budget has elapsed; a calculation that
-            // lasted the whole budget is reported as interrupted.
-            output.was_calculation_interrupted = input
-                .inner
-                .options
-                .interrupt_calculation_duration
-                .is_some_and(|b| output.calculation_duration >= b);
-            match r {
-                Ok(t) => self.traj = Some(t),
-                Err(e) => {
-                    self.last = None;
-                    return Err(otg_err(e));
-                }
-            }
-            self.last = Some(input.inner.clone());
-            self.time = 0.0;
-            output.new_calculation = true;
-            let mut ot = output.trajectory.borrow_mut(py);
-            ot.traj.clone_from(&self.traj);
-            ot.source = Some((input.inner.clone(), self.delta_time));
-        }
-        self.time += self.delta_time;
-        let traj = self.traj.as_ref().expect("calculated above");
         let out = &mut *output;
-        traj.at_time_with_jerk(
-            self.time,
-            &mut out.new_position,
-            &mut out.new_velocity,
-            &mut out.new_acceleration,
-            &mut out.new_jerk,
-        );
-        out.time = self.time;
-        if let Some(last) = self.last.as_mut() {
-            last.current_position.clone_from(&out.new_position);
-            last.current_velocity.clone_from(&out.new_velocity);
-            last.current_acceleration.clone_from(&out.new_acceleration);
+        let r = match self.otg.update(&input.inner, &mut out.inner) {
+            Ok(r) => r,
+            Err(e) => {
+                // No valid trajectory within the budget: the budget cut the calculation.
+                out.inner.was_calculation_interrupted = matches!(e, OtgError::Interrupted { .. });
+                return Err(otg_err(e));
+            }
+        };
+        if out.inner.new_calculation {
+            let mut ot = out.trajectory.borrow_mut(py);
+            let src = self.otg.trajectory();
+            match ot.traj.as_mut() {
+                Some(t) => t.clone_from(src),
+                None => ot.traj = Some(src.clone()),
+            }
+            ot.dofs = src.dof();
+            set_source(&mut ot.source, &input.inner, self.otg.delta_time);
         }
-        Ok(if self.time >= traj.duration() {
-            PyResult_::Finished
-        } else {
-            PyResult_::Working
+        Ok(match r {
+            OtgResult::Finished => PyResult_::Finished,
+            _ => PyResult_::Working,
         })
     }
 
@@ -1075,7 +1113,7 @@ impl PyRuckig {
         input
             .inner
             .validate(
-                self.delta_time,
+                self.otg.delta_time,
                 check_current_state_within_limits,
                 check_target_state_within_limits,
             )
@@ -1085,9 +1123,7 @@ impl PyRuckig {
 
     /// Forgets the last input: the next `update` calculates anew.
     fn reset(&mut self) {
-        self.last = None;
-        self.traj = None;
-        self.time = 0.0;
+        self.otg.reset();
     }
 }
 

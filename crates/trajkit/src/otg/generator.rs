@@ -8,7 +8,7 @@
 
 use super::input::{DynInputParameter, InputParameter};
 use super::result::{OtgError, OtgResult};
-use super::sync::{calculate, Scratch, Spare};
+use super::sync::{calculate_status, Scratch, Spare};
 use super::trajectory::{DofTrajectory, DynTrajectory, FixedTrajectory, OtgTrajectory};
 use std::time::Instant;
 
@@ -27,6 +27,10 @@ pub struct OutputParameter<const DOF: usize> {
     pub time: f64,
     /// Whether this update calculated a new trajectory.
     pub new_calculation: bool,
+    /// Whether the calculation of this update was cut short by the calculation budget
+    /// (`interrupt_calculation_duration`): the trajectory is valid but may be longer than the
+    /// shortest (see [`OtgTrajectory::was_interrupted`]). False when nothing was calculated.
+    pub was_calculation_interrupted: bool,
     /// Wall-clock time of the calculation in microseconds (0 when none was needed).
     pub calculation_duration_us: f64,
     /// Duration of the current trajectory.
@@ -42,6 +46,7 @@ impl<const DOF: usize> Default for OutputParameter<DOF> {
             new_jerk: [0.0; DOF],
             time: 0.0,
             new_calculation: false,
+            was_calculation_interrupted: false,
             calculation_duration_us: 0.0,
             duration: 0.0,
         }
@@ -145,13 +150,15 @@ impl<const DOF: usize> Otg<DOF> {
     ) -> Result<(), OtgError> {
         let mut scratch = [Scratch::default(); DOF];
         let mut spare: [Spare; DOF] = [None; DOF];
-        traj.duration = calculate(
+        let c = calculate_status(
             &input.view(),
             self.delta_time,
             &mut traj.dofs,
             &mut scratch,
             &mut spare,
         )?;
+        traj.duration = c.duration;
+        traj.interrupted = c.interrupted;
         Ok(())
     }
 
@@ -165,10 +172,11 @@ impl<const DOF: usize> Otg<DOF> {
         out: &mut OutputParameter<DOF>,
     ) -> Result<OtgResult, OtgError> {
         out.new_calculation = false;
+        out.was_calculation_interrupted = false;
         out.calculation_duration_us = 0.0;
         if self.last.as_ref() != Some(input) {
             let start = Instant::now();
-            let r = calculate(
+            let r = calculate_status(
                 &input.view(),
                 self.delta_time,
                 &mut self.traj.dofs,
@@ -177,7 +185,11 @@ impl<const DOF: usize> Otg<DOF> {
             );
             out.calculation_duration_us = start.elapsed().as_secs_f64() * 1e6;
             match r {
-                Ok(d) => self.traj.duration = d,
+                Ok(c) => {
+                    self.traj.duration = c.duration;
+                    self.traj.interrupted = c.interrupted;
+                    out.was_calculation_interrupted = c.interrupted;
+                }
                 Err(e) => {
                     self.last = None;
                     return Err(e);
@@ -222,12 +234,16 @@ pub fn calculate_dyn(
     let mut dofs = vec![DofTrajectory::default(); n];
     let mut scratch = vec![Scratch::default(); n];
     let mut spare = vec![None; n];
-    let d = calculate(
+    let c = calculate_status(
         &input.view(),
         delta_time,
         &mut dofs,
         &mut scratch,
         &mut spare,
     )?;
-    Ok(OtgTrajectory { dofs, duration: d })
+    Ok(OtgTrajectory {
+        dofs,
+        duration: c.duration,
+        interrupted: c.interrupted,
+    })
 }

@@ -194,7 +194,7 @@ impl<const DOF: usize> InputParameter<DOF> {
 
 /// The input with a run-time number of degrees of freedom; same fields as
 /// [`InputParameter`]. Vectors shorter or longer than `current_position` are invalid input.
-#[derive(Debug, Clone, PartialEq, Default)]
+#[derive(Debug, PartialEq, Default)]
 #[non_exhaustive]
 pub struct DynInputParameter {
     /// Current position; its length is the number of degrees of freedom.
@@ -231,6 +231,56 @@ pub struct DynInputParameter {
     pub per_dof_control_interface: Option<Vec<ControlInterface>>,
     /// Options.
     pub options: OtgOptions,
+}
+
+impl Clone for DynInputParameter {
+    fn clone(&self) -> Self {
+        DynInputParameter {
+            current_position: self.current_position.clone(),
+            current_velocity: self.current_velocity.clone(),
+            current_acceleration: self.current_acceleration.clone(),
+            target_position: self.target_position.clone(),
+            target_velocity: self.target_velocity.clone(),
+            target_acceleration: self.target_acceleration.clone(),
+            max_velocity: self.max_velocity.clone(),
+            max_acceleration: self.max_acceleration.clone(),
+            max_jerk: self.max_jerk.clone(),
+            min_velocity: self.min_velocity.clone(),
+            min_acceleration: self.min_acceleration.clone(),
+            max_position: self.max_position.clone(),
+            min_position: self.min_position.clone(),
+            enabled: self.enabled.clone(),
+            per_dof_synchronization: self.per_dof_synchronization.clone(),
+            per_dof_control_interface: self.per_dof_control_interface.clone(),
+            options: self.options,
+        }
+    }
+
+    /// Field by field, reusing the vectors' storage: no allocation when `self` already has
+    /// as many degrees of freedom (what [`super::DynOtg::update`] relies on).
+    fn clone_from(&mut self, source: &Self) {
+        self.current_position.clone_from(&source.current_position);
+        self.current_velocity.clone_from(&source.current_velocity);
+        self.current_acceleration
+            .clone_from(&source.current_acceleration);
+        self.target_position.clone_from(&source.target_position);
+        self.target_velocity.clone_from(&source.target_velocity);
+        self.target_acceleration
+            .clone_from(&source.target_acceleration);
+        self.max_velocity.clone_from(&source.max_velocity);
+        self.max_acceleration.clone_from(&source.max_acceleration);
+        self.max_jerk.clone_from(&source.max_jerk);
+        self.min_velocity.clone_from(&source.min_velocity);
+        self.min_acceleration.clone_from(&source.min_acceleration);
+        self.max_position.clone_from(&source.max_position);
+        self.min_position.clone_from(&source.min_position);
+        self.enabled.clone_from(&source.enabled);
+        self.per_dof_synchronization
+            .clone_from(&source.per_dof_synchronization);
+        self.per_dof_control_interface
+            .clone_from(&source.per_dof_control_interface);
+        self.options = source.options;
+    }
 }
 
 impl DynInputParameter {

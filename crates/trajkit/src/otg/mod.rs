@@ -3,7 +3,8 @@
 //!
 //! Data in, data out: an [`InputParameter`] (current state, target state, limits, options)
 //! goes through [`Otg::calculate`] (or [`Otg::calculate_into`], into a trajectory the caller
-//! reuses) or, once per control cycle, [`Otg::update`], and comes out
+//! reuses) or, once per control cycle, [`Otg::update`] ([`DynOtg`] is the same generator for a
+//! run-time number of degrees of freedom: storage sized once, then no allocation), and comes out
 //! as an [`OtgTrajectory`] or an [`OutputParameter`], with an [`OtgResult`] status (`Working`,
 //! `Finished`) or an [`OtgError`]. Nothing on that path allocates when the number of degrees
 //! of freedom is a compile-time constant, and no input makes it panic: non-finite numbers are
@@ -41,7 +42,9 @@
 //! cannot be reached inside is [`OtgError::PositionLimits`]. Method and what is optimal about
 //! it: `position.rs`. A calculation budget (`options.interrupt_calculation_duration`, µs)
 //! bounds the synchronization search: [`OtgError::Interrupted`] when no duration has worked
-//! yet, the shortest valid result otherwise (`sync.rs`). Intermediate waypoints and
+//! yet, the shortest valid result otherwise (`sync.rs`), marked by
+//! [`OtgTrajectory::was_interrupted`] (and `was_calculation_interrupted` of the update outputs)
+//! when the budget cut the search short. Intermediate waypoints and
 //! per-section limits are not implemented (the JSON reader refuses them by name).
 //!
 //! # Files (one per step)
@@ -51,9 +54,12 @@
 //! pre-profile · `zero.rs` zero limits · `step1/` time-optimal profile families (the
 //! collector, verification, the rest-to-rest closed form, the closed-form and fallback
 //! families) · `families.rs` + `families_gen.rs` the families' position polynomials ·
-//! `step2.rs` profiles of a given duration · `sync.rs` the common duration · `phase.rs`
+//! `step2.rs` profiles of a given duration · `bracket.rs` the bracketed solve of the families
+//! without a closed form (both steps) · `sync.rs` the common duration (`sync/bound.rs` its
+//! closed-form duration bounds) · `phase.rs`
 //! Ruckig's phase synchronization and the straight-line mode · `result.rs`, `trajectory.rs`,
-//! `generator.rs`, `check.rs` · `position.rs` position limits. Polynomial and scalar roots come from [`crate::roots`].
+//! `generator.rs`, `dyn_generator.rs` ([`DynOtg`]), `check.rs` · `position.rs` position
+//! limits. Polynomial and scalar roots come from [`crate::roots`].
 //!
 //! # Public API
 //! Everything a user needs is re-exported here; the files are private.
@@ -106,8 +112,10 @@
 //! ends, velocity continuity impossible). Every candidate `profile.rs` is accepted only after
 //! `verify` integrates it.
 
+mod bracket;
 mod brake;
 mod check;
+mod dyn_generator;
 mod families;
 mod families_gen;
 mod generator;
@@ -127,6 +135,7 @@ mod velocity_change;
 mod zero;
 
 pub use check::{check, SolutionCheck};
+pub use dyn_generator::{DynOtg, DynOutputParameter};
 pub use generator::{calculate_dyn, Otg, OutputParameter};
 pub use input::{
     ControlInterface, DurationDiscretization, DynInputParameter, InputParameter, OtgOptions,

@@ -15,13 +15,12 @@
 //!
 //! Every profile is verified by integration exactly like step 1, plus |duration − T| ≤ 1e−12·T.
 
+use super::bracket::{first_at_root, Grid};
 use super::families::two_changes;
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
 use super::step1::{velocity_cap, velocity_window, verify, RestShape};
 use super::velocity_change::{fastest, kink, push_change, VelChange};
-use crate::roots::for_each_piece;
-use crate::roots::{find_roots, find_roots_coarse, MAX_ROOTS};
 
 /// A verified profile for `dof` (whose start state is safe) lasting `t` seconds, if one of the
 /// step-2 families has one.
@@ -131,6 +130,63 @@ fn other_families(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<
     }
 }
 
+/// The root of p(s) = k·s³ − t·s² + D on `[0, hi]` (the peak velocity's square root of a
+/// synchronized rest-to-rest motion without acceleration plateaus), `None` when there is none.
+///
+/// With k, t, D > 0 and hi ≤ t/(2k) (the callers' window, t√j/4 with k = 2/√j), p falls
+/// strictly on `[0, hi]` (p′ = s·(3k·s − 2t) < 0 there): at most one root, bracketed by
+/// p(0) = D, positive, and p(hi) ≤ 0. Newton steps from the secant point, each kept inside
+/// the shrinking bracket (bisection otherwise), reach it to a few rounding units in a few
+/// iterations; [`crate::roots::roots_in`] (plain bisection, about 60 evaluations per root
+/// and per level of its derivative recursion) gives the same root and remains the path for
+/// anything outside that case (D = 0, a degenerate window, non-finite values).
+fn rest_cubic_root(k: f64, t: f64, d: f64, hi: f64) -> Option<f64> {
+    let p = |s: f64| (k * s - t) * s * s + d;
+    let regular = d > 0.0 && k > 0.0 && t > 0.0 && hi > 0.0 && hi.is_finite() && hi <= 0.5 * t / k;
+    if !regular {
+        let mut roots = [0.0; crate::roots::MAX_DEGREE];
+        let n = crate::roots::roots_in(&[d, 0.0, -t, k], 0.0, hi, &mut roots);
+        return (n > 0).then_some(roots[0]);
+    }
+    let p_hi = p(hi);
+    if p_hi > 0.0 {
+        return None;
+    }
+    if p_hi == 0.0 {
+        return Some(hi);
+    }
+    // Bracket [lo, up] with p(lo) > 0 > p(up).
+    let (mut lo, mut up) = (0.0f64, hi);
+    // Start from the linear interpolation of the ends (the secant through the bracket).
+    let mut s = hi * d / (d - p_hi);
+    for _ in 0..100 {
+        let ps = p(s);
+        if ps == 0.0 {
+            return Some(s);
+        }
+        if ps > 0.0 {
+            lo = s;
+        } else {
+            up = s;
+        }
+        let mut next = s - ps / (s * (3.0 * k * s - 2.0 * t));
+        if !(next > lo && next < up) {
+            next = 0.5 * (lo + up);
+            if next <= lo || next >= up {
+                // The bracket is two adjacent floating-point numbers.
+                return Some(next);
+            }
+        }
+        // A step of a few rounding units: Newton has converged (its next error is the
+        // square of this one).
+        if (next - s).abs() <= 2.0 * f64::EPSILON * s {
+            return Some(next);
+        }
+        s = next;
+    }
+    Some(s)
+}
+
 /// Closed-form cruise velocity for a rest-to-rest move with symmetric acceleration limits (the
 /// common case of synchronization): with t₁ the time of each velocity change and D the distance,
 /// v_c·(t − t₁(v_c)) = D. Without an acceleration plateau t₁ = 2√(v_c/j), a cubic in √v_c;
@@ -170,12 +226,10 @@ fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool, pr: &mut Pro
                 // (2/√j)·s³ − t·s² + D = 0 for s = √v_c on [0, min(t√j/4, a/√j)]; r = s/√j.
                 let sj = j.sqrt();
                 let hi = (t * sj / 4.0).min(a / sj);
-                let mut roots = [0.0; crate::roots::MAX_DEGREE];
-                let n = crate::roots::roots_in(&[d, 0.0, -t, 2.0 / sj], 0.0, hi, &mut roots);
-                if n == 0 {
+                let Some(s) = rest_cubic_root(2.0 / sj, t, d, hi) else {
                     return false;
-                }
-                (roots[0] * roots[0], roots[0] / sj, 0.0)
+                };
+                (s * s, s / sj, 0.0)
             };
             let tau = t - 2.0 * (2.0 * r + h);
             let shape = RestShape {
@@ -284,10 +338,9 @@ fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile>
         }
         Some(pr)
     };
-    let mut f = |vc: f64| parts(vc).map(|(c1, c2, tau)| c1.dist + c2.dist + vc * tau.max(0.0) - d);
-    let mut roots = [0.0; MAX_ROOTS];
+    let f = |vc: f64| parts(vc).map(|(c1, c2, tau)| c1.dist + c2.dist + vc * tau.max(0.0) - d);
     let guess = if t > 0.0 { d / t } else { 0.0 };
-    let mut cuts = [
+    let cuts = [
         lo,
         hi,
         0.0,
@@ -295,22 +348,7 @@ fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile>
         kink(order, dof.v0, dof.a0, dof.jmax, 1.0),
         kink(order, dof.vf, dof.af, dof.jmax, -1.0),
     ];
-    let mut best: Option<Profile> = None;
-    for_each_piece(&mut cuts, |a, b| {
-        if best.is_some() {
-            return;
-        }
-        let n = find_roots_coarse(&mut f, a, b, &mut roots);
-        for &vc in &roots[..n] {
-            if let Some(pr) = build(vc) {
-                if ok(&pr) {
-                    best = Some(pr);
-                    return;
-                }
-            }
-        }
-    });
-    best
+    first_at_root(cuts, Grid::Coarse, f, |vc| build(vc).filter(|pr| ok(pr)))
 }
 
 /// Hold families (third order): a₀ ↗ α₁ ↘ α₂ ↗ a_f with a zero-jerk hold at the peak α₁
@@ -393,28 +431,12 @@ fn hold(
 /// The first profile, built by `build` at a root of `f` (bracketed on the pieces between
 /// `cuts`, in increasing order), that `ok` accepts.
 fn first_root<const N: usize>(
-    mut cuts: [f64; N],
-    mut f: impl FnMut(f64) -> Option<f64>,
+    cuts: [f64; N],
+    f: impl FnMut(f64) -> Option<f64>,
     build: &impl Fn(f64) -> Option<Profile>,
     ok: &impl Fn(&Profile) -> bool,
 ) -> Option<Profile> {
-    let mut roots = [0.0; MAX_ROOTS];
-    let mut best = None;
-    for_each_piece(&mut cuts, |lo, hi| {
-        if best.is_some() {
-            return;
-        }
-        let n = find_roots(&mut f, lo, hi, &mut roots);
-        for &x in &roots[..n] {
-            if let Some(pr) = build(x) {
-                if ok(&pr) {
-                    best = Some(pr);
-                    return;
-                }
-            }
-        }
-    });
-    best
+    first_at_root(cuts, Grid::Fine, f, |x| build(x).filter(|pr| ok(pr)))
 }
 
 /// Four ramps without a hold (third order): a₀ ↘ α₁ ↗ α₂ ↘ α₃ ↗ a_f under full jerk (the
@@ -702,6 +724,43 @@ fn velocity3(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profi
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_rest_cubic_root_is_the_bisection_root() {
+        // Against plain bisection (roots_in) on seeded windows of the callers' shape: the same
+        // root to a few rounding units, and the same verdict when there is none.
+        let mut r = crate::rng::SplitMix64::new(41);
+        let (mut found, mut none) = (0, 0);
+        for _ in 0..20000 {
+            let j = 10f64.powf(r.uniform(-1.0, 4.5));
+            let a = r.uniform(0.2, 20.0);
+            let t = 10f64.powf(r.uniform(-3.0, 1.5));
+            let d = 10f64.powf(r.uniform(-9.0, 1.0));
+            let sj = j.sqrt();
+            let hi = (t * sj / 4.0).min(a / sj);
+            let k = 2.0 / sj;
+            let mut roots = [0.0; crate::roots::MAX_DEGREE];
+            let n = crate::roots::roots_in(&[d, 0.0, -t, k], 0.0, hi, &mut roots);
+            match rest_cubic_root(k, t, d, hi) {
+                Some(x) => {
+                    assert!(n == 1, "{k} {t} {d} {hi}");
+                    assert!(
+                        (x - roots[0]).abs() <= 8.0 * f64::EPSILON * x,
+                        "{x} vs {} ({k} {t} {d} {hi})",
+                        roots[0]
+                    );
+                    found += 1;
+                }
+                None => {
+                    assert_eq!(n, 0, "{k} {t} {d} {hi}");
+                    none += 1;
+                }
+            }
+        }
+        assert!(found > 2000 && none > 2000, "{found} {none}");
+        // Outside the regular case (D = 0) the bisection path answers.
+        assert_eq!(rest_cubic_root(1.0, 1.0, 0.0, 0.25), Some(0.0));
+    }
 
     #[test]
     fn rest_to_rest_closed_form_hits_both_cases() {

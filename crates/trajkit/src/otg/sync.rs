@@ -33,15 +33,17 @@
 use super::input::{DurationDiscretization, InputView, Synchronization};
 use super::phase::{phase, straight_line, PhaseCtx};
 use super::position::continuation_within;
-use super::problem::{ControlInterface, Dof1, ProfileOrder};
+use super::problem::Dof1;
 use super::profile::{Profile, State1};
 use super::result::OtgError;
 use super::step1::{step1_fastest_into, step1_into, MAX_CANDIDATES};
 use super::step2::{step2, step2_into};
 use super::trajectory::DofTrajectory;
-use super::velocity_change::fastest3;
 use super::zero::{at_rest, coasts, has_zero_limit};
 use std::time::{Duration, Instant};
+
+mod bound;
+use bound::{duration_bound, starts_safe};
 
 /// Per-DOF spare profile of the calculation: step 1's second working buffer, then the slot
 /// the time-optimal profile is copied to before step 2 overwrites the output (see
@@ -128,140 +130,6 @@ fn solve(sc: &mut Scratch, spare: &mut Spare, out: &mut Profile, full: bool) -> 
     true
 }
 
-/// An upper bound of a DOF's minimum duration, from a valid profile built in closed form:
-/// stop (fastest change to rest), move rest to rest (with a cruise if the velocity limit is
-/// reached), then the fastest change from rest to the target state; for first order the
-/// cruise alone. Exact from rest to rest with symmetric acceleration limits (and always for
-/// first order). Infinite where it does not apply (the velocity interface) or where a
-/// third-order stop or start would leave the velocity limits.
-///
-/// Every duration from the bound on is feasible too: the profile can wait at rest between the
-/// stop and the move, so no blocked interval lies above the bound.
-///
-/// Synchronization uses it twice: the DOF with the largest bound runs step 1 first (it most
-/// likely sets the duration), and a DOF whose bound is at most the trial duration t needs no
-/// step 1 at all: t is feasible for it, and step 2 plans it.
-fn duration_bound(d: &Dof1) -> f64 {
-    if d.interface != ControlInterface::Position {
-        return f64::INFINITY;
-    }
-    let t = match d.order() {
-        ProfileOrder::Third => bound_third(d),
-        ProfileOrder::Second => bound_second(d),
-        ProfileOrder::First => {
-            let x = d.pf - d.p0;
-            x.abs() / if x >= 0.0 { d.vmax } else { -d.vmin }
-        }
-    };
-    if t.is_finite() {
-        t
-    } else {
-        f64::INFINITY
-    }
-}
-
-/// [`duration_bound`] for second order: constant-acceleration changes (their velocities stay
-/// between their ends, inside the limits).
-fn bound_second(d: &Dof1) -> f64 {
-    let a = d.amax.min(-d.amin);
-    let (ts, ds) = (d.v0.abs() / a, d.v0 * d.v0.abs() / (2.0 * a));
-    let (te, de) = (d.vf.abs() / a, d.vf * d.vf.abs() / (2.0 * a));
-    let dist = d.pf - d.p0 - ds - de;
-    let vl = if dist >= 0.0 { d.vmax } else { -d.vmin };
-    let x = dist.abs();
-    // Peak velocity without a cruise: x = v²/a.
-    let vp = (x * a).sqrt();
-    let tm = if vp <= vl {
-        2.0 * vp / a
-    } else {
-        2.0 * vl / a + (x - vl * vl / a) / vl
-    };
-    ts + tm + te
-}
-
-/// [`duration_bound`] for third order.
-fn bound_third(d: &Dof1) -> f64 {
-    let (j, a) = (d.jmax, d.amax.min(-d.amin));
-    // Duration and displacement of the fastest change, if it stays within the velocity
-    // limits: its velocity extremes are its ends and where its acceleration crosses zero.
-    let change = |va: f64, aa: f64, vb: f64, ab: f64| -> Option<(f64, f64)> {
-        if va == vb && aa == ab {
-            return Some((0.0, 0.0));
-        }
-        let c = fastest3(va, aa, vb, ab, j, d.amax, d.amin)?;
-        let (mut v, mut acc) = (va, aa);
-        for k in 0..3 {
-            let (dk, jk) = (c.d[k], c.j[k]);
-            let r = -acc / jk;
-            if jk != 0.0 && r > 0.0 && r < dk {
-                let vx = v + r * (acc + r * jk / 2.0);
-                if vx > d.vmax || vx < d.vmin {
-                    return None;
-                }
-            }
-            v += dk * (acc + dk * jk / 2.0);
-            acc += dk * jk;
-        }
-        Some((c.t, c.dist))
-    };
-    let (Some((ts, ds)), Some((te, de))) =
-        (change(d.v0, d.a0, 0.0, 0.0), change(0.0, 0.0, d.vf, d.af))
-    else {
-        return f64::INFINITY;
-    };
-    let dist = d.pf - d.p0 - ds - de;
-    let vl = if dist >= 0.0 { d.vmax } else { -d.vmin };
-    let x = dist.abs();
-    let knee = a * a / j;
-    // Duration of the change from rest to v (and of the one back).
-    let t1 = |v: f64| {
-        if v <= knee {
-            2.0 * (v / j).sqrt()
-        } else {
-            v / a + a / j
-        }
-    };
-    // A cruise at the limit when the two changes to it and back cover at most x (t1 grows
-    // with v, so this is "peak velocity ≥ v_l"); otherwise the peak velocity v_p without a
-    // cruise: x = v_p·t1(v_p). (Decided first: the cube root is needed only without a
-    // cruise.)
-    let tl = t1(vl);
-    let tm = if x >= vl * tl {
-        2.0 * tl + (x - vl * tl) / vl
-    } else {
-        let tri = (x * x * j / 4.0).cbrt();
-        let vp = if tri <= knee {
-            tri
-        } else {
-            let k = a / j;
-            (-k + (k * k + 4.0 * x / a).sqrt()) * a / 2.0
-        };
-        2.0 * t1(vp)
-    };
-    ts + tm + te
-}
-
-/// Whether the start state needs no brake pre-profile: acceleration and velocity within their
-/// limits, and so is the velocity where ramping the acceleration to zero with full jerk lands
-/// (then no side of [`super::brake`] brakes). Conservative: false only costs a step 1.
-fn starts_safe(d: &Dof1) -> bool {
-    let (vmax, vmin) = match d.interface {
-        ControlInterface::Position => (d.vmax, d.vmin),
-        ControlInterface::Velocity => (f64::INFINITY, f64::NEG_INFINITY),
-    };
-    let v_in = |v: f64| v <= vmax && v >= vmin;
-    match d.order() {
-        ProfileOrder::First => true,
-        ProfileOrder::Second => v_in(d.v0),
-        ProfileOrder::Third => {
-            d.a0 <= d.amax
-                && d.a0 >= d.amin
-                && v_in(d.v0)
-                && v_in(d.v0 + d.a0 * d.a0.abs() / (2.0 * d.jmax))
-        }
-    }
-}
-
 /// Computes all profiles; returns the trajectory duration.
 ///
 /// Under time (and phase) synchronization step 1 runs only where synchronization needs it:
@@ -273,6 +141,10 @@ fn starts_safe(d: &Dof1) -> bool {
 /// degree of freedom would give. Otherwise (bound above t, or step 2 misses) step 1 runs for
 /// it: if its minimum exceeds t it becomes the new trial duration, otherwise its candidate
 /// durations join the search (t lies in one of its blocked intervals).
+///
+/// The generators call [`calculate_status`] (which also reports whether the calculation budget
+/// cut the search short); this is the entry point the other online-generation modules use.
+#[allow(dead_code)]
 pub(crate) fn calculate(
     view: &InputView<'_>,
     delta_time: f64,
@@ -280,8 +152,30 @@ pub(crate) fn calculate(
     scratch: &mut [Scratch],
     spare: &mut [Spare],
 ) -> Result<f64, OtgError> {
+    calculate_status(view, delta_time, out, scratch, spare).map(|c| c.duration)
+}
+
+/// What a calculation reports besides its profiles.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Calculated {
+    /// The trajectory's duration.
+    pub(crate) duration: f64,
+    /// Whether the calculation budget cut the search short: the result is valid but may be
+    /// longer than the shortest common duration.
+    pub(crate) interrupted: bool,
+}
+
+/// [`calculate`], also reporting whether the calculation budget cut the search short.
+pub(crate) fn calculate_status(
+    view: &InputView<'_>,
+    delta_time: f64,
+    out: &mut [DofTrajectory],
+    scratch: &mut [Scratch],
+    spare: &mut [Spare],
+) -> Result<Calculated, OtgError> {
     let n = view.dof();
-    let d = calculate_profiles(view, delta_time, out, scratch, spare)
+    let mut interrupted = false;
+    let d = calculate_profiles(view, delta_time, out, scratch, spare, &mut interrupted)
         .map_err(|e| limits_error(e, &scratch[..n.min(scratch.len())], view))?;
     for i in 0..n {
         if !view.enabled[i] {
@@ -298,7 +192,10 @@ pub(crate) fn calculate(
         out[i].min_duration = m;
         out[i].problem = p;
     }
-    Ok(d)
+    Ok(Calculated {
+        duration: d,
+        interrupted,
+    })
 }
 
 /// A failure caused by a degree of freedom with a zero limit is reported as such (Ruckig's
@@ -331,13 +228,15 @@ fn limits_error(e: OtgError, scratch: &[Scratch], view: &InputView<'_>) -> OtgEr
 
 /// [`calculate`] without the error translation: validation, the single-DOF shortcut, step 1
 /// where it is needed ([`Planner::prepare`]), the straight-line mode, the DOFs that are not
-/// synchronized, and the search for the common duration ([`Planner::synchronize`]).
+/// synchronized, and the search for the common duration ([`Planner::synchronize`]). Sets
+/// `interrupted` when the budget cut the search short.
 fn calculate_profiles(
     view: &InputView<'_>,
     delta_time: f64,
     out: &mut [DofTrajectory],
     scratch: &mut [Scratch],
     spare: &mut [Spare],
+    interrupted: &mut bool,
 ) -> Result<f64, OtgError> {
     view.check_shape(delta_time)?;
     let n = view.dof();
@@ -376,6 +275,7 @@ fn calculate_profiles(
         discrete: opts.duration_discretization == DurationDiscretization::Discrete,
         min_dur: opts.minimum_duration.unwrap_or(0.0),
         budget: opts.interrupt_calculation_duration.map(Budget::start),
+        interrupted: false,
     };
     let (t_lead, lazy) = p.prepare()?;
     if opts.synchronization == Synchronization::StraightLine
@@ -385,7 +285,9 @@ fn calculate_profiles(
     }
     p.finish_unsynchronized()?;
     if p.scratch[..n].iter().any(|s| s.sync) {
-        return p.synchronize(t_lead, lazy);
+        let r = p.synchronize(t_lead, lazy);
+        *interrupted = p.interrupted;
+        return r;
     }
     Ok(duration_of(&p.out[..n]))
 }
@@ -402,6 +304,8 @@ struct Planner<'a, 'v> {
     min_dur: f64,
     /// The calculation budget (`interrupt_calculation_duration`), when one is given.
     budget: Option<Budget>,
+    /// Whether the budget stopped the bisection before the edge of the feasible range.
+    interrupted: bool,
 }
 
 /// A calculation budget: its deadline and its size in microseconds.
@@ -666,6 +570,7 @@ impl Planner<'_, '_> {
         for _ in 0..64 {
             // Out of budget: the shortest success so far is the result.
             if self.budget.is_some_and(|b| b.spent()) {
+                self.interrupted = true;
                 break;
             }
             let mid = self.disc(0.5 * (lo + hi));
@@ -861,6 +766,7 @@ fn try_all(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::otg::problem::ProfileOrder;
     use crate::otg::step1::step1;
 
     /// Step 1 into an output profile, as `calculate` does; returns the scratch, the spare and
@@ -1017,6 +923,61 @@ mod tests {
         let mut mins = [0.0; 2];
         tr.independent_min_durations(&mut mins);
         assert_eq!(mins, [tf, ts]);
+    }
+
+    /// A budget that is spent when the bisection starts keeps the success it was given and
+    /// says so (`interrupted`); with budget left the bisection runs and nothing is flagged.
+    #[test]
+    fn a_spent_budget_stops_the_bisection_and_is_reported() {
+        let ds = [
+            Dof1::rest_to_rest(0.0, 1.0, 1.0, 2.0, 10.0),
+            Dof1::rest_to_rest(0.0, 0.5, 1.0, 2.0, 10.0),
+        ];
+        let inp = input_of(&ds);
+        let view = inp.view();
+        let t_min = step1(&ds[0]).unwrap().t_min();
+        let run = |budget: Option<Budget>| {
+            let mut out = [DofTrajectory::default(); 2];
+            let mut scratch = [Scratch::default(); 2];
+            let mut spare: [Spare; 2] = [None, None];
+            for i in 0..2 {
+                scratch[i].dof = ds[i];
+                scratch[i].sync = true;
+                assert!(solve(
+                    &mut scratch[i],
+                    &mut spare[i],
+                    &mut out[i].profile,
+                    true
+                ));
+            }
+            let mut p = Planner {
+                view: &view,
+                delta_time: 0.001,
+                out: &mut out,
+                scratch: &mut scratch,
+                spare: &mut spare,
+                n: 2,
+                discrete: false,
+                min_dur: 0.0,
+                budget,
+                interrupted: false,
+            };
+            // As `search` calls it: after a success at `hi`. Every duration from the minimum
+            // on is feasible, so bisecting from below it ends at the minimum unless stopped.
+            assert!(try_all(p.scratch, p.spare, p.out, 2, 2.0 * t_min).is_ok());
+            let t = p.bisect(0.5 * t_min, 2.0 * t_min, 0).unwrap();
+            (t, p.interrupted, out[1].profile.duration())
+        };
+        let (t, cut, d1) = run(None);
+        assert!(!cut && (t - t_min).abs() <= 1e-9 * t_min, "{t} vs {t_min}");
+        assert!((d1 - t).abs() <= 1e-12 * t);
+        let spent = Budget {
+            deadline: Instant::now(),
+            us: 1.0,
+        };
+        let (t, cut, d1) = run(Some(spent));
+        assert!(cut && t == 2.0 * t_min);
+        assert!((d1 - t).abs() <= 1e-12 * t);
     }
 
     /// A DOF planned without its step 1 reports the minimum duration step 1 gives.

@@ -48,10 +48,42 @@ impl DofTrajectory {
 }
 
 /// A multi-DOF trajectory from the online generator.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct OtgTrajectory<S> {
     pub(crate) dofs: S,
     pub(crate) duration: f64,
+    /// Whether the calculation budget cut the search for the common duration short.
+    pub(crate) interrupted: bool,
+}
+
+impl<S: Clone> Clone for OtgTrajectory<S> {
+    fn clone(&self) -> Self {
+        OtgTrajectory {
+            dofs: self.dofs.clone(),
+            duration: self.duration,
+            interrupted: self.interrupted,
+        }
+    }
+
+    /// Field by field, so that a `DynTrajectory` reuses its storage (no allocation when it
+    /// already holds as many degrees of freedom).
+    fn clone_from(&mut self, source: &Self) {
+        self.dofs.clone_from(&source.dofs);
+        self.duration = source.duration;
+        self.interrupted = source.interrupted;
+    }
+}
+
+impl DynTrajectory {
+    /// A trajectory of `dof` degrees of freedom at rest at 0, of duration 0: storage for
+    /// [`super::DynOtg::calculate_into`] to write into.
+    pub fn new(dof: usize) -> Self {
+        OtgTrajectory {
+            dofs: vec![DofTrajectory::default(); dof],
+            duration: 0.0,
+            interrupted: false,
+        }
+    }
 }
 
 /// A trajectory with a compile-time number of degrees of freedom.
@@ -64,6 +96,7 @@ impl<const DOF: usize> Default for FixedTrajectory<DOF> {
         OtgTrajectory {
             dofs: [DofTrajectory::default(); DOF],
             duration: 0.0,
+            interrupted: false,
         }
     }
 }
@@ -72,6 +105,14 @@ impl<S: AsRef<[DofTrajectory]>> OtgTrajectory<S> {
     /// Duration in seconds.
     pub fn duration(&self) -> f64 {
         self.duration
+    }
+
+    /// Whether the calculation budget (`interrupt_calculation_duration`) cut the search for
+    /// the common duration short: the trajectory is valid (limits, target) but may be longer
+    /// than the shortest synchronized one (Ruckig's `was_calculation_interrupted`). False
+    /// without a budget.
+    pub fn was_interrupted(&self) -> bool {
+        self.interrupted
     }
 
     /// Number of degrees of freedom.

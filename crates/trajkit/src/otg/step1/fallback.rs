@@ -2,13 +2,13 @@
 //! families solved by bracketing their residual, the peak family over the whole velocity
 //! range, and (second order) the cruise family.
 
+use super::super::bracket::{first_at_root, Grid};
 use super::super::problem::{Dof1, ProfileOrder};
 use super::super::profile::{Profile, State1};
 use super::super::velocity_change::{fastest, kink, push_change, VelChange};
 use super::closed::{square_window, Seq};
 use super::verify::velocity_cap;
 use super::Collector;
-use crate::roots::{find_roots_coarse, for_each_piece, MAX_ROOTS};
 
 /// Peak family: fastest change to (v_c, 0), then fastest change to the target; residual in
 /// position, free parameter v_c.
@@ -37,33 +37,30 @@ pub(super) fn peak_family(dof: &Dof1, col: &mut Collector<'_>) {
         let c2 = fastest(order, vc, 0.0, dof.vf, dof.af, dof.jmax, dof.amax, dof.amin)?;
         Some((c1, c2))
     };
-    let mut f = |vc: f64| parts(vc).map(|(c1, c2)| c1.dist + c2.dist - d);
-    let mut roots = [0.0; MAX_ROOTS];
-    let mut cuts = [
+    let f = |vc: f64| parts(vc).map(|(c1, c2)| c1.dist + c2.dist - d);
+    let cuts = [
         lo,
         hi,
         0.0,
         kink(order, dof.v0, dof.a0, dof.jmax, 1.0),
         kink(order, dof.vf, dof.af, dof.jmax, -1.0),
     ];
-    for_each_piece(&mut cuts, |a, b| {
-        let n = find_roots_coarse(&mut f, a, b, &mut roots);
-        for &vc in &roots[..n] {
-            if let Some((c1, c2)) = parts(vc) {
-                let mut pr = Profile::new(State1 {
-                    p: dof.p0,
-                    v: dof.v0,
-                    a: dof.a0,
-                });
-                push_change(&mut pr, order, &c1, dof.v0);
-                pr.snap(vc, 0.0);
-                push_change(&mut pr, order, &c2, vc);
-                if order == ProfileOrder::Second {
-                    pr.set_final(dof.vf, 0.0);
-                }
-                col.offer(&pr);
-            }
+    // Every root's profile is offered (none ends the search).
+    first_at_root(cuts, Grid::Coarse, f, |vc| -> Option<()> {
+        let (c1, c2) = parts(vc)?;
+        let mut pr = Profile::new(State1 {
+            p: dof.p0,
+            v: dof.v0,
+            a: dof.a0,
+        });
+        push_change(&mut pr, order, &c1, dof.v0);
+        pr.snap(vc, 0.0);
+        push_change(&mut pr, order, &c2, vc);
+        if order == ProfileOrder::Second {
+            pr.set_final(dof.vf, 0.0);
         }
+        col.offer(&pr);
+        None
     });
 }
 
@@ -164,14 +161,12 @@ impl Bracketed<'_> {
     fn solve(&self, seq: &impl Fn(f64) -> Option<Seq>, lo: f64, hi: f64, col: &mut Collector<'_>) {
         let q = self.q;
         let d = q.pf - q.p0;
-        let mut f = |x: f64| seq(x).map(|s| s.displacement(q.v0, q.a0) - d);
-        let mut roots = [0.0; MAX_ROOTS];
-        let n = find_roots_coarse(&mut f, lo, hi, &mut roots);
-        for &x in &roots[..n] {
-            if let Some(s) = seq(x) {
-                s.offer(q, self.mirror, col);
-            }
-        }
+        let f = |x: f64| seq(x).map(|s| s.displacement(q.v0, q.a0) - d);
+        // One piece, [lo, hi]; every root's profile is offered.
+        first_at_root([lo, hi], Grid::Coarse, f, |x| -> Option<()> {
+            seq(x)?.offer(q, self.mirror, col);
+            None
+        });
     }
 
     /// none: parameter α₁, α₂ of sign `sign`.
