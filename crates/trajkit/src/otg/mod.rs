@@ -41,8 +41,11 @@
 //! cannot be reached inside is [`OtgError::PositionLimits`]. Method and what is optimal about
 //! it: `position.rs`. A calculation budget (`options.interrupt_calculation_duration`, µs)
 //! bounds the synchronization search: [`OtgError::Interrupted`] when no duration has worked
-//! yet, the shortest valid result otherwise (`sync.rs`). Intermediate waypoints and
-//! per-section limits are not implemented (the JSON reader refuses them by name).
+//! yet, the shortest valid result otherwise (`sync.rs`). Intermediate waypoints
+//! (`intermediate_positions`) with per-section limits and minimum durations:
+//! [`plan_waypoints`] (method, what is optimal about it and precision: `waypoints/`);
+//! Ruckig Pro's per-section minimum velocity and acceleration and per-section position
+//! limits are refused by the JSON reader.
 //!
 //! # Files (one per step)
 //! `json.rs` the Ruckig-style JSON reader (public: [`json`]) · `input.rs` the input types
@@ -53,7 +56,8 @@
 //! families) · `families.rs` + `families_gen.rs` the families' position polynomials ·
 //! `step2.rs` profiles of a given duration · `sync.rs` the common duration · `phase.rs`
 //! Ruckig's phase synchronization and the straight-line mode · `result.rs`, `trajectory.rs`,
-//! `generator.rs`, `check.rs` · `position.rs` position limits. Polynomial and scalar roots come from [`crate::roots`].
+//! `generator.rs`, `check.rs` · `position.rs` position limits · `waypoints/` intermediate
+//! waypoints. Polynomial and scalar roots come from [`crate::roots`].
 //!
 //! # Public API
 //! Everything a user needs is re-exported here; the files are private.
@@ -124,6 +128,7 @@ mod step2;
 mod sync;
 mod trajectory;
 mod velocity_change;
+mod waypoints;
 mod zero;
 
 pub use check::{check, SolutionCheck};
@@ -136,6 +141,9 @@ pub use profile::{Profile, State1, MAX_SEGMENTS};
 pub use result::{FieldName, OtgError, OtgResult};
 pub use step1::{TOL_LIMIT, TOL_POSITION, TOL_VELOCITY};
 pub use trajectory::{DofTrajectory, DynTrajectory, FixedTrajectory, OtgTrajectory};
+pub use waypoints::{
+    check_waypoints, plan_waypoints, WaypointCheck, WaypointTrajectory, Waypoints,
+};
 
 /// One DOF's problem (limits, start, target), used by `plan`'s exact straight lines.
 pub(crate) use problem::Dof1;
