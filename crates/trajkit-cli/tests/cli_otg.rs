@@ -115,7 +115,7 @@ fn strict_fields() {
             "'max_jerks': is not a known field (did you mean 'max_jerk'?)",
         ),
         (
-            r#"{"current_position":[0],"target_position":[1],"max_velocity":[1],"max_acceleration":[1],"max_jerk":[1],"intermediate_positions":[[0.5]]}"#,
+            r#"{"current_position":[0],"target_position":[1],"max_velocity":[1],"max_acceleration":[1],"max_jerk":[1],"intermediate_positions":[[0.5]],"per_section_min_velocity":[[-1],[-1]]}"#,
             "does not support yet",
         ),
         (

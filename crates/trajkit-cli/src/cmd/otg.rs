@@ -6,12 +6,16 @@ use clap::Args;
 use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 use trajkit::otg::json::{parse_problem, OtgProblem};
-use trajkit::otg::{calculate_dyn, DynInputParameter, DynTrajectory, OtgError};
+use trajkit::otg::{
+    calculate_dyn, check_waypoints, plan_waypoints, DynInputParameter, DynTrajectory, OtgError,
+    WaypointTrajectory, Waypoints,
+};
+use trajkit::Trajectory;
 
 /// Arguments of `trajkit otg`.
 #[derive(Args, Debug)]
 #[command(
-    after_help = "Input: a JSON object with Ruckig's field names: current_position, current_velocity, current_acceleration, target_position, target_velocity, target_acceleration, max_velocity, max_acceleration, max_jerk, min_velocity, min_acceleration, enabled, minimum_duration, max_position, min_position (position limits, \"inf\"/\"-inf\" for none), interrupt_calculation_duration (calculation budget in microseconds), synchronization (time | time_if_necessary | phase | none | straight_line), control_interface (position | velocity), duration_discretization (continuous | discrete), per_dof_synchronization, per_dof_control_interface, dt. current_position, target_position and the limits max_velocity, max_acceleration, max_jerk are required (write \"inf\" for a DOF without a limit: infinite jerk gives trapezoidal profiles, infinite acceleration first-order ones); states default to zero. An unknown field is an error naming the closest known one; Ruckig Pro's fields not supported yet (intermediate_positions, per_section_*) are refused by name. --batch exits 1 when any line failed.\n\nExamples:\n  echo '{\"current_position\":[0],\"target_position\":[1],\"max_velocity\":[0.6],\"max_acceleration\":[1],\"max_jerk\":[4]}' | trajkit otg -\n  trajkit otg problem.json --out samples.csv --plot otg.svg\n  trajkit otg --batch problems.jsonl --out results.jsonl"
+    after_help = "Input: a JSON object with Ruckig's field names: current_position, current_velocity, current_acceleration, target_position, target_velocity, target_acceleration, max_velocity, max_acceleration, max_jerk, min_velocity, min_acceleration, enabled, minimum_duration, max_position, min_position (position limits, \"inf\"/\"-inf\" for none), interrupt_calculation_duration (calculation budget in microseconds), synchronization (time | time_if_necessary | phase | none | straight_line), control_interface (position | velocity), duration_discretization (continuous | discrete), per_dof_synchronization, per_dof_control_interface, dt. current_position, target_position and the limits max_velocity, max_acceleration, max_jerk are required (write \"inf\" for a DOF without a limit: infinite jerk gives trapezoidal profiles, infinite acceleration first-order ones); states default to zero. An unknown field is an error naming the closest known one; intermediate_positions (waypoints to pass through) with per_section_max_velocity, per_section_max_acceleration, per_section_max_jerk (one list per section, waypoints + 1) and per_section_minimum_duration plan a motion through the waypoints (never longer than stopping at each); Ruckig Pro's fields not supported yet (per_section_min_velocity, per_section_min_acceleration, per_section_max_position, per_section_min_position) are refused by name. --batch exits 1 when any line failed.\n\nExamples:\n  echo '{\"current_position\":[0],\"target_position\":[1],\"max_velocity\":[0.6],\"max_acceleration\":[1],\"max_jerk\":[4]}' | trajkit otg -\n  trajkit otg problem.json --out samples.csv --plot otg.svg\n  trajkit otg --batch problems.jsonl --out results.jsonl"
 )]
 pub struct OtgArgs {
     /// The problem as a JSON file ('-' for standard input).
@@ -44,6 +48,62 @@ fn parse(text: &str, src: &str, line: usize) -> CliResult<OtgProblem> {
     parse_problem(text, src, line).map_err(err)
 }
 
+/// A solved problem: the generator's trajectory, or a motion through waypoints.
+enum Solved<'a> {
+    Plain(DynTrajectory),
+    Waypoints(WaypointTrajectory, &'a Waypoints),
+}
+
+impl Solved<'_> {
+    fn trajectory(&self) -> &dyn Trajectory {
+        match self {
+            Solved::Plain(t) => t,
+            Solved::Waypoints(t, _) => t,
+        }
+    }
+}
+
+fn solve(p: &OtgProblem) -> Result<Solved<'_>, OtgError> {
+    Ok(match &p.waypoints {
+        None => Solved::Plain(calculate_dyn(&p.input, p.delta_time)?),
+        Some(w) => Solved::Waypoints(plan_waypoints(&p.input, w, p.delta_time)?, w),
+    })
+}
+
+/// One `--batch` result line of a solved problem.
+fn solved_record(
+    line: usize,
+    p: &OtgProblem,
+    s: &Solved,
+    profiles: bool,
+) -> Result<Value, OtgError> {
+    let (c, duration) = match s {
+        Solved::Plain(tr) => (trajkit::otg::check(&p.input, tr), tr.duration()),
+        Solved::Waypoints(tr, w) => (check_waypoints(&p.input, w, tr)?.solution, tr.duration()),
+    };
+    let e = c.final_error;
+    let mut r = json!({
+        "line": line,
+        "result": "working",
+        "duration": duration,
+        "final_error": {"position": e[0], "velocity": e[1], "acceleration": e[2]},
+        "worst_limit_ratio": c.worst_limit_ratio,
+        "position_excess": c.position_excess,
+    });
+    if let Solved::Waypoints(tr, _) = s {
+        r["stop_at_every_waypoint_duration"] = json!(tr.stop_at_every_waypoint_duration());
+    }
+    if profiles {
+        r["profiles"] = match s {
+            Solved::Plain(tr) => profiles_json(tr),
+            Solved::Waypoints(tr, _) => {
+                Value::Array(tr.sections().iter().map(profiles_json).collect())
+            }
+        };
+    }
+    Ok(r)
+}
+
 fn batch(path: &Path, out: &Path, profiles: bool) -> CliResult<u8> {
     let text = trajkit::io::read_text(path)?;
     let mut lines = String::new();
@@ -59,27 +119,12 @@ fn batch(path: &Path, out: &Path, profiles: bool) -> CliResult<u8> {
                 failed += 1;
                 json!({"line": k + 1, "result": "invalid_input", "message": e.0})
             }
-            Ok(p) => match calculate_dyn(&p.input, p.delta_time) {
+            Ok(p) => match solve(&p).and_then(|tr| solved_record(k + 1, &p, &tr, profiles)) {
                 Err(e) => {
                     failed += 1;
                     error_record(k + 1, &e)
                 }
-                Ok(tr) => {
-                    let c = trajkit::otg::check(&p.input, &tr);
-                    let e = c.final_error;
-                    let mut r = json!({
-                        "line": k + 1,
-                        "result": "working",
-                        "duration": tr.duration(),
-                        "final_error": {"position": e[0], "velocity": e[1], "acceleration": e[2]},
-                        "worst_limit_ratio": c.worst_limit_ratio,
-                        "position_excess": c.position_excess,
-                    });
-                    if profiles {
-                        r["profiles"] = profiles_json(&tr);
-                    }
-                    r
-                }
+                Ok(r) => r,
             },
         };
         lines.push_str(&record.to_string());
@@ -142,7 +187,8 @@ pub fn run(a: &OtgArgs) -> CliResult<u8> {
     };
     let p = parse(&text, &src, 0)?;
     let dt = p.delta_time;
-    let tr = calculate_dyn(&p.input, dt).map_err(|e: OtgError| err(format!("{src}: {e}")))?;
+    let solved = solve(&p).map_err(|e: OtgError| err(format!("{src}: {e}")))?;
+    let tr = solved.trajectory();
     let count = tr.duration() / dt;
     if count > 1e7 {
         return Err(err(format!(
@@ -151,7 +197,7 @@ pub fn run(a: &OtgArgs) -> CliResult<u8> {
             tr.duration()
         )));
     }
-    let table = trajkit::sample::sample(&tr, 1.0 / dt)?;
+    let table = trajkit::sample::sample(tr, 1.0 / dt)?;
     let fmt = a
         .format
         .unwrap_or(if a.out.extension().is_some_and(|e| e == "csv") {
@@ -162,7 +208,11 @@ pub fn run(a: &OtgArgs) -> CliResult<u8> {
     let body = match fmt {
         Format::Csv => trajkit::io::table_to_csv(&table),
         Format::Json => {
-            let mut s = trajkit::otg::json::answer(&p, &tr)?.to_string();
+            let mut s = match &solved {
+                Solved::Waypoints(t, w) => trajkit::otg::json::answer_waypoints(&p, w, t)?,
+                Solved::Plain(t) => trajkit::otg::json::answer(&p, t)?,
+            }
+            .to_string();
             s.push('\n');
             s
         }

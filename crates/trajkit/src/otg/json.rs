@@ -20,6 +20,9 @@
 //! | `max_position`, `min_position` | lists of numbers or `"inf"` / `"-inf"` (Ruckig Pro's position limits) | no (none) |
 //! | `interrupt_calculation_duration` | calculation budget in µs, number > 0 (Ruckig Pro's name) | no (none) |
 //! | `dt` | the control period, number > 0 | no (0.001) |
+//! | `intermediate_positions` | list of waypoints, each a list of numbers (Ruckig Pro's name) | no (none) |
+//! | `per_section_max_velocity`, `per_section_max_acceleration`, `per_section_max_jerk` | one list per section (waypoints + 1) of numbers > 0 or `"inf"` | no (the global limits) |
+//! | `per_section_minimum_duration` | one number ≥ 0 per section | no |
 //!
 //! The reader is strict. A limit that is missing is an error, never "unlimited": JSON has no
 //! infinity, so an unlimited limit is written as the string `"inf"` (`"-inf"` for the
@@ -27,24 +30,38 @@
 //! profiles and an infinite acceleration limit first-order ones. An unknown field is an error
 //! that names the closest known one (`'max_jerks' is not a known field (did you mean
 //! 'max_jerk'?)`), and Ruckig's fields that trajkit does not support yet (Ruckig Pro's
-//! intermediate waypoints and per-section limits) are refused by name. Values are checked for type and length here and for range by the
+//! per-section minimum velocity and acceleration and per-section position limits) are
+//! refused by name. A problem with `intermediate_positions` is planned with
+//! [`super::plan_waypoints`] (the answer: [`answer_waypoints`]). Values are checked for type and length here and for range by the
 //! generator (which names DOF, field and value).
 
 use super::input::{ControlInterface, DurationDiscretization, DynInputParameter, Synchronization};
+use super::waypoints::Waypoints;
 use crate::error::{Error, Location};
 use serde_json::{Map, Value};
 
-/// A parsed problem: the input and the control period.
+/// A parsed problem: the input, the control period and the waypoints, if any.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OtgProblem {
     /// The input, with a run-time number of degrees of freedom.
     pub input: DynInputParameter,
     /// The control period in seconds (`dt`; default 0.001).
     pub delta_time: f64,
+    /// `intermediate_positions` and the per-section fields, when given (plan with
+    /// [`super::plan_waypoints`]).
+    pub waypoints: Option<Waypoints>,
 }
 
+/// The per-section fields (they need `intermediate_positions`).
+pub const SECTION_FIELDS: [&str; 4] = [
+    "per_section_max_velocity",
+    "per_section_max_acceleration",
+    "per_section_max_jerk",
+    "per_section_minimum_duration",
+];
+
 /// Every field the reader accepts.
-pub const KNOWN_FIELDS: [&str; 23] = [
+pub const KNOWN_FIELDS: [&str; 28] = [
     "current_position",
     "current_velocity",
     "current_acceleration",
@@ -68,19 +85,19 @@ pub const KNOWN_FIELDS: [&str; 23] = [
     "interrupt_calculation_duration",
     "dt",
     "delta_time",
-];
-
-/// Ruckig's input fields that trajkit does not support yet (refused by name).
-pub const NOT_SUPPORTED_YET: [&str; 9] = [
     "intermediate_positions",
     "per_section_max_velocity",
     "per_section_max_acceleration",
     "per_section_max_jerk",
+    "per_section_minimum_duration",
+];
+
+/// Ruckig's input fields that trajkit does not support yet (refused by name).
+pub const NOT_SUPPORTED_YET: [&str; 4] = [
     "per_section_min_velocity",
     "per_section_min_acceleration",
     "per_section_max_position",
     "per_section_min_position",
-    "per_section_minimum_duration",
 ];
 
 /// The answer to one solved problem, as `trajkit otg` writes it: `result`, `duration`,
@@ -90,15 +107,7 @@ pub const NOT_SUPPORTED_YET: [&str; 9] = [
 /// [`crate::io::table_to_json`]). The caller caps the sample count (duration / `delta_time`).
 pub fn answer(problem: &OtgProblem, trajectory: &super::DynTrajectory) -> crate::Result<Value> {
     let table = crate::sample::sample(trajectory, 1.0 / problem.delta_time)?;
-    let samples: Value =
-        serde_json::from_str(&crate::io::table_to_json(&table)).map_err(|e| Error::Parse {
-            location: Location {
-                source: "otg answer".into(),
-                line: 0,
-                field: "samples".into(),
-            },
-            message: format!("the sampled trajectory is not finite JSON: {e}"),
-        })?;
+    let samples = samples_json(&table)?;
     let mut mins = vec![0.0; trajectory.dof()];
     trajectory.independent_min_durations(&mut mins);
     let c = super::check::check(&problem.input, trajectory);
@@ -112,6 +121,44 @@ pub fn answer(problem: &OtgProblem, trajectory: &super::DynTrajectory) -> crate:
         "position_excess": c.position_excess,
         "samples": samples,
     }))
+}
+
+/// The answer to a problem with waypoints (the same fields as [`answer`], with the checks
+/// taken over every section, and `waypoint_error`, `stop_at_every_waypoint_duration`,
+/// `section_durations`).
+pub fn answer_waypoints(
+    problem: &OtgProblem,
+    waypoints: &Waypoints,
+    trajectory: &super::WaypointTrajectory,
+) -> crate::Result<Value> {
+    let table = crate::sample::sample(trajectory, 1.0 / problem.delta_time)?;
+    let samples = samples_json(&table)?;
+    let c = super::check_waypoints(&problem.input, waypoints, trajectory)?;
+    let s = &c.solution;
+    let durations: Vec<f64> = trajectory.sections().iter().map(|t| t.duration()).collect();
+    Ok(serde_json::json!({
+        "result": "working",
+        "duration": trajectory.duration(),
+        "stop_at_every_waypoint_duration": trajectory.stop_at_every_waypoint_duration(),
+        "section_durations": durations,
+        "final_error": {"position": s.final_error[0], "velocity": s.final_error[1],
+                        "acceleration": s.final_error[2]},
+        "waypoint_error": c.waypoint_error,
+        "worst_limit_ratio": s.worst_limit_ratio,
+        "position_excess": s.position_excess,
+        "samples": samples,
+    }))
+}
+
+fn samples_json(table: &crate::sample::SampleTable) -> crate::Result<Value> {
+    serde_json::from_str(&crate::io::table_to_json(table)).map_err(|e| Error::Parse {
+        location: Location {
+            source: "otg answer".into(),
+            line: 0,
+            field: "samples".into(),
+        },
+        message: format!("the sampled trajectory is not finite JSON: {e}"),
+    })
 }
 
 /// Reads one problem from JSON text. `source` and `line` (0 when unknown) name where it came
@@ -157,6 +204,34 @@ struct Reader<'a> {
 
 impl Reader<'_> {
     fn problem(&self) -> crate::Result<OtgProblem> {
+        self.known_fields()?;
+        let n = self.dof_count()?;
+        let mut input = DynInputParameter::new(n);
+        self.options(&mut input)?;
+        self.states_and_limits(&mut input, n)?;
+        match self.obj.get("enabled") {
+            None => {}
+            Some(Value::Array(a)) if a.len() == n && a.iter().all(Value::is_boolean) => {
+                input.enabled = a.iter().map(|b| b.as_bool() == Some(true)).collect();
+            }
+            Some(other) => {
+                return Err((self.fail)(
+                    "enabled",
+                    format!("= {other} is not a list of {n} booleans"),
+                ))
+            }
+        }
+        let delta_time = self.delta_time()?;
+        let waypoints = self.waypoints(n)?;
+        Ok(OtgProblem {
+            input,
+            delta_time,
+            waypoints,
+        })
+    }
+
+    /// Every key is known (Ruckig's fields that trajkit does not support are named).
+    fn known_fields(&self) -> crate::Result<()> {
         for key in self.obj.keys() {
             if NOT_SUPPORTED_YET.contains(&key.as_str()) {
                 return Err((self.fail)(
@@ -172,25 +247,29 @@ impl Reader<'_> {
                 return Err((self.fail)(key, format!("is not a known field{hint}")));
             }
         }
-        let n = match self.obj.get("current_position") {
-            Some(Value::Array(a)) if !a.is_empty() => a.len(),
-            Some(Value::Array(_)) => {
-                return Err((self.fail)("current_position", "is empty".into()));
-            }
-            Some(other) => {
-                return Err((self.fail)(
-                    "current_position",
-                    format!("= {other} is not a list of numbers"),
-                ))
-            }
-            None => {
-                return Err((self.fail)(
-                    "current_position",
-                    "is required (a list of numbers, one per DOF)".into(),
-                ))
-            }
-        };
-        let mut input = DynInputParameter::new(n);
+        Ok(())
+    }
+
+    /// The number of DOFs: the length of `current_position`.
+    fn dof_count(&self) -> crate::Result<usize> {
+        match self.obj.get("current_position") {
+            Some(Value::Array(a)) if !a.is_empty() => Ok(a.len()),
+            Some(Value::Array(_)) => Err((self.fail)("current_position", "is empty".into())),
+            Some(other) => Err((self.fail)(
+                "current_position",
+                format!("= {other} is not a list of numbers"),
+            )),
+            None => Err((self.fail)(
+                "current_position",
+                "is required (a list of numbers, one per DOF)".into(),
+            )),
+        }
+    }
+
+    /// The words (synchronization, interface, discretization, per DOF too), the minimum
+    /// duration and the budget.
+    fn options(&self, input: &mut DynInputParameter) -> crate::Result<()> {
+        let n = input.dof();
         input.options.synchronization = match self.word("synchronization")? {
             None => Synchronization::Time,
             Some(w) => sync_word(w).ok_or_else(|| self.bad_word("synchronization", w, SYNC))?,
@@ -208,6 +287,18 @@ impl Reader<'_> {
             self.words("per_dof_synchronization", n, sync_word, SYNC)?;
         input.per_dof_control_interface =
             self.words("per_dof_control_interface", n, iface_word, IFACE)?;
+        if let Some(v) = self.obj.get("minimum_duration") {
+            input.options.minimum_duration = Some(self.number("minimum_duration", v)?);
+        }
+        if let Some(v) = self.obj.get("interrupt_calculation_duration") {
+            input.options.interrupt_calculation_duration =
+                Some(self.positive("interrupt_calculation_duration", v)?);
+        }
+        Ok(())
+    }
+
+    /// Current and target states, velocity, acceleration, jerk and position limits.
+    fn states_and_limits(&self, input: &mut DynInputParameter, n: usize) -> crate::Result<()> {
         let position_dofs = match &input.per_dof_control_interface {
             Some(c) => c.contains(&ControlInterface::Position),
             None => input.options.control_interface == ControlInterface::Position,
@@ -233,37 +324,115 @@ impl Reader<'_> {
         input.max_position = self.numbers("max_position", n, Some(f64::INFINITY), Some("inf"))?;
         input.min_position =
             self.numbers("min_position", n, Some(f64::NEG_INFINITY), Some("-inf"))?;
-        match self.obj.get("enabled") {
-            None => {}
-            Some(Value::Array(a)) if a.len() == n && a.iter().all(Value::is_boolean) => {
-                input.enabled = a.iter().map(|b| b.as_bool() == Some(true)).collect();
-            }
-            Some(other) => {
+        Ok(())
+    }
+
+    /// The control period: `dt` or `delta_time` (not both); 0.001 by default.
+    fn delta_time(&self) -> crate::Result<f64> {
+        match (self.obj.get("dt"), self.obj.get("delta_time")) {
+            (Some(_), Some(_)) => Err((self.fail)(
+                "delta_time",
+                "is given twice (as 'dt' and as 'delta_time')".into(),
+            )),
+            (Some(v), None) => self.positive("dt", v),
+            (None, Some(v)) => self.positive("delta_time", v),
+            (None, None) => Ok(0.001),
+        }
+    }
+
+    /// `intermediate_positions` and the per-section fields; `None` without waypoints (a
+    /// per-section field without `intermediate_positions` is an error).
+    fn waypoints(&self, n: usize) -> crate::Result<Option<Waypoints>> {
+        let Some(v) = self.obj.get("intermediate_positions") else {
+            if let Some(k) = SECTION_FIELDS.iter().find(|k| self.obj.contains_key(**k)) {
                 return Err((self.fail)(
-                    "enabled",
-                    format!("= {other} is not a list of {n} booleans"),
-                ))
+                    k,
+                    "needs intermediate_positions (one entry per section)".into(),
+                ));
             }
-        }
-        if let Some(v) = self.obj.get("minimum_duration") {
-            input.options.minimum_duration = Some(self.number("minimum_duration", v)?);
-        }
-        if let Some(v) = self.obj.get("interrupt_calculation_duration") {
-            input.options.interrupt_calculation_duration =
-                Some(self.positive("interrupt_calculation_duration", v)?);
-        }
-        let delta_time = match (self.obj.get("dt"), self.obj.get("delta_time")) {
-            (Some(_), Some(_)) => {
-                return Err((self.fail)(
-                    "delta_time",
-                    "is given twice (as 'dt' and as 'delta_time')".into(),
-                ))
-            }
-            (Some(v), None) => self.positive("dt", v)?,
-            (None, Some(v)) => self.positive("delta_time", v)?,
-            (None, None) => 0.001,
+            return Ok(None);
         };
-        Ok(OtgProblem { input, delta_time })
+        let key = "intermediate_positions";
+        let rows = self.list(key, v)?;
+        let mut w = Waypoints::new(
+            rows.iter()
+                .enumerate()
+                .map(|(k, r)| self.row(&format!("{key}[{k}]"), r, n, None))
+                .collect::<crate::Result<_>>()?,
+        );
+        let limit = |key: &str| -> crate::Result<Option<Vec<Vec<f64>>>> {
+            let Some(v) = self.obj.get(key) else {
+                return Ok(None);
+            };
+            self.list(key, v)?
+                .iter()
+                .enumerate()
+                .map(|(k, r)| self.row(&format!("{key}[{k}]"), r, n, Some("inf")))
+                .collect::<crate::Result<_>>()
+                .map(Some)
+        };
+        w.per_section_max_velocity = limit("per_section_max_velocity")?;
+        w.per_section_max_acceleration = limit("per_section_max_acceleration")?;
+        w.per_section_max_jerk = limit("per_section_max_jerk")?;
+        if let Some(v) = self.obj.get("per_section_minimum_duration") {
+            let key = "per_section_minimum_duration";
+            w.per_section_minimum_duration = Some(
+                self.list(key, v)?
+                    .iter()
+                    .enumerate()
+                    .map(|(k, x)| self.number(&format!("{key}[{k}]"), x))
+                    .collect::<crate::Result<_>>()?,
+            );
+        }
+        Ok(Some(w))
+    }
+
+    fn list<'v>(&self, key: &str, v: &'v Value) -> crate::Result<&'v Vec<Value>> {
+        match v {
+            Value::Array(a) => Ok(a),
+            other => Err((self.fail)(key, format!("= {other} is not a list"))),
+        }
+    }
+
+    /// One list of `n` numbers (a waypoint, a section's limits); `infinite` as in `numbers`.
+    fn row(
+        &self,
+        key: &str,
+        v: &Value,
+        n: usize,
+        infinite: Option<&str>,
+    ) -> crate::Result<Vec<f64>> {
+        let a = self.list(key, v)?;
+        if a.len() != n {
+            return Err((self.fail)(
+                key,
+                format!(
+                    "has {} values, current_position has {n} (one per DOF)",
+                    a.len()
+                ),
+            ));
+        }
+        a.iter()
+            .enumerate()
+            .map(|(i, x)| self.value(&format!("{key}[{i}]"), x, infinite))
+            .collect()
+    }
+
+    /// One number, or the string `infinite` stands for.
+    fn value(&self, key: &str, v: &Value, infinite: Option<&str>) -> crate::Result<f64> {
+        match (v, infinite) {
+            (Value::Number(x), _) => Ok(x.as_f64().unwrap_or(f64::NAN)),
+            (Value::String(s), Some(w)) if s == w => Ok(if w.starts_with('-') {
+                f64::NEG_INFINITY
+            } else {
+                f64::INFINITY
+            }),
+            (other, Some(w)) => Err((self.fail)(
+                key,
+                format!("= {other} is not a number (or \"{w}\")"),
+            )),
+            (other, None) => Err((self.fail)(key, format!("= {other} is not a number"))),
+        }
     }
 
     fn number(&self, key: &str, v: &Value) -> crate::Result<f64> {
@@ -324,22 +493,7 @@ impl Reader<'_> {
         }
         a.iter()
             .enumerate()
-            .map(|(i, v)| match (v, infinite) {
-                (Value::Number(x), _) => Ok(x.as_f64().unwrap_or(f64::NAN)),
-                (Value::String(s), Some(w)) if s == w => Ok(if w.starts_with('-') {
-                    f64::NEG_INFINITY
-                } else {
-                    f64::INFINITY
-                }),
-                (other, Some(w)) => Err((self.fail)(
-                    &format!("{key}[{i}]"),
-                    format!("= {other} is not a number (or \"{w}\")"),
-                )),
-                (other, None) => Err((self.fail)(
-                    &format!("{key}[{i}]"),
-                    format!("= {other} is not a number"),
-                )),
-            })
+            .map(|(i, v)| self.value(&format!("{key}[{i}]"), v, infinite))
             .collect()
     }
 
@@ -464,9 +618,19 @@ mod tests {
             message(r#""max_jerks":[1,1]"#),
             "p.json:3 field 'max_jerks': is not a known field (did you mean 'max_jerk'?)"
         );
-        assert!(message(r#""intermediate_positions":[[0,0]]"#)
-            .contains("field 'intermediate_positions': is a Ruckig (Pro) field"));
-        assert!(message(r#""per_section_max_jerk":[[1,1]]"#).contains("does not support yet"));
+        assert!(message(r#""per_section_min_velocity":[[-1,-1]]"#)
+            .contains("field 'per_section_min_velocity': is a Ruckig (Pro) field"));
+        assert!(message(r#""per_section_max_position":[[1,1]]"#).contains("does not support yet"));
+        assert!(message(r#""per_section_max_jerk":[[1,1]]"#)
+            .contains("field 'per_section_max_jerk': needs intermediate_positions"));
+        assert!(message(r#""intermediate_positions":[[0.5]]"#)
+            .contains("field 'intermediate_positions[0]': has 1 values"));
+        assert!(message(r#""intermediate_positions":[[0.5,"x"]]"#)
+            .contains("field 'intermediate_positions[0][1]': = \"x\" is not a number"));
+        assert!(message(r#""intermediate_positions":[[0.5,1]],"per_section_max_velocity":[[1,"inf"],[1,"-inf"]]"#)
+            .contains("field 'per_section_max_velocity[1][1]': = \"-inf\" is not a number (or \"inf\")"));
+        assert!(message(r#""intermediate_positions":{"a":1}"#)
+            .contains("field 'intermediate_positions': = {\"a\":1} is not a list"));
         assert!(message(r#""max_position":[1,"-inf"]"#)
             .contains("field 'max_position[1]': = \"-inf\" is not a number (or \"inf\")"));
         assert!(message(r#""interrupt_calculation_duration":-5"#)
@@ -499,6 +663,30 @@ mod tests {
         )
         .unwrap();
         assert_eq!(p.input.max_velocity, vec![f64::INFINITY]);
+    }
+
+    #[test]
+    fn waypoints_are_read() {
+        let p = parse(
+            r#""intermediate_positions":[[0.5,1.5],[0.7,1.8]],
+            "per_section_max_velocity":[[1,1],[2,"inf"],[1,1]],
+            "per_section_max_jerk":[[3,3],[3,3],[4,4]],
+            "per_section_minimum_duration":[0,0.5,0]"#,
+        )
+        .unwrap();
+        let w = p.waypoints.unwrap();
+        assert_eq!(
+            w.intermediate_positions,
+            vec![vec![0.5, 1.5], vec![0.7, 1.8]]
+        );
+        assert_eq!(
+            w.per_section_max_velocity.unwrap()[1],
+            vec![2.0, f64::INFINITY]
+        );
+        assert_eq!(w.per_section_max_acceleration, None);
+        assert_eq!(w.per_section_max_jerk.unwrap()[2], vec![4.0, 4.0]);
+        assert_eq!(w.per_section_minimum_duration, Some(vec![0.0, 0.5, 0.0]));
+        assert_eq!(parse("").unwrap().waypoints, None);
     }
 
     #[test]

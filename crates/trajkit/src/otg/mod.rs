@@ -44,8 +44,11 @@
 //! bounds the synchronization search: [`OtgError::Interrupted`] when no duration has worked
 //! yet, the shortest valid result otherwise (`sync.rs`), marked by
 //! [`OtgTrajectory::was_interrupted`] (and `was_calculation_interrupted` of the update outputs)
-//! when the budget cut the search short. Intermediate waypoints and
-//! per-section limits are not implemented (the JSON reader refuses them by name).
+//! when the budget cut the search short. Intermediate waypoints
+//! (`intermediate_positions`) with per-section limits and minimum durations:
+//! [`plan_waypoints`] (method, what is optimal about it and precision: `waypoints/`);
+//! Ruckig Pro's per-section minimum velocity and acceleration and per-section position
+//! limits are refused by the JSON reader.
 //!
 //! # Files (one per step)
 //! `json.rs` the Ruckig-style JSON reader (public: [`json`]) · `input.rs` the input types
@@ -59,7 +62,8 @@
 //! closed-form duration bounds) · `phase.rs`
 //! Ruckig's phase synchronization and the straight-line mode · `result.rs`, `trajectory.rs`,
 //! `generator.rs`, `dyn_generator.rs` ([`DynOtg`]), `check.rs` · `position.rs` position
-//! limits. Polynomial and scalar roots come from [`crate::roots`].
+//! limits · `waypoints/` intermediate waypoints. Polynomial and scalar roots come from
+//! [`crate::roots`].
 //!
 //! # Public API
 //! Everything a user needs is re-exported here; the files are private.
@@ -132,6 +136,7 @@ mod step2;
 mod sync;
 mod trajectory;
 mod velocity_change;
+mod waypoints;
 mod zero;
 
 pub use check::{check, SolutionCheck};
@@ -145,6 +150,9 @@ pub use profile::{Profile, State1, MAX_SEGMENTS};
 pub use result::{FieldName, OtgError, OtgResult};
 pub use step1::{TOL_LIMIT, TOL_POSITION, TOL_VELOCITY};
 pub use trajectory::{DofTrajectory, DynTrajectory, FixedTrajectory, OtgTrajectory};
+pub use waypoints::{
+    check_waypoints, plan_waypoints, WaypointCheck, WaypointTrajectory, Waypoints,
+};
 
 /// One DOF's problem (limits, start, target), used by `plan`'s exact straight lines.
 pub(crate) use problem::Dof1;

@@ -79,6 +79,21 @@ pub enum OtgError {
         /// The budget, in microseconds.
         budget_us: f64,
     },
+    /// A motion through intermediate waypoints ([`super::plan_waypoints`]): a waypoint or
+    /// per-section field is not acceptable, or a section cannot be planned.
+    Waypoints {
+        /// The waypoint (`intermediate_positions`) or section (per-section fields, a section
+        /// that cannot be planned) the error is about, 0-based.
+        index: usize,
+        /// The degree of freedom, if the error is about one.
+        dof: Option<usize>,
+        /// The field (Ruckig's input field name).
+        field: FieldName,
+        /// The value given (a length for lists of the wrong size).
+        value: f64,
+        /// Why it is refused.
+        reason: &'static str,
+    },
     /// No common duration could be found for the synchronized degrees of freedom.
     SynchronizationFailed {
         /// The degree of freedom that could not be re-planned last (`None` when none was
@@ -91,7 +106,7 @@ pub enum OtgError {
 
 impl OtgError {
     /// A short machine-readable name: `invalid_input`, `calculation_failed`, `zero_limits`,
-    /// `position_limits`, `interrupted`, `synchronization_failed`.
+    /// `position_limits`, `interrupted`, `waypoints`, `synchronization_failed`.
     pub fn name(&self) -> &'static str {
         match self {
             OtgError::InvalidInput { .. } => "invalid_input",
@@ -99,6 +114,7 @@ impl OtgError {
             OtgError::ZeroLimits { .. } => "zero_limits",
             OtgError::PositionLimits { .. } => "position_limits",
             OtgError::Interrupted { .. } => "interrupted",
+            OtgError::Waypoints { .. } => "waypoints",
             OtgError::SynchronizationFailed { .. } => "synchronization_failed",
         }
     }
@@ -106,7 +122,9 @@ impl OtgError {
     /// The degree of freedom the error is about, if any.
     pub fn dof(&self) -> Option<usize> {
         match *self {
-            OtgError::InvalidInput { dof, .. } | OtgError::SynchronizationFailed { dof, .. } => dof,
+            OtgError::InvalidInput { dof, .. }
+            | OtgError::SynchronizationFailed { dof, .. }
+            | OtgError::Waypoints { dof, .. } => dof,
             OtgError::CalculationFailed { dof }
             | OtgError::ZeroLimits { dof }
             | OtgError::PositionLimits { dof } => Some(dof),
@@ -147,6 +165,19 @@ impl fmt::Display for OtgError {
                 f,
                 "interrupted: no valid trajectory within the calculation budget of {budget_us} µs"
             ),
+            OtgError::Waypoints {
+                index,
+                dof,
+                field,
+                value,
+                reason,
+            } => {
+                write!(f, "invalid waypoint input: {field}[{index}]")?;
+                if let Some(i) = dof {
+                    write!(f, "[{i}]")?;
+                }
+                write!(f, " = {value} {reason}")
+            }
             OtgError::SynchronizationFailed { dof, duration } => match dof {
                 Some(i) => write!(
                     f,

@@ -1,0 +1,331 @@
+//! The choice of the waypoint velocities (see the module docs of `otg::waypoints` for the
+//! method): stop at every waypoint, tangent directions, coordinate descent with a
+//! golden-section search on each waypoint's speed scale.
+//!
+//! Every evaluation solves whole sections with the generator (`sync::calculate`) into
+//! buffers the planner reuses; the final trajectory solves each chosen section once more
+//! into its own storage.
+
+use super::trajectory::WaypointTrajectory;
+use super::{section_inputs, Waypoints};
+use crate::otg::input::DynInputParameter;
+use crate::otg::result::OtgError;
+use crate::otg::sync::{calculate, Scratch, Spare};
+use crate::otg::trajectory::{DofTrajectory, OtgTrajectory};
+
+/// Golden-section evaluations per waypoint in the first sweep (whole scale range) and in the
+/// second (a window around the first sweep's choice).
+const EVALS: [usize; 2] = [7, 4];
+/// Half-width of the second sweep's window, relative to the first sweep's scale.
+const WINDOW: f64 = 0.3;
+/// The largest speed scale tried when no velocity limit bounds it (the direction is built
+/// from the average velocities of stopping at every waypoint; a rest-to-rest motion peaks at
+/// about twice its average).
+const SCALE_CAP: f64 = 4.0;
+/// The inverse golden ratio.
+const INV_PHI: f64 = 0.618_033_988_749_894_8;
+
+/// The limits, minimum duration and options of section `s` (the input's, with the section's
+/// own limits where given); the boundary states are the input's.
+pub(crate) fn section_template(
+    input: &DynInputParameter,
+    waypoints: &Waypoints,
+    s: usize,
+) -> DynInputParameter {
+    let mut si = input.clone();
+    if let Some(v) = &waypoints.per_section_max_velocity {
+        si.max_velocity.clone_from(&v[s]);
+    }
+    if let Some(v) = &waypoints.per_section_max_acceleration {
+        si.max_acceleration.clone_from(&v[s]);
+    }
+    if let Some(v) = &waypoints.per_section_max_jerk {
+        si.max_jerk.clone_from(&v[s]);
+    }
+    if let Some(d) = &waypoints.per_section_minimum_duration {
+        si.options.minimum_duration = Some(d[s]);
+    }
+    si
+}
+
+/// The search state: one input per section, the generator's buffers, and per waypoint the
+/// direction, the largest scale and the chosen scale.
+pub(super) struct Planner<'a> {
+    waypoints: &'a Waypoints,
+    dt: f64,
+    n: usize,
+    m: usize,
+    secs: Vec<DynInputParameter>,
+    dofs: Vec<DofTrajectory>,
+    scratch: Vec<Scratch>,
+    spare: Vec<Spare>,
+    dir: Vec<f64>,
+    cap: Vec<f64>,
+    scale: Vec<f64>,
+    dur: Vec<f64>,
+}
+
+impl<'a> Planner<'a> {
+    /// A planner for a validated problem, every waypoint velocity zero.
+    pub(super) fn new(input: &DynInputParameter, waypoints: &'a Waypoints, dt: f64) -> Self {
+        let n = input.dof();
+        let m = waypoints.intermediate_positions.len();
+        Planner {
+            waypoints,
+            dt,
+            n,
+            m,
+            secs: section_inputs(input, waypoints, &vec![0.0; m * n]),
+            dofs: vec![DofTrajectory::default(); n],
+            scratch: vec![Scratch::default(); n],
+            spare: vec![None; n],
+            dir: vec![0.0; m * n],
+            cap: vec![0.0; m],
+            scale: vec![0.0; m],
+            dur: vec![0.0; m + 1],
+        }
+    }
+
+    /// Sets waypoint `w`'s velocity to its direction times `s` in both adjacent sections.
+    fn set_scale(&mut self, w: usize, s: f64) {
+        let n = self.n;
+        let (before, after) = self.secs.split_at_mut(w + 1);
+        let d = &self.dir[w * n..(w + 1) * n];
+        for (i, &di) in d.iter().enumerate() {
+            let v = di * s;
+            before[w].target_velocity[i] = v;
+            after[0].current_velocity[i] = v;
+        }
+    }
+
+    /// Duration of section `s` with the current waypoint velocities.
+    fn solve(&mut self, s: usize) -> Result<f64, OtgError> {
+        calculate(
+            &self.secs[s].view(),
+            self.dt,
+            &mut self.dofs,
+            &mut self.scratch,
+            &mut self.spare,
+        )
+    }
+
+    /// The two sections around waypoint `w` at scale `s`: their durations (∞ when one
+    /// cannot be planned).
+    fn around(&mut self, w: usize, s: f64) -> (f64, f64) {
+        self.set_scale(w, s);
+        let a = self.solve(w).unwrap_or(f64::INFINITY);
+        if a.is_infinite() {
+            return (a, a);
+        }
+        (a, self.solve(w + 1).unwrap_or(f64::INFINITY))
+    }
+
+    /// Plans the motion (see the module docs).
+    pub(super) fn plan(&mut self) -> Result<WaypointTrajectory, OtgError> {
+        for s in 0..=self.m {
+            self.dur[s] = self.solve(s).map_err(|e| self.section_error(s, e))?;
+        }
+        let stop: Vec<f64> = self.dur.clone();
+        let stop_total: f64 = stop.iter().sum();
+        if self.m > 0 {
+            self.directions(&stop);
+            self.start_from_tangent();
+            for (sweep, &evals) in EVALS.iter().enumerate() {
+                for w in 0..self.m {
+                    let (lo, hi) = if sweep == 0 {
+                        (0.0, self.cap[w])
+                    } else {
+                        let s = self.scale[w];
+                        ((s * (1.0 - WINDOW)), (s * (1.0 + WINDOW)).min(self.cap[w]))
+                    };
+                    self.golden(w, lo, hi, evals);
+                }
+            }
+        }
+        let total: f64 = self.dur.iter().sum();
+        if total.is_nan() || total >= stop_total {
+            self.scale.iter_mut().for_each(|s| *s = 0.0);
+        }
+        for w in 0..self.m {
+            self.set_scale(w, self.scale[w]);
+        }
+        self.build(stop_total)
+    }
+
+    /// The tangent direction of every waypoint and its largest scale, from the section
+    /// durations of stopping at every waypoint.
+    fn directions(&mut self, stop: &[f64]) {
+        let (n, wp) = (self.n, &self.waypoints.intermediate_positions);
+        for w in 0..self.m {
+            let prev = if w == 0 {
+                &self.secs[0].current_position
+            } else {
+                &wp[w - 1]
+            };
+            let next = if w + 1 == self.m {
+                &self.secs[self.m].target_position
+            } else {
+                &wp[w + 1]
+            };
+            let (tin, tout) = (stop[w], stop[w + 1]);
+            let mut cap = SCALE_CAP;
+            for i in 0..n {
+                let (din, dout) = (wp[w][i] - prev[i], next[i] - wp[w][i]);
+                let d = if din * dout > 0.0 && tin > 0.0 && tout > 0.0 {
+                    let (vin, vout) = (din / tin, dout / tout);
+                    let t = (vin * tout + vout * tin) / (tin + tout);
+                    t.clamp(
+                        -3.0 * vin.abs().min(vout.abs()),
+                        3.0 * vin.abs().min(vout.abs()),
+                    )
+                } else {
+                    0.0
+                };
+                self.dir[w * n + i] = d;
+                if d != 0.0 {
+                    let (a, b) = (&self.secs[w], &self.secs[w + 1]);
+                    let lim = if d > 0.0 {
+                        a.max_velocity[i].min(b.max_velocity[i])
+                    } else {
+                        min_velocity(a, i).max(min_velocity(b, i))
+                    };
+                    cap = cap.min(lim / d);
+                }
+            }
+            self.cap[w] = cap.max(0.0);
+        }
+    }
+
+    /// Starts the descent from the tangent velocities at scale 1 (within the caps) when every
+    /// section can be planned with them and the total is shorter; otherwise from stopping at
+    /// every waypoint.
+    fn start_from_tangent(&mut self) {
+        for w in 0..self.m {
+            self.set_scale(w, self.cap[w].min(1.0));
+        }
+        let mut dur = vec![0.0; self.m + 1];
+        let mut ok = true;
+        for (s, d) in dur.iter_mut().enumerate() {
+            match self.solve(s) {
+                Ok(t) => *d = t,
+                Err(_) => {
+                    ok = false;
+                    break;
+                }
+            }
+        }
+        if ok && dur.iter().sum::<f64>() < self.dur.iter().sum::<f64>() {
+            for w in 0..self.m {
+                self.scale[w] = self.cap[w].min(1.0);
+            }
+            self.dur = dur;
+        }
+        for w in 0..self.m {
+            self.set_scale(w, self.scale[w]);
+        }
+    }
+
+    /// Golden-section search of waypoint `w`'s scale over `[lo, hi]` with `evals`
+    /// evaluations; keeps the best of them and the current scale.
+    fn golden(&mut self, w: usize, lo: f64, hi: f64, evals: usize) {
+        let mut best = (self.scale[w], self.dur[w], self.dur[w + 1]);
+        let consider = |s: f64, d: (f64, f64), best: &mut (f64, f64, f64)| {
+            if d.0 + d.1 < best.1 + best.2 {
+                *best = (s, d.0, d.1);
+            }
+        };
+        if hi > lo && evals >= 2 {
+            let (mut a, mut b) = (lo, hi);
+            let mut x1 = b - INV_PHI * (b - a);
+            let mut x2 = a + INV_PHI * (b - a);
+            let mut f1 = self.around(w, x1);
+            let mut f2 = self.around(w, x2);
+            consider(x1, f1, &mut best);
+            consider(x2, f2, &mut best);
+            for _ in 2..evals {
+                if f1.0 + f1.1 <= f2.0 + f2.1 {
+                    (b, x2, f2) = (x2, x1, f1);
+                    x1 = b - INV_PHI * (b - a);
+                    f1 = self.around(w, x1);
+                    consider(x1, f1, &mut best);
+                } else {
+                    (a, x1, f1) = (x1, x2, f2);
+                    x2 = a + INV_PHI * (b - a);
+                    f2 = self.around(w, x2);
+                    consider(x2, f2, &mut best);
+                }
+            }
+        }
+        self.scale[w] = best.0;
+        self.dur[w] = best.1;
+        self.dur[w + 1] = best.2;
+        self.set_scale(w, best.0);
+    }
+
+    /// Solves every section once more into its own trajectory.
+    fn build(&mut self, stop_total: f64) -> Result<WaypointTrajectory, OtgError> {
+        let mut sections = Vec::with_capacity(self.m + 1);
+        let mut starts = Vec::with_capacity(self.m + 1);
+        let mut t = 0.0;
+        for s in 0..=self.m {
+            let d = self.solve(s).map_err(|e| self.section_error(s, e))?;
+            sections.push(OtgTrajectory {
+                dofs: self.dofs.clone(),
+                duration: d,
+            });
+            starts.push(t);
+            t += d;
+        }
+        let mut velocities = vec![0.0; self.m * self.n];
+        for w in 0..self.m {
+            velocities[w * self.n..(w + 1) * self.n].copy_from_slice(&self.secs[w].target_velocity);
+        }
+        Ok(WaypointTrajectory {
+            sections,
+            starts,
+            duration: t,
+            stop_duration: stop_total,
+            velocities,
+        })
+    }
+
+    /// The error of a section that cannot be planned (input errors pass through).
+    fn section_error(&self, s: usize, e: OtgError) -> OtgError {
+        if let OtgError::InvalidInput { .. } = e {
+            return e;
+        }
+        let min = self
+            .waypoints
+            .per_section_minimum_duration
+            .as_ref()
+            .map(|d| d[s]);
+        let (field, value) = match min {
+            Some(d) if d > 0.0 => ("per_section_minimum_duration", d),
+            _ => ("intermediate_positions", f64::NAN),
+        };
+        let reason = match e {
+            OtgError::PositionLimits { .. } => {
+                "section cannot be planned inside [min_position, max_position]"
+            }
+            OtgError::ZeroLimits { .. } => "section cannot be planned with its zero limits",
+            _ if min.is_some_and(|d| d > 0.0) => {
+                "section cannot be planned with this minimum duration"
+            }
+            _ => "section cannot be planned (the generator found no trajectory)",
+        };
+        OtgError::Waypoints {
+            index: s,
+            dof: e.dof(),
+            field,
+            value,
+            reason,
+        }
+    }
+}
+
+/// The minimum velocity of DOF `i` in a section's input.
+fn min_velocity(si: &DynInputParameter, i: usize) -> f64 {
+    si.min_velocity
+        .as_ref()
+        .map_or(-si.max_velocity[i], |m| m[i])
+}
