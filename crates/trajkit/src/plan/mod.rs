@@ -123,8 +123,9 @@ impl Method {
 pub enum JerkStage {
     /// The default. A rest-to-rest piece whose path is a straight segment (collinear
     /// waypoints in order) is timed exactly by the 1-D jerk-limited optimum along it
-    /// ([`line_motion`]: trajkit's online generator, rest to rest); every other piece, and
-    /// every piece when torque limits are set, by [`JerkStage::Filter`].
+    /// ([`line_motion`]: trajkit's online generator, rest to rest); every other piece by the
+    /// filter with a local slow-down ([`crate::topp::jerk_local`], never longer than
+    /// [`JerkStage::Filter`]); every piece when torque limits are set by [`JerkStage::Filter`].
     #[default]
     Auto,
     /// Filter the timing law by a moving average and rescale time ([`crate::topp::jerk`]) on
@@ -700,12 +701,23 @@ fn jerk_stage(
                     pieces.push(JerkPiece::Line(Box::new(m)));
                     continue;
                 }
-                let filtered = crate::topp::jerk::limit_jerk(
-                    p.path().clone(),
-                    p.law().clone(),
-                    limits,
-                    &options,
-                )?;
+                // Not `Filter`, no torque rows: the filter with a local slow-down (never longer).
+                let filtered = if lines_allowed {
+                    crate::topp::jerk_local::limit_jerk_local(
+                        p.path().clone(),
+                        p.law().clone(),
+                        limits,
+                        &crate::topp::jerk_local::LocalOptions::default(),
+                    )?
+                    .0
+                } else {
+                    crate::topp::jerk::limit_jerk(
+                        p.path().clone(),
+                        p.law().clone(),
+                        limits,
+                        &options,
+                    )?
+                };
                 let optimal = (stage == JerkStage::ThirdOrder)
                     .then(|| {
                         crate::topp::jerk_optimal::JerkOptimal::new(p.path().clone(), limits)
