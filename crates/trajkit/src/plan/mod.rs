@@ -123,8 +123,9 @@ impl Method {
 pub enum JerkStage {
     /// The default. A rest-to-rest piece whose path is a straight segment (collinear
     /// waypoints in order) is timed exactly by the 1-D jerk-limited optimum along it
-    /// ([`line_motion`]: trajkit's online generator, rest to rest); every other piece, and
-    /// every piece when torque limits are set, by [`JerkStage::Filter`].
+    /// ([`line_motion`]: trajkit's online generator, rest to rest); every other piece by the
+    /// filter with a local slow-down ([`crate::topp::jerk_local`], never longer than
+    /// [`JerkStage::Filter`]); every piece when torque limits are set by [`JerkStage::Filter`].
     #[default]
     Auto,
     /// Filter the timing law by a moving average and rescale time ([`crate::topp::jerk`]) on
@@ -762,8 +763,19 @@ fn jerk_piece(
         .flatten()
         .and_then(|o| third_order_margin(o, limits));
     let (path, law) = p.into_parts();
-    let options = crate::topp::jerk::JerkOptions::default();
-    let filtered = crate::topp::jerk::limit_jerk(path, law, limits, &options)?;
+    // Not `Filter`, no torque rows: the filter with a local slow-down (never longer).
+    let filtered = if lines_allowed {
+        crate::topp::jerk_local::limit_jerk_local(
+            path,
+            law,
+            limits,
+            &crate::topp::jerk_local::LocalOptions::default(),
+        )?
+        .0
+    } else {
+        let options = crate::topp::jerk::JerkOptions::default();
+        crate::topp::jerk::limit_jerk(path, law, limits, &options)?
+    };
     Ok(match optimal {
         Some(o) if o.duration() < filtered.duration() => JerkPiece::ThirdOrder(Box::new(o)),
         _ => JerkPiece::Filtered(filtered),

@@ -109,6 +109,7 @@ mod blend;
 mod constraint;
 mod grid;
 pub mod jerk;
+pub mod jerk_local;
 pub mod jerk_optimal;
 mod lp;
 pub mod messy;

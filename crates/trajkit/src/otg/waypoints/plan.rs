@@ -272,6 +272,7 @@ impl<'a> Planner<'a> {
             sections.push(OtgTrajectory {
                 dofs: self.dofs.clone(),
                 duration: d,
+                interrupted: false,
             });
             starts.push(t);
             t += d;

@@ -1,0 +1,353 @@
+//! Bounded jerk with a *local* slow-down: the filter of [`crate::topp::jerk`], applied to a
+//! TOPP-RA law that is slowed only where the filtered motion would break a limit.
+//!
+//! The filter ([`crate::topp::jerk::limit_jerk`]) smooths the TOPP-RA law by a moving average
+//! of width w and then slows the *whole* motion by one factor k. Two things make it long: w
+//! is sized for half the jerk limit (the other half is left for the path-curvature terms), and
+//! one local excess (a short path segment, a sharp bend) sets k for the whole motion.
+//! [`limit_jerk_local`] removes both, keeping the filter's certified limits:
+//!
+//! 1. **Window.** For the current law, candidate windows from the one that gives the switches
+//!    of s̈ the *whole* jerk limit ([`crate::topp::jerk::filter_window`] with budget 1) up to
+//!    the filter's own are scored by the duration `k̂·(T + w)`, with k̂ the factor found at
+//!    samples of the filtered motion (cheap; a lower bound of the certified one).
+//! 2. **Local slow-down.** At every sample of the best candidate where the filtered motion
+//!    uses more than its limits, by the factor r = max(r_v, √r_a, ∛r_j), the TOPP-RA path
+//!    velocities at the gridpoints that the moving average mixes into that instant (raw times
+//!    in `[t − w, t]`) are divided by r (velocity, acceleration and jerk shrink about like
+//!    those of a uniform slow-down by r, but only there). The lowered law is made consistent
+//!    again by a backward and a forward pass that keep every joint's acceleration row of
+//!    every interval (at both of its gridpoints, with the interval's constant s̈) within the
+//!    limits, lowering velocities only.
+//! 3. Repeat from 1 on the lowered law, a few rounds, and keep the shortest certified result.
+//!
+//! Every candidate that is returned is a filtered law scaled by the analytic factor of
+//! [`crate::topp::jerk::filter_with_window`]: steps 1–2 are heuristics that only choose *which*
+//! law is filtered; whatever they choose, the limits are met by that factor. The filter's own
+//! result (budget 0.5, raw law) is always among the candidates, so the result is never longer
+//! than the filter's.
+//!
+//! # Precision contract
+//! That of [`crate::topp::jerk`]: on piecewise-polynomial paths of degree ≤ 6 the velocity,
+//! acceleration and jerk limits hold at every instant of the continuous trajectory (the scale
+//! factor bounds each segment between kinks analytically, raised by 1e-12 relative); on other
+//! paths they hold at `check_rate` samples and nine points per segment. Position ranges hold
+//! because the played path parameter is non-decreasing from the path's start to its end.
+//! The result starts and ends at rest with zero acceleration exactly at the path's ends.
+
+use super::jerk::{filter_window, filter_with_window, FilteredProfile, JerkLimited, JerkOptions};
+use super::parametrized::PhaseProfile as Profile;
+use super::rescale::TimeLaw;
+use crate::error::Result;
+use crate::{Limits, Order, Path, Trajectory};
+
+/// The sampled factor the local slow-down aims at (a little below 1: the certified factor
+/// also covers the motion between samples).
+const TARGET: f64 = 1.0;
+
+/// Settings of [`limit_jerk_local`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct LocalOptions {
+    /// Rounds of local slow-down (0: the window search on the raw law only).
+    pub rounds: usize,
+    /// Windows tried, as multiples of the one that gives the switches of s̈ the whole jerk
+    /// limit (2: the filter's default budget of one half).
+    pub windows: Vec<f64>,
+    /// Samples of the filtered motion per TOPP-RA interval used to score windows and locate
+    /// excesses (heuristic only: the returned factor is certified independently).
+    pub samples_per_interval: usize,
+    /// The filter's settings (its budget gives the baseline window; its check rate is used on
+    /// paths that are not piecewise polynomials).
+    pub filter: JerkOptions,
+}
+
+impl Default for LocalOptions {
+    fn default() -> Self {
+        LocalOptions {
+            rounds: 6,
+            windows: vec![1.0, 1.2, 1.45, 1.7, 2.0],
+            samples_per_interval: 2,
+            filter: JerkOptions::default(),
+        }
+    }
+}
+
+/// What [`limit_jerk_local`] did.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LocalReport {
+    /// Duration of the plain filter's result (the baseline).
+    pub filter_duration: f64,
+    /// Duration of the returned result (≤ `filter_duration`).
+    pub duration: f64,
+    /// Duration of the unfiltered TOPP-RA law given (a lower bound).
+    pub raw_duration: f64,
+    /// Round (0: raw law) of the returned result; `None` when the plain filter won.
+    pub round: Option<usize>,
+    /// Filter window of the returned result (s).
+    pub window: f64,
+    /// Certified uniform time-scale factor of the returned result.
+    pub factor: f64,
+    /// Certified candidates evaluated (each one analytic bound).
+    pub certified: usize,
+}
+
+/// Per-gridpoint σ′ and σ″ of the path (row-major, `dim` per gridpoint), and the limits.
+struct Rows {
+    dim: usize,
+    d1: Vec<f64>,
+    d2: Vec<f64>,
+    a_lo: Vec<f64>,
+    a_hi: Vec<f64>,
+}
+
+impl Rows {
+    fn new<P: Path>(path: &P, s: &[f64], limits: &Limits) -> Self {
+        let dim = path.dim();
+        let mut d1 = vec![0.0; s.len() * dim];
+        let mut d2 = vec![0.0; s.len() * dim];
+        for (i, &si) in s.iter().enumerate() {
+            path.eval(si, 1, &mut d1[i * dim..(i + 1) * dim]);
+            path.eval(si, 2, &mut d2[i * dim..(i + 1) * dim]);
+        }
+        let (mut a_lo, mut a_hi) = (Vec::with_capacity(dim), Vec::with_capacity(dim));
+        for j in limits.joints() {
+            let (lo, hi) = j.range(Order::Acceleration);
+            a_lo.push(lo);
+            a_hi.push(hi);
+        }
+        Rows {
+            dim,
+            d1,
+            d2,
+            a_lo,
+            a_hi,
+        }
+    }
+
+    /// The largest x_free ≤ `cap` (≥ 0) such that every joint's acceleration
+    /// σ″(s_g)·x_g + σ′(s_g)·(x_{i+1} − x_i)/(2Δ) at gridpoint g ∈ {i, i + 1} of interval i is
+    /// within limits, where `x_fixed` is the other end's x and `free_is_start` says which end
+    /// is free. Returns `cap` when the rows cannot be met below it (left to the scale factor).
+    fn largest(&self, i: usize, delta: f64, x_fixed: f64, cap: f64, free_is_start: bool) -> f64 {
+        let mut hi = cap;
+        let mut lo = 0.0_f64;
+        let h = 1.0 / (2.0 * delta);
+        for g in [i, i + 1] {
+            for j in 0..self.dim {
+                let (a1, a2) = (self.d1[g * self.dim + j], self.d2[g * self.dim + j]);
+                // Row value = c·x_free + e.
+                let at_free = (g == i) == free_is_start;
+                let sign = if free_is_start { -1.0 } else { 1.0 };
+                let c = sign * a1 * h + if at_free { a2 } else { 0.0 };
+                let e = -sign * a1 * h * x_fixed + if at_free { 0.0 } else { a2 * x_fixed };
+                let (l, u) = (self.a_lo[j] - e, self.a_hi[j] - e);
+                if c > 0.0 {
+                    hi = hi.min(u / c);
+                    lo = lo.max(l / c);
+                } else if c < 0.0 {
+                    hi = hi.min(l / c);
+                    lo = lo.max(u / c);
+                }
+            }
+        }
+        if hi >= lo && hi >= 0.0 {
+            hi
+        } else {
+            cap
+        }
+    }
+
+    /// Backward then forward pass over x = ṡ², lowering only.
+    fn make_consistent(&self, s: &[f64], x: &mut [f64]) {
+        let n = s.len() - 1;
+        for i in (0..n).rev() {
+            x[i] = self.largest(i, s[i + 1] - s[i], x[i + 1], x[i], true);
+        }
+        for i in 0..n {
+            x[i + 1] = self.largest(i, s[i + 1] - s[i], x[i], x[i + 1], false);
+        }
+    }
+}
+
+/// Samples of a filtered (unscaled) law: the time and the factor r = max(r_v, √r_a, ∛r_j).
+struct Sampler<'a, P: Path> {
+    path: &'a P,
+    inv: [Vec<(f64, f64)>; 3],
+    buf: [Vec<f64>; 3],
+}
+
+impl<'a, P: Path> Sampler<'a, P> {
+    fn new(path: &'a P, limits: &Limits) -> Self {
+        let inv = [Order::Velocity, Order::Acceleration, Order::Jerk].map(|o| {
+            limits
+                .joints()
+                .iter()
+                .map(|j| {
+                    let (l, h) = j.range(o);
+                    let f = |x: f64| if x.is_finite() { 1.0 / x } else { 0.0 };
+                    (f(l), f(h))
+                })
+                .collect()
+        });
+        let d = path.dim();
+        Sampler {
+            path,
+            inv,
+            buf: [vec![0.0; d], vec![0.0; d], vec![0.0; d]],
+        }
+    }
+
+    /// r = max(r_v, √r_a, ∛r_j) of the law at time t.
+    fn ratio(&mut self, law: &FilteredProfile, t: f64) -> f64 {
+        let [s, v, a, j] = law.eval(t);
+        for (k, b) in self.buf.iter_mut().enumerate() {
+            self.path.eval(s, k + 1, b);
+        }
+        let [d1, d2, d3] = &self.buf;
+        let mut r = [0.0_f64; 3];
+        for q in 0..d1.len() {
+            let vals = [
+                d1[q] * v,
+                d2[q] * v * v + d1[q] * a,
+                d3[q] * v * v * v + 3.0 * d2[q] * v * a + d1[q] * j,
+            ];
+            for o in 0..3 {
+                let (lo, hi) = self.inv[o][q];
+                r[o] = r[o].max((vals[o] * hi).max(vals[o] * lo));
+            }
+        }
+        r[0].max(r[1].sqrt()).max(r[2].cbrt())
+    }
+
+    /// Sampled factors at `m` + 1 evenly spaced times of the filtered law.
+    fn profile(&mut self, law: &FilteredProfile, m: usize) -> Vec<f64> {
+        let big_t = law.duration();
+        (0..=m)
+            .map(|k| self.ratio(law, big_t * k as f64 / m as f64))
+            .collect()
+    }
+}
+
+/// Sampled duration k̂·(T + w) of the law filtered over `w`, and the sampled factors.
+fn score<P: Path>(
+    sampler: &mut Sampler<'_, P>,
+    profile: &Profile,
+    w: f64,
+    m: usize,
+) -> Result<(f64, Vec<f64>)> {
+    let law = FilteredProfile::new(profile.clone(), w)?;
+    let r = sampler.profile(&law, m);
+    let k = r.iter().fold(0.0_f64, |a, &b| a.max(b));
+    Ok((k.max(1e-300) * law.duration(), r))
+}
+
+/// Lowers the path velocities of `profile` where the sampled factors `r` (at `m` + 1 evenly
+/// spaced times of the law filtered over `w`) exceed 1, then restores consistency; `None`
+/// when nothing exceeds.
+fn lowered(profile: &Profile, rows: &Rows, r: &[f64], w: f64) -> Option<Vec<f64>> {
+    let (s, times) = (profile.gridpoints(), profile.times());
+    let m = r.len() - 1;
+    let big_t = profile.duration() + w;
+    let dt = big_t / m as f64;
+    let mut c = vec![1.0_f64; s.len()];
+    let mut any = false;
+    for (k, &rk) in r.iter().enumerate() {
+        if rk <= TARGET {
+            continue;
+        }
+        any = true;
+        let t = big_t * k as f64 / m as f64;
+        let (a, b) = (t - w - dt, t + dt);
+        let first = times.partition_point(|&x| x < a);
+        for (i, ci) in c.iter_mut().enumerate().skip(first) {
+            if times[i] > b {
+                break;
+            }
+            *ci = ci.min(TARGET / rk);
+        }
+    }
+    if !any {
+        return None;
+    }
+    let mut x: Vec<f64> = profile
+        .velocities()
+        .iter()
+        .zip(&c)
+        .map(|(v, ci)| (v * ci.max(0.05)).powi(2))
+        .collect();
+    rows.make_consistent(s, &mut x);
+    Some(x.iter().map(|x| x.max(0.0).sqrt()).collect())
+}
+
+/// Bounds the jerk of a rest-to-rest TOPP-RA result (`path` timed by `profile`) like
+/// [`crate::topp::jerk::limit_jerk`], with the window chosen and the law slowed locally (see
+/// the module documentation); never longer than `limit_jerk`'s result.
+///
+/// Errors: those of `limit_jerk` (a profile that does not start and end at rest; dimension
+/// mismatch; no joint with a finite jerk limit).
+pub fn limit_jerk_local<P: Path + Clone>(
+    path: P,
+    profile: Profile,
+    limits: &Limits,
+    options: &LocalOptions,
+) -> Result<(JerkLimited<P>, LocalReport)> {
+    let rate = options.filter.check_rate;
+    let w0 = filter_window(&profile, &path, limits, options.filter.budget)?.ok_or_else(|| {
+        crate::Error::InvalidValue {
+            field: "jerk limits".into(),
+            value: f64::INFINITY,
+            reason: "are absent on every joint: nothing to bound",
+        }
+    })?;
+    let raw_duration = profile.duration();
+    let (mut best, bound) = filter_with_window(path.clone(), profile.clone(), limits, w0, rate)?;
+    let mut report = LocalReport {
+        filter_duration: best.duration(),
+        duration: best.duration(),
+        raw_duration,
+        round: None,
+        window: w0,
+        factor: bound.factor,
+        certified: 1,
+    };
+    let rows = Rows::new(&path, profile.gridpoints(), limits);
+    let mut sampler = Sampler::new(&path, limits);
+    let m = options.samples_per_interval.max(1) * profile.gridpoints().len() + 16;
+    let mut current = profile;
+    // Rounds since the best result last improved.
+    let mut stale = 0;
+    for round in 0..=options.rounds {
+        let w1 = filter_window(&current, &path, limits, 1.0)?.unwrap_or(w0);
+        let mut pick: Option<(f64, f64, Vec<f64>)> = None;
+        for &f in &options.windows {
+            let (d, r) = score(&mut sampler, &current, w1 * f, m)?;
+            if pick.as_ref().is_none_or(|p| d < p.0) {
+                pick = Some((d, w1 * f, r));
+            }
+        }
+        let Some((_, w, r)) = pick else { break };
+        if let Ok((traj, b)) = filter_with_window(path.clone(), current.clone(), limits, w, rate) {
+            report.certified += 1;
+            if traj.duration() < best.duration() {
+                stale = 0;
+                best = traj;
+                report.round = Some(round);
+                report.window = w;
+                report.factor = b.factor;
+                report.duration = best.duration();
+            }
+        }
+        stale += 1;
+        if round == options.rounds || stale > 2 {
+            break;
+        }
+        let Some(sd) = lowered(&current, &rows, &r, w) else {
+            break;
+        };
+        match Profile::new(current.gridpoints(), &sd) {
+            Ok(p) => current = p,
+            Err(_) => break,
+        }
+    }
+    Ok((best, report))
+}
