@@ -528,12 +528,17 @@ impl Workspace {
         self.at_points.reserve(3 * path.dim() * grid.len());
         // On paths of degree ≤ 5 between breakpoints, points inside a piece take σ, σ′, σ″
         // from the piece's Taylor data (one path evaluation per piece).
+        // Breakpoints out of order (a path breaking its contract) fall back to evaluating
+        // the path at every gridpoint.
         let polynomial = path.piecewise_degree().is_some_and(|d| d <= 5);
-        let breaks = if polynomial {
+        let mut breaks = if polynomial {
             path.breakpoints()
         } else {
             Vec::new()
         };
+        if !breaks.windows(2).all(|w| w[0] <= w[1]) {
+            breaks.clear();
+        }
         let mut anchor = std::mem::take(&mut self.anchor);
         anchor.reset(path.dim());
         let mut b = 0;
