@@ -31,20 +31,30 @@ fn long_search() -> InputParameter<3> {
     inp
 }
 
+/// A seeded 3-DOF problem with a moving target (v_max 1, a_max 2, j_max 10): velocities
+/// within ±`v`, the current acceleration within ±`a` (not drawn when `a` is 0).
+fn moving_target(r: &mut trajkit::rng::SplitMix64, v: f64, a: f64) -> InputParameter<3> {
+    let mut inp = InputParameter::<3>::new();
+    for i in 0..3 {
+        inp.current_velocity[i] = r.uniform(-v, v);
+        if a != 0.0 {
+            inp.current_acceleration[i] = r.uniform(-a, a);
+        }
+        inp.target_position[i] = r.uniform(-1.0, 1.0);
+        inp.target_velocity[i] = r.uniform(-v, v);
+        inp.max_velocity[i] = 1.0;
+        inp.max_acceleration[i] = 2.0;
+        inp.max_jerk[i] = 10.0;
+    }
+    inp
+}
+
 #[test]
 fn an_ample_budget_changes_nothing() {
     let otg = Otg::<3>::new(0.001);
     let mut r = trajkit::rng::SplitMix64::new(5);
     for _ in 0..200 {
-        let mut inp = InputParameter::<3>::new();
-        for i in 0..3 {
-            inp.current_velocity[i] = r.uniform(-0.5, 0.5);
-            inp.target_position[i] = r.uniform(-1.0, 1.0);
-            inp.target_velocity[i] = r.uniform(-0.5, 0.5);
-            inp.max_velocity[i] = 1.0;
-            inp.max_acceleration[i] = 2.0;
-            inp.max_jerk[i] = 10.0;
-        }
+        let mut inp = moving_target(&mut r, 0.5, 0.0);
         let free = otg.calculate(&inp);
         inp.options.interrupt_calculation_duration = Some(1e6);
         let budgeted = otg.calculate(&inp);
@@ -117,16 +127,7 @@ fn the_trajectory_says_when_the_budget_cut_the_search() {
     let mut r = trajkit::rng::SplitMix64::new(23);
     let (mut marked, mut exact) = (0, 0);
     for k in 0..400 {
-        let mut inp = InputParameter::<3>::new();
-        for i in 0..3 {
-            inp.current_velocity[i] = r.uniform(-0.8, 0.8);
-            inp.current_acceleration[i] = r.uniform(-1.0, 1.0);
-            inp.target_position[i] = r.uniform(-1.0, 1.0);
-            inp.target_velocity[i] = r.uniform(-0.8, 0.8);
-            inp.max_velocity[i] = 1.0;
-            inp.max_acceleration[i] = 2.0;
-            inp.max_jerk[i] = 10.0;
-        }
+        let mut inp = moving_target(&mut r, 0.8, 1.0);
         let Ok(free) = otg.calculate(&inp) else {
             continue;
         };

@@ -20,7 +20,7 @@ use super::families::two_changes;
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
 use super::step1::{velocity_cap, velocity_window, verify, RestShape};
-use super::velocity_change::{fastest, kink, push_change, VelChange};
+use super::velocity_change::{fastest, kink, push_change, via_velocity, VelChange};
 
 /// A verified profile for `dof` (whose start state is safe) lasting `t` seconds, if one of the
 /// step-2 families has one.
@@ -328,15 +328,7 @@ fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile>
         if tau < 0.0 {
             return None;
         }
-        let mut pr = Profile::new(start);
-        push_change(&mut pr, order, &c1, dof.v0);
-        pr.snap(vc, 0.0);
-        pr.push_with(tau, vc, 0.0, 0.0);
-        push_change(&mut pr, order, &c2, vc);
-        if order == ProfileOrder::Second {
-            pr.set_final(dof.vf, 0.0);
-        }
-        Some(pr)
+        Some(via_velocity(dof, order, &c1, vc, Some(tau), &c2))
     };
     let f = |vc: f64| parts(vc).map(|(c1, c2, tau)| c1.dist + c2.dist + vc * tau.max(0.0) - d);
     let guess = if t > 0.0 { d / t } else { 0.0 };

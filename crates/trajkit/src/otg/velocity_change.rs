@@ -8,8 +8,8 @@
 //!
 //! Precision: durations are closed-form; negative round-off (≥ −1e−12 relative) is clamped to 0.
 
-use super::problem::ProfileOrder;
-use super::profile::Profile;
+use super::problem::{Dof1, ProfileOrder};
+use super::profile::{Profile, State1};
 
 /// A velocity change of at most three segments: durations and jerks (third order), or one
 /// constant-acceleration segment (second order, `accel` set).
@@ -170,6 +170,35 @@ pub(crate) fn kink(order: ProfileOrder, v: f64, a: f64, j: f64, dir: f64) -> f64
         ProfileOrder::Third => v + dir * a * a.abs() / (2.0 * j),
         _ => v,
     }
+}
+
+/// The profile of `dof` through velocity `vc`: from its start state the fastest change `c1` to
+/// (v_c, 0), a cruise of `tau` seconds (none when `None`), then the fastest change `c2` to the
+/// target (second order ends with its final velocity set exactly). The shape of the peak and
+/// cruise families of step 1 and of step 2's bracketed cruise.
+pub(crate) fn via_velocity(
+    dof: &Dof1,
+    order: ProfileOrder,
+    c1: &VelChange,
+    vc: f64,
+    tau: Option<f64>,
+    c2: &VelChange,
+) -> Profile {
+    let mut pr = Profile::new(State1 {
+        p: dof.p0,
+        v: dof.v0,
+        a: dof.a0,
+    });
+    push_change(&mut pr, order, c1, dof.v0);
+    pr.snap(vc, 0.0);
+    if let Some(tau) = tau {
+        pr.push_with(tau, vc, 0.0, 0.0);
+    }
+    push_change(&mut pr, order, c2, vc);
+    if order == ProfileOrder::Second {
+        pr.set_final(dof.vf, 0.0);
+    }
+    pr
 }
 
 #[cfg(test)]

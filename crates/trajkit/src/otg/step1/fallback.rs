@@ -3,9 +3,9 @@
 //! range, and (second order) the cruise family.
 
 use super::super::bracket::{first_at_root, Grid};
-use super::super::problem::{Dof1, ProfileOrder};
-use super::super::profile::{Profile, State1};
-use super::super::velocity_change::{fastest, kink, push_change, VelChange};
+use super::super::problem::Dof1;
+use super::super::profile::State1;
+use super::super::velocity_change::{fastest, kink, via_velocity, VelChange};
 use super::closed::{square_window, Seq};
 use super::verify::velocity_cap;
 use super::Collector;
@@ -48,18 +48,7 @@ pub(super) fn peak_family(dof: &Dof1, col: &mut Collector<'_>) {
     // Every root's profile is offered (none ends the search).
     first_at_root(cuts, Grid::Coarse, f, |vc| -> Option<()> {
         let (c1, c2) = parts(vc)?;
-        let mut pr = Profile::new(State1 {
-            p: dof.p0,
-            v: dof.v0,
-            a: dof.a0,
-        });
-        push_change(&mut pr, order, &c1, dof.v0);
-        pr.snap(vc, 0.0);
-        push_change(&mut pr, order, &c2, vc);
-        if order == ProfileOrder::Second {
-            pr.set_final(dof.vf, 0.0);
-        }
-        col.offer(&pr);
+        col.offer(&via_velocity(dof, order, &c1, vc, None, &c2));
         None
     });
 }
@@ -83,19 +72,7 @@ pub(super) fn cruise_family(dof: &Dof1, col: &mut Collector<'_>) {
         if tau.is_nan() || tau < 0.0 {
             continue;
         }
-        let mut pr = Profile::new(State1 {
-            p: dof.p0,
-            v: dof.v0,
-            a: dof.a0,
-        });
-        push_change(&mut pr, order, &c1, dof.v0);
-        pr.snap(vc, 0.0);
-        pr.push_with(tau, vc, 0.0, 0.0);
-        push_change(&mut pr, order, &c2, vc);
-        if order == ProfileOrder::Second {
-            pr.set_final(dof.vf, 0.0);
-        }
-        col.offer(&pr);
+        col.offer(&via_velocity(dof, order, &c1, vc, Some(tau), &c2));
     }
 }
 
