@@ -17,7 +17,12 @@
 //! runs one library alone on one problem set for `OTG_SECS` seconds (default 5), for a
 //! profiler.
 //!
+//! `otg/waypoints_7dof_5` times `plan_waypoints` (7 DOF, 5 waypoints; `otg_waypoints/`);
+//! `OTG_WAYP=1` prints its medians instead.
+//!
 //! Run: `cargo bench -p trajkit --bench otg`.
+
+mod otg_waypoints;
 
 use criterion::{criterion_group, Criterion};
 use std::hint::black_box;
@@ -157,6 +162,7 @@ fn bench(c: &mut Criterion) {
     group::<3>(c, false);
     group::<7>(c, true);
     group::<7>(c, false);
+    otg_waypoints::group(c);
 }
 
 /// Mean and p99 of single calls in nanoseconds.
@@ -279,6 +285,10 @@ fn main() {
             "7g" => profile_loop::<7>(true, peer, secs),
             _ => profile_loop::<7>(false, peer, secs),
         }
+        return;
+    }
+    if std::env::var("OTG_WAYP").is_ok() {
+        otg_waypoints::medians();
         return;
     }
     if let Ok(dir) = std::env::var("OTG_DUMP") {

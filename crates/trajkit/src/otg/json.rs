@@ -402,7 +402,9 @@ impl Reader<'_> {
         n: usize,
         infinite: Option<&str>,
     ) -> crate::Result<Vec<f64>> {
-        let a = self.list(key, v)?;
+        let Value::Array(a) = v else {
+            return Err((self.fail)(key, format!("= {v} is not a list of numbers")));
+        };
         if a.len() != n {
             return Err((self.fail)(
                 key,
@@ -462,39 +464,18 @@ impl Reader<'_> {
         default: Option<f64>,
         infinite: Option<&str>,
     ) -> crate::Result<Vec<f64>> {
-        let a = match self.obj.get(key) {
-            None => {
-                return default.map(|d| vec![d; n]).ok_or_else(|| {
-                    let hint = match infinite {
-                        Some(w) => format!(
-                            " (a list of {n} numbers; write \"{w}\" for a DOF without this limit)"
-                        ),
-                        None => format!(" (a list of {n} numbers)"),
-                    };
-                    (self.fail)(key, format!("is required{hint}"))
-                })
-            }
-            Some(Value::Array(a)) => a,
-            Some(other) => {
-                return Err((self.fail)(
-                    key,
-                    format!("= {other} is not a list of numbers"),
-                ))
-            }
-        };
-        if a.len() != n {
-            return Err((self.fail)(
-                key,
-                format!(
-                    "has {} values, current_position has {n} (one per DOF)",
-                    a.len()
-                ),
-            ));
+        match self.obj.get(key) {
+            None => default.map(|d| vec![d; n]).ok_or_else(|| {
+                let hint = match infinite {
+                    Some(w) => format!(
+                        " (a list of {n} numbers; write \"{w}\" for a DOF without this limit)"
+                    ),
+                    None => format!(" (a list of {n} numbers)"),
+                };
+                (self.fail)(key, format!("is required{hint}"))
+            }),
+            Some(v) => self.row(key, v, n, infinite),
         }
-        a.iter()
-            .enumerate()
-            .map(|(i, v)| self.value(&format!("{key}[{i}]"), v, infinite))
-            .collect()
     }
 
     fn word(&self, key: &str) -> crate::Result<Option<&str>> {
