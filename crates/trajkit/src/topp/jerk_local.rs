@@ -35,9 +35,8 @@
 //! because the played path parameter is non-decreasing from the path's start to its end.
 //! The result starts and ends at rest with zero acceleration exactly at the path's ends.
 
-use super::jerk::{filter_window, filter_with_window, FilteredProfile, JerkLimited, JerkOptions};
+use super::jerk::{filter_window, filter_with_window, JerkLimited, JerkOptions};
 use super::parametrized::PhaseProfile as Profile;
-use super::rescale::TimeLaw;
 use crate::error::Result;
 use crate::{Limits, Order, Path, Trajectory};
 
@@ -169,6 +168,77 @@ impl Rows {
     }
 }
 
+/// The moving average of a TOPP-RA law, evaluated for sampling only: s from a running
+/// integral of s* (a difference of two large integrals, accurate to about 1e-12 of the path
+/// length: enough to locate excesses, never used for the returned trajectory), so that a
+/// sample costs two binary searches instead of a sum over the window.
+struct FastLaw<'a> {
+    profile: &'a Profile,
+    window: f64,
+    /// ∫₀^{t_i} s*(τ) dτ at the gridpoint times.
+    prefix: Vec<f64>,
+}
+
+impl<'a> FastLaw<'a> {
+    fn new(profile: &'a Profile, window: f64) -> Self {
+        let (s, t, v, u) = (
+            profile.gridpoints(),
+            profile.times(),
+            profile.velocities(),
+            profile.accelerations(),
+        );
+        let mut prefix = Vec::with_capacity(s.len());
+        prefix.push(0.0);
+        for i in 0..s.len() - 1 {
+            let h = t[i + 1] - t[i];
+            prefix.push(prefix[i] + s[i] * h + v[i] * h * h / 2.0 + u[i] * h * h * h / 6.0);
+        }
+        FastLaw {
+            profile,
+            window,
+            prefix,
+        }
+    }
+
+    fn duration(&self) -> f64 {
+        self.profile.duration() + self.window
+    }
+
+    /// s*, ṡ*, s̈* and ∫₀ᵗ s* at t (rest outside the profile).
+    fn raw(&self, t: f64) -> [f64; 4] {
+        let p = self.profile;
+        let (s, times) = (p.gridpoints(), p.times());
+        let n = s.len() - 1;
+        if t <= 0.0 {
+            return [s[0], 0.0, 0.0, s[0] * t];
+        }
+        if t >= times[n] {
+            return [s[n], 0.0, 0.0, self.prefix[n] + s[n] * (t - times[n])];
+        }
+        let i = crate::traj::find_piece(times, t);
+        let h = t - times[i];
+        let (v, u) = (p.velocities()[i], p.accelerations()[i]);
+        [
+            s[i] + v * h + 0.5 * u * h * h,
+            v + u * h,
+            u,
+            self.prefix[i] + s[i] * h + v * h * h / 2.0 + u * h * h * h / 6.0,
+        ]
+    }
+
+    /// [s, ṡ, s̈, s⃛] of the filtered law at t.
+    fn eval(&self, t: f64) -> [f64; 4] {
+        let w = self.window;
+        let (now, before) = (self.raw(t), self.raw(t - w));
+        [
+            (now[3] - before[3]) / w,
+            (now[0] - before[0]) / w,
+            (now[1] - before[1]) / w,
+            (now[2] - before[2]) / w,
+        ]
+    }
+}
+
 /// Samples of a filtered (unscaled) law: the time and the factor r = max(r_v, √r_a, ∛r_j).
 struct Sampler<'a, P: Path> {
     path: &'a P,
@@ -198,7 +268,7 @@ impl<'a, P: Path> Sampler<'a, P> {
     }
 
     /// r = max(r_v, √r_a, ∛r_j) of the law at time t.
-    fn ratio(&mut self, law: &FilteredProfile, t: f64) -> f64 {
+    fn ratio(&mut self, law: &FastLaw<'_>, t: f64) -> f64 {
         let [s, v, a, j] = law.eval(t);
         for (k, b) in self.buf.iter_mut().enumerate() {
             self.path.eval(s, k + 1, b);
@@ -220,7 +290,7 @@ impl<'a, P: Path> Sampler<'a, P> {
     }
 
     /// Sampled factors at `m` + 1 evenly spaced times of the filtered law.
-    fn profile(&mut self, law: &FilteredProfile, m: usize) -> Vec<f64> {
+    fn profile(&mut self, law: &FastLaw<'_>, m: usize) -> Vec<f64> {
         let big_t = law.duration();
         (0..=m)
             .map(|k| self.ratio(law, big_t * k as f64 / m as f64))
@@ -235,7 +305,7 @@ fn score<P: Path>(
     w: f64,
     m: usize,
 ) -> Result<(f64, Vec<f64>)> {
-    let law = FilteredProfile::new(profile.clone(), w)?;
+    let law = FastLaw::new(profile, w);
     let r = sampler.profile(&law, m);
     let k = r.iter().fold(0.0_f64, |a, &b| a.max(b));
     Ok((k.max(1e-300) * law.duration(), r))
