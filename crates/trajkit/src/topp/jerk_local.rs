@@ -34,6 +34,14 @@
 //! paths they hold at `check_rate` samples and nine points per segment. Position ranges hold
 //! because the played path parameter is non-decreasing from the path's start to its end.
 //! The result starts and ends at rest with zero acceleration exactly at the path's ends.
+//!
+//! # Known limitations
+//! Heuristic, not optimal: on seeded random Panda paths at 1 % of its jerk the overhead over
+//! raw TOPP-RA is 0.36–0.67× the filter's and 2–4 % above a fine-grid IPOPT reference; a
+//! path with 1e-3 rad segments at the Panda's limits is 2.65 % over raw TOPP-RA (the filter:
+//! 101 %). Each round samples the filtered motion twice per TOPP-RA interval for five
+//! windows and runs one analytic bound: tens to hundreds of milliseconds per piece, 2–100×
+//! the plain filter (BENCHMARKS.md).
 
 use super::jerk::{filter_window, filter_with_window, JerkLimited, JerkOptions};
 use super::parametrized::PhaseProfile as Profile;
