@@ -429,3 +429,50 @@ pub fn limit_jerk_local<P: Path + Clone>(
     }
     Ok((best, report))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::topp::{LinearPath, Toppra};
+
+    fn bent() -> LinearPath {
+        LinearPath::new(&[0.0, 0.0, 1.0, 0.2, 1.5, 1.0], 2).unwrap()
+    }
+
+    #[test]
+    fn bad_input_is_refused() {
+        let free = Limits::uniform(2, 1.0, 2.0, f64::INFINITY).unwrap();
+        let p = Profile::new(&[0.0, 1.0, 2.0], &[0.0, 1.0, 0.0]).unwrap();
+        assert!(limit_jerk_local(bent(), p, &free, &LocalOptions::default()).is_err());
+        let moving = Profile::new(&[0.0, 1.0], &[1.0, 1.0]).unwrap();
+        let l = Limits::uniform(2, 1.0, 2.0, 20.0).unwrap();
+        assert!(limit_jerk_local(bent(), moving, &l, &LocalOptions::default()).is_err());
+    }
+
+    #[test]
+    fn consistency_pass_only_lowers_and_meets_the_acceleration_rows() {
+        let limits = Limits::uniform(2, 1.0, 2.0, 20.0).unwrap();
+        let raw = Toppra::with_limits(bent(), &limits)
+            .unwrap()
+            .solve()
+            .unwrap();
+        let (s, sd) = (raw.law().gridpoints(), raw.law().velocities());
+        let rows = Rows::new(&bent(), s, &limits);
+        let before: Vec<f64> = sd.iter().map(|v| v * v).collect();
+        let mut x = before.clone();
+        let mid = s.len() / 2;
+        x[mid] *= 0.04;
+        rows.make_consistent(s, &mut x);
+        assert!(x.iter().zip(&before).all(|(a, b)| *a <= *b));
+        assert!(x[mid] <= 0.04 * before[mid]);
+        for i in 0..s.len() - 1 {
+            let u = (x[i + 1] - x[i]) / (2.0 * (s[i + 1] - s[i]));
+            for g in [i, i + 1] {
+                for j in 0..2 {
+                    let a = rows.d2[g * 2 + j] * x[g] + rows.d1[g * 2 + j] * u;
+                    assert!(a.abs() <= 2.0 * (1.0 + 1e-9), "interval {i}: {a}");
+                }
+            }
+        }
+    }
+}
