@@ -63,6 +63,9 @@ pub struct LocalOptions {
     /// Samples of the filtered motion per TOPP-RA interval used to score windows and locate
     /// excesses (heuristic only: the returned factor is certified independently).
     pub samples_per_interval: usize,
+    /// Most samples of the filtered motion per round over all windows (bounds the cost on
+    /// long paths: their samples get sparser).
+    pub samples_per_round: usize,
     /// The filter's settings (its budget gives the baseline window; its check rate is used on
     /// paths that are not piecewise polynomials).
     pub filter: JerkOptions,
@@ -74,6 +77,7 @@ impl Default for LocalOptions {
             rounds: 6,
             windows: vec![1.0, 1.2, 1.45, 1.7, 2.0],
             samples_per_interval: 2,
+            samples_per_round: 100_000,
             filter: JerkOptions::default(),
         }
     }
@@ -390,7 +394,10 @@ pub fn limit_jerk_local<P: Path + Clone>(
     };
     let rows = Rows::new(&path, profile.gridpoints(), limits);
     let mut sampler = Sampler::new(&path, limits);
-    let m = options.samples_per_interval.max(1) * profile.gridpoints().len() + 16;
+    // Samples per scoring: per TOPP-RA interval, within the per-round budget.
+    let m = (options.samples_per_interval.max(1) * profile.gridpoints().len() + 16)
+        .min(options.samples_per_round / options.windows.len().max(1))
+        .max(16);
     let mut current = profile;
     // Rounds since the best result last improved.
     let mut stale = 0;
