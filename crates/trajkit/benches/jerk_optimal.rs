@@ -8,10 +8,11 @@
 //! Run: `cargo bench -p trajkit --bench jerk_optimal`.
 
 mod common;
+#[path = "../tests/jerk_common/mod.rs"]
+mod jerk_common;
 
 use criterion::{criterion_group, Criterion};
 use std::hint::black_box;
-use trajkit::rng::SplitMix64;
 use trajkit::spline::CubicSpline;
 use trajkit::topp::jerk::{limit_jerk, JerkOptions as FilterOptions};
 use trajkit::topp::jerk_optimal::JerkOptimal;
@@ -23,27 +24,6 @@ fn standard_path() -> CubicSpline {
     let n = wp.len() / 7;
     let ss: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
     CubicSpline::natural(&ss, &wp, 7).unwrap()
-}
-
-/// A natural cubic spline (chord length) through `count` seeded random Panda waypoints.
-fn random_path(count: usize) -> CubicSpline {
-    let mut rng = SplitMix64::new(2026);
-    let panda = Limits::preset("panda").unwrap();
-    let mut w = Vec::with_capacity(count * 7);
-    for _ in 0..count {
-        for j in panda.joints() {
-            w.push(rng.uniform(j.position_min + 0.1, j.position_max - 0.1));
-        }
-    }
-    let mut s = vec![0.0; count];
-    for i in 1..count {
-        let d: f64 = (0..7)
-            .map(|j| (w[i * 7 + j] - w[(i - 1) * 7 + j]).powi(2))
-            .sum::<f64>()
-            .sqrt();
-        s[i] = s[i - 1] + d;
-    }
-    CubicSpline::natural(&s, &w, 7).unwrap()
 }
 
 fn bench(c: &mut Criterion) {
@@ -76,7 +56,7 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("jerk_optimal_waypoints");
     g.sample_size(10);
     for count in [10usize, 100] {
-        let p = random_path(count);
+        let p = jerk_common::random_path(2026, count);
         g.bench_function(count.to_string(), |b| {
             b.iter(|| {
                 let traj = JerkOptimal::new(&p, &limits).unwrap().solve().unwrap();

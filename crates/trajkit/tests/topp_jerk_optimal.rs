@@ -6,12 +6,14 @@
 //! The comparison tables for BENCHMARKS.md are `#[ignore]`d (release mode, minutes):
 //! `cargo test --release -p trajkit --test topp_jerk_optimal -- --ignored --nocapture`.
 
+mod jerk_common;
 mod topp_common;
+
+use jerk_common::{chord_spline, panda_with_jerk_scale, random_path, short_segment_path};
 
 use serde_json::Value;
 use topp_common::{finite_difference_error, line_cases};
 use trajkit::dynamics::SerialChain;
-use trajkit::rng::SplitMix64;
 use trajkit::spline::CubicSpline;
 use trajkit::topp::jerk::{limit_jerk, JerkOptions as FilterOptions};
 use trajkit::topp::jerk_optimal::{plan_sequence, JerkOptimal, JerkOptions};
@@ -31,33 +33,6 @@ fn opts(steps: usize) -> JerkOptions {
         steps: Some(steps),
         ..JerkOptions::default()
     }
-}
-
-fn panda_with_jerk_scale(scale: f64) -> Limits {
-    let panda = Limits::preset("panda").unwrap();
-    let js: Vec<f64> = panda.joints().iter().map(|j| j.jerk * scale).collect();
-    panda.with_override(Order::Jerk, &js).unwrap()
-}
-
-/// A natural cubic spline (chord length) through `count` seeded random Panda waypoints.
-fn random_path(seed: u64, count: usize) -> CubicSpline {
-    let mut rng = SplitMix64::new(seed);
-    let panda = Limits::preset("panda").unwrap();
-    let mut w = Vec::with_capacity(count * 7);
-    for _ in 0..count {
-        for j in panda.joints() {
-            w.push(rng.uniform(j.position_min + 0.1, j.position_max - 0.1));
-        }
-    }
-    let mut s = vec![0.0; count];
-    for i in 1..count {
-        let d: f64 = (0..7)
-            .map(|j| (w[i * 7 + j] - w[(i - 1) * 7 + j]).powi(2))
-            .sum::<f64>()
-            .sqrt();
-        s[i] = s[i - 1] + d;
-    }
-    CubicSpline::natural(&s, &w, 7).unwrap()
 }
 
 fn raw_and_filter<P: Path + Clone>(path: &P, limits: &Limits) -> (f64, f64) {
@@ -381,36 +356,8 @@ fn report_speed_and_standard_problem() {
 #[test]
 #[ignore]
 fn report_short_segments() {
-    let mut rng = SplitMix64::new(33);
     let panda = Limits::preset("panda").unwrap();
-    let mut w: Vec<f64> = Vec::new();
-    let random = |rng: &mut SplitMix64| -> Vec<f64> {
-        panda
-            .joints()
-            .iter()
-            .map(|j| rng.uniform(j.position_min + 0.3, j.position_max - 0.3))
-            .collect()
-    };
-    let (a, b) = (random(&mut rng), random(&mut rng));
-    w.extend(&a);
-    // Three 1e-3 rad steps along a random direction halfway to b.
-    let dir: Vec<f64> = (0..7).map(|_| rng.uniform(-1.0, 1.0)).collect();
-    let norm = dir.iter().map(|d| d * d).sum::<f64>().sqrt();
-    let mid: Vec<f64> = (0..7).map(|j| 0.5 * (a[j] + b[j])).collect();
-    for k in 0..4 {
-        w.extend((0..7).map(|j| mid[j] + 1e-3 * k as f64 * dir[j] / norm));
-    }
-    w.extend(&b);
-    let count = w.len() / 7;
-    let mut s = vec![0.0; count];
-    for i in 1..count {
-        let d: f64 = (0..7)
-            .map(|j| (w[i * 7 + j] - w[(i - 1) * 7 + j]).powi(2))
-            .sum::<f64>()
-            .sqrt();
-        s[i] = s[i - 1] + d;
-    }
-    let path = CubicSpline::natural(&s, &w, 7).unwrap();
+    let path = short_segment_path();
     let (raw, filt) = raw_and_filter(&path, &panda);
     let t0 = std::time::Instant::now();
     let traj = JerkOptimal::new(&path, &panda).unwrap().solve().unwrap();
@@ -445,16 +392,7 @@ fn report_curved_against_ipopt() {
             .iter()
             .flat_map(topp_common::floats)
             .collect();
-        let count = w.len() / 7;
-        let mut s = vec![0.0; count];
-        for i in 1..count {
-            let d: f64 = (0..7)
-                .map(|j| (w[i * 7 + j] - w[(i - 1) * 7 + j]).powi(2))
-                .sum::<f64>()
-                .sqrt();
-            s[i] = s[i - 1] + d;
-        }
-        let path = CubicSpline::natural(&s, &w, 7).unwrap();
+        let path = chord_spline(&w);
         let scale = c["jerk_scale"].as_f64().unwrap();
         let limits = panda_with_jerk_scale(scale);
         let (raw, filt) = raw_and_filter(&path, &limits);
