@@ -547,13 +547,7 @@ impl<S: PeakScan> JointScan<S> {
     /// `(x₁ − x₀)/(t₁ − t₀)`, is attributed to the midpoint of their times.
     #[inline]
     fn push(&mut self, t: f64, q: f64, own: [Option<f64>; 3]) {
-        self.min = self.min.min(q);
-        self.max = self.max.max(q);
-        let d = (self.position_min - q).max(q - self.position_max);
-        if d > self.beyond {
-            self.beyond = d;
-            self.time = t;
-        }
+        self.position(t, q);
         let mut elem = Some((t, q));
         for k in 0..3 {
             let fd = match (elem, self.prev[k]) {
@@ -576,6 +570,18 @@ impl<S: PeakScan> JointScan<S> {
         }
     }
 
+    /// The position range part of [`JointScan::push`].
+    #[inline]
+    fn position(&mut self, t: f64, q: f64) {
+        self.min = self.min.min(q);
+        self.max = self.max.max(q);
+        let d = (self.position_min - q).max(q - self.position_max);
+        if d > self.beyond {
+            self.beyond = d;
+            self.time = t;
+        }
+    }
+
     /// Scans joint `j` of `table`: its position check and derivative checks, and whether
     /// every peak is exact (see [`Extremes`]).
     fn run(
@@ -592,6 +598,12 @@ impl<S: PeakScan> JointScan<S> {
             let x = q.get(at).copied().unwrap_or(f64::NAN);
             scan.push(t, x, own.map(|m| m.map(|m| m[at])));
         }
+        scan.report()
+    }
+
+    /// The position check and derivative checks so far, and whether every peak is exact.
+    fn report(&self) -> (PositionCheck, [DerivativeCheck; 3], bool) {
+        let scan = self;
         let exact = scan
             .pointwise
             .iter()
@@ -610,6 +622,119 @@ impl<S: PeakScan> JointScan<S> {
         });
         (position, derivatives, exact)
     }
+}
+
+/// Running first-largest and first-smallest values (with their times) of one series per
+/// joint, joints side by side (index j), for [`full_table_scan`].
+struct ExtremesRow {
+    max: Vec<f64>,
+    t_max: Vec<f64>,
+    min: Vec<f64>,
+    t_min: Vec<f64>,
+}
+
+impl ExtremesRow {
+    /// Starts every joint's series with its first element (`values` at `time`).
+    fn first(time: f64, values: &[f64]) -> Self {
+        ExtremesRow {
+            max: values.to_vec(),
+            t_max: vec![time; values.len()],
+            min: values.to_vec(),
+            t_min: vec![time; values.len()],
+        }
+    }
+
+    /// The next element of every joint's series; false when one is not finite.
+    #[inline]
+    fn push(&mut self, time: f64, values: &[f64]) -> bool {
+        let mut finite = true;
+        let it = self.max.iter_mut().zip(&mut self.t_max);
+        let it = it.zip(self.min.iter_mut().zip(&mut self.t_min));
+        for (((mx, tmx), (mn, tmn)), &v) in it.zip(values) {
+            finite &= v.is_finite();
+            let (up, down) = (v > *mx, v < *mn);
+            *mx = if up { v } else { *mx };
+            *tmx = if up { time } else { *tmx };
+            *mn = if down { v } else { *mn };
+            *tmn = if down { time } else { *tmn };
+        }
+        finite
+    }
+
+    /// Joint `j`'s series as [`Extremes`] for limits `(lo, hi)`.
+    fn joint(&self, j: usize, (lo, hi): (f64, f64)) -> Extremes {
+        Extremes {
+            lo,
+            hi,
+            max: Some((self.max[j], self.t_max[j])),
+            min: (self.min[j], self.t_min[j]),
+            finite: lo != 0.0 && hi != 0.0,
+        }
+    }
+}
+
+/// [`check_samples`] on a table with every column, row by row with the joints side by side
+/// (the divided differences of a row share its time step, so they vectorize): the same
+/// series, definitions and arithmetic as [`JointScan`]. `None` when a value is not finite or
+/// a limit is 0 (then [`JointScan`] decides, value by value where needed).
+fn full_table_scan(
+    table: &SampleTable,
+    limits: &Limits,
+) -> Option<Vec<(PositionCheck, [DerivativeCheck; 3])>> {
+    let (dof, times) = (table.dof(), table.times());
+    let m = Order::ALL.map(|o| table.matrix(o));
+    let [Some(q), Some(_), Some(_), Some(_)] = m else {
+        return None;
+    };
+    let row = |k: usize, i: usize| m[k].map_or(&[][..], |c| &c[i * dof..(i + 1) * dof]);
+    let mut pointwise = [1, 2, 3].map(|k| ExtremesRow::first(times[0], row(k, 0)));
+    let mut fd: Option<[ExtremesRow; 3]> = None;
+    let mut diff = vec![0.0; 3 * dof];
+    let mut finite = true;
+    for i in 1..times.len() {
+        let (t0, t1) = (times[i - 1], times[i]);
+        let (dt, mid) = (t1 - t0, 0.5 * (t0 + t1));
+        for (k, d) in diff.chunks_exact_mut(dof).enumerate() {
+            for ((d, &x1), &x0) in d.iter_mut().zip(row(k, i)).zip(row(k, i - 1)) {
+                *d = (x1 - x0) / dt;
+            }
+            finite &= pointwise[k].push(t1, row(k + 1, i));
+        }
+        let diffs = |k: usize| &diff[k * dof..(k + 1) * dof];
+        match &mut fd {
+            Some(f) => {
+                for (k, f) in f.iter_mut().enumerate() {
+                    finite &= f.push(mid, diffs(k));
+                }
+            }
+            None => {
+                finite &= diff.iter().all(|d| d.is_finite());
+                fd = Some([0, 1, 2].map(|k| ExtremesRow::first(mid, diffs(k))));
+            }
+        }
+    }
+    if !finite {
+        return None;
+    }
+    let out = (0..dof).map(|j| {
+        let jl = limits.joint(j);
+        let mut scan = JointScan::<Extremes>::new(jl, times[0]);
+        for (i, &t) in times.iter().enumerate() {
+            scan.position(t, q[i * dof + j]);
+        }
+        for k in 0..3 {
+            let range = jl.range(DERIVATIVES[k]);
+            scan.pointwise[k] = pointwise[k].joint(j, range);
+            if let Some(f) = &fd {
+                scan.finite_difference[k] = f[k].joint(j, range);
+            }
+        }
+        scan.report()
+    });
+    let out: Vec<_> = out.collect();
+    out.iter()
+        .all(|r| r.2)
+        .then(|| out.into_iter().map(|r| (r.0, r.1)).collect())
 }
 
 /// Checks a sample table against limits (see the module documentation).
@@ -636,13 +761,22 @@ pub fn check_samples(table: &SampleTable, limits: &Limits) -> Result<LimitReport
             reason: "is too small to check (at least 1 sample is needed)",
         });
     }
+    let full = full_table_scan(table, limits);
     let joints = (0..table.dof())
         .map(|j| {
             let jl = limits.joint(j);
-            let (mut position, mut derivatives, exact) = JointScan::<Extremes>::run(table, jl, j);
-            if !exact {
-                (position, derivatives, _) = JointScan::<PeakTracker>::run(table, jl, j);
-            }
+            let (position, derivatives) = match &full {
+                Some(f) => f[j],
+                None => {
+                    let (p, d, exact) = JointScan::<Extremes>::run(table, jl, j);
+                    if exact {
+                        (p, d)
+                    } else {
+                        let (p, d, _) = JointScan::<PeakTracker>::run(table, jl, j);
+                        (p, d)
+                    }
+                }
+            };
             let name = match table.names().get(j) {
                 Some(n) if !n.is_empty() => n.clone(),
                 _ => jl.name.clone(),
