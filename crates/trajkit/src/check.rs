@@ -35,7 +35,7 @@
 //! ```
 
 use crate::error::{Error, Result};
-use crate::limits::{JointLimits, Limits};
+use crate::limits::{ratio_in, JointLimits, Limits};
 use crate::sample::SampleTable;
 use crate::traj::{Order, Trajectory};
 #[cfg(feature = "serde")]
@@ -366,22 +366,6 @@ trait PeakScan: Sized {
     fn exact(&self) -> bool;
 }
 
-/// [`JointLimits::ratio`] for limits `(lo, hi)` read once.
-#[inline]
-fn ratio_of(lo: f64, hi: f64, value: f64) -> f64 {
-    if value >= 0.0 {
-        if hi.is_infinite() {
-            0.0
-        } else {
-            value / hi
-        }
-    } else if lo.is_infinite() {
-        0.0
-    } else {
-        value / lo
-    }
-}
-
 /// The definition, element by element (one division each).
 #[derive(Debug, Clone, Copy)]
 struct PeakTracker {
@@ -397,7 +381,7 @@ impl PeakScan for PeakTracker {
 
     #[inline]
     fn push(&mut self, time: f64, value: f64) {
-        let ratio = ratio_of(self.lo, self.hi, value);
+        let ratio = ratio_in(self.lo, self.hi, value);
         let better = match &self.best {
             None => true,
             // A NaN ratio (only from overflowing differences) wins, so that it gets reported.
@@ -474,7 +458,7 @@ impl PeakScan for Extremes {
         let (max, t_max) = self.max?;
         let (min, t_min) = self.min;
         let peak = |(value, time): (f64, f64)| Peak {
-            ratio: ratio_of(self.lo, self.hi, value),
+            ratio: ratio_in(self.lo, self.hi, value),
             value,
             time,
         };
