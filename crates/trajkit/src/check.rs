@@ -19,7 +19,7 @@
 //! When the table and the limits both name their joints, each column is checked against the
 //! limits of its name, in any order ([`crate::limits::match_names`]); otherwise by position.
 //!
-//! Use of a limit is a ratio, computed with [`JointLimits::ratio`]: `value / max` for
+//! Use of a limit is a ratio, computed with [`JointLimits::ratio`](crate::limits::JointLimits::ratio): `value / max` for
 //! non-negative values and `value / min` for negative ones (so direction-dependent minima are
 //! respected); 1.0 is exactly at the limit, and an unlimited (infinite) limit gives 0.
 //!
@@ -35,7 +35,12 @@
 //! ```
 
 use crate::error::{Error, Result};
-use crate::limits::{JointLimits, Limits};
+use crate::limits::Limits;
+use scan::{full_table_scan, Extremes, JointScan, PeakTracker};
+#[cfg(test)]
+use scan::{PeakScan, DERIVATIVES};
+
+mod scan;
 use crate::sample::SampleTable;
 use crate::traj::{Order, Trajectory};
 #[cfg(feature = "serde")]
@@ -45,7 +50,7 @@ use serde_json::{json, Value};
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Peak {
     /// `value / limit` with the directional limit of the value's sign (see
-    /// [`JointLimits::ratio`]); 0 when the limit is unlimited.
+    /// [`JointLimits::ratio`](crate::limits::JointLimits::ratio)); 0 when the limit is unlimited.
     pub ratio: f64,
     /// The value at the peak (same unit as the derivative).
     pub value: f64,
@@ -352,274 +357,16 @@ impl LimitReport {
     }
 }
 
-/// A running peak of a series of (time, value) against the directional limits of one
-/// order: largest ratio, ties (e.g. all zero for an unlimited joint) broken by the largest
-/// magnitude, then by the earliest time.
-trait PeakScan: Sized {
-    /// Empty, for limits `(lo, hi)` (see [`JointLimits::range`]).
-    fn new(lo: f64, hi: f64) -> Self;
-    /// The next element (times increase).
-    fn push(&mut self, time: f64, value: f64);
-    /// The peak so far; valid only when [`PeakScan::exact`].
-    fn peak(&self) -> Option<Peak>;
-    /// True when [`PeakScan::peak`] is the peak the definition gives.
-    fn exact(&self) -> bool;
-}
-
-/// [`JointLimits::ratio`] for limits `(lo, hi)` read once.
-#[inline]
-fn ratio_of(lo: f64, hi: f64, value: f64) -> f64 {
-    if value >= 0.0 {
-        if hi.is_infinite() {
-            0.0
-        } else {
-            value / hi
-        }
-    } else if lo.is_infinite() {
-        0.0
-    } else {
-        value / lo
-    }
-}
-
-/// The definition, element by element (one division each).
-#[derive(Debug, Clone, Copy)]
-struct PeakTracker {
-    lo: f64,
-    hi: f64,
-    best: Option<Peak>,
-}
-
-impl PeakScan for PeakTracker {
-    fn new(lo: f64, hi: f64) -> Self {
-        PeakTracker { lo, hi, best: None }
-    }
-
-    #[inline]
-    fn push(&mut self, time: f64, value: f64) {
-        let ratio = ratio_of(self.lo, self.hi, value);
-        let better = match &self.best {
-            None => true,
-            // A NaN ratio (only from overflowing differences) wins, so that it gets reported.
-            Some(b) if b.ratio.is_nan() => false,
-            Some(b) => {
-                ratio.is_nan()
-                    || ratio > b.ratio
-                    || (ratio == b.ratio && value.abs() > b.value.abs())
-            }
-        };
-        if better {
-            self.best = Some(Peak { ratio, value, time });
-        }
-    }
-
-    fn peak(&self) -> Option<Peak> {
-        self.best
-    }
-
-    fn exact(&self) -> bool {
-        true
-    }
-}
-
-/// The first largest and the first smallest value and their times: comparisons only.
-///
-/// When every value is finite and neither limit is 0, a ratio is never NaN, and a correctly
-/// rounded division by a constant is monotone: among non-negative values the largest ratio,
-/// then the largest magnitude, belongs to the largest value, among negative ones to the
-/// smallest value. The peak is then the better of these two candidates by the definition's
-/// rule (the earlier one on a full tie), found with two divisions instead of one per value.
-/// Otherwise [`PeakScan::exact`] is false and the caller scans again with [`PeakTracker`].
-#[derive(Debug, Clone, Copy)]
-struct Extremes {
-    lo: f64,
-    hi: f64,
-    /// (value, time) of the first largest and the first smallest value; `None` when empty.
-    max: Option<(f64, f64)>,
-    min: (f64, f64),
-    finite: bool,
-}
-
-impl PeakScan for Extremes {
-    fn new(lo: f64, hi: f64) -> Self {
-        Extremes {
-            lo,
-            hi,
-            max: None,
-            min: (f64::NAN, f64::NAN),
-            finite: lo != 0.0 && hi != 0.0,
-        }
-    }
-
-    #[inline]
-    fn push(&mut self, time: f64, value: f64) {
-        self.finite &= value.is_finite();
-        match self.max {
-            None => {
-                self.max = Some((value, time));
-                self.min = (value, time);
-            }
-            Some((m, _)) => {
-                if value > m {
-                    self.max = Some((value, time));
-                }
-                if value < self.min.0 {
-                    self.min = (value, time);
-                }
-            }
-        }
-    }
-
-    fn peak(&self) -> Option<Peak> {
-        let (max, t_max) = self.max?;
-        let (min, t_min) = self.min;
-        let peak = |(value, time): (f64, f64)| Peak {
-            ratio: ratio_of(self.lo, self.hi, value),
-            value,
-            time,
-        };
-        let candidates = [
-            (max >= 0.0).then(|| peak((max, t_max))),
-            (min < 0.0).then(|| peak((min, t_min))),
-        ];
-        let (first, second) = match candidates {
-            [Some(a), Some(b)] if b.time < a.time => (b, Some(a)),
-            [Some(a), b] => (a, b),
-            [None, b] => (b?, None),
-        };
-        Some(match second {
-            Some(b)
-                if b.ratio > first.ratio
-                    || (b.ratio == first.ratio && b.value.abs() > first.value.abs()) =>
-            {
-                b
-            }
-            _ => first,
-        })
-    }
-
-    fn exact(&self) -> bool {
-        self.finite
-    }
-}
-
-/// One joint's check in one pass over the rows: its position range, and per derivative
-/// order the pointwise and finite-difference peaks, with the last element of each order's
-/// series (the table's column, or the finite difference of the order below when the column
-/// is absent).
-struct JointScan<S: PeakScan> {
-    position_min: f64,
-    position_max: f64,
-    min: f64,
-    max: f64,
-    /// Signed distance beyond the nearest bound: negative inside the range.
-    beyond: f64,
-    time: f64,
-    pointwise: [S; 3],
-    finite_difference: [S; 3],
-    /// The previous element (time, value) of the series of position, velocity, acceleration.
-    prev: [Option<(f64, f64)>; 3],
-}
-
-const DERIVATIVES: [Order; 3] = [Order::Velocity, Order::Acceleration, Order::Jerk];
-
-impl<S: PeakScan> JointScan<S> {
-    fn new(jl: &JointLimits, t0: f64) -> Self {
-        let scan = |o: Order| {
-            let (lo, hi) = jl.range(o);
-            S::new(lo, hi)
-        };
-        JointScan {
-            position_min: jl.position_min,
-            position_max: jl.position_max,
-            min: f64::INFINITY,
-            max: f64::NEG_INFINITY,
-            beyond: f64::NEG_INFINITY,
-            time: t0,
-            pointwise: DERIVATIVES.map(scan),
-            finite_difference: DERIVATIVES.map(scan),
-            prev: [None; 3],
-        }
-    }
-
-    /// Takes one sample: time `t`, position `q`, and the table's velocity, acceleration and
-    /// jerk where present. The divided difference of two consecutive elements of a series,
-    /// `(x₁ − x₀)/(t₁ − t₀)`, is attributed to the midpoint of their times.
-    #[inline]
-    fn push(&mut self, t: f64, q: f64, own: [Option<f64>; 3]) {
-        self.min = self.min.min(q);
-        self.max = self.max.max(q);
-        let d = (self.position_min - q).max(q - self.position_max);
-        if d > self.beyond {
-            self.beyond = d;
-            self.time = t;
-        }
-        let mut elem = Some((t, q));
-        for k in 0..3 {
-            let fd = match (elem, self.prev[k]) {
-                (Some(e), Some(p)) => Some((0.5 * (p.0 + e.0), (e.1 - p.1) / (e.0 - p.0))),
-                _ => None,
-            };
-            if elem.is_some() {
-                self.prev[k] = elem;
-            }
-            if let Some((ft, fv)) = fd {
-                self.finite_difference[k].push(ft, fv);
-            }
-            elem = match own[k] {
-                Some(v) => {
-                    self.pointwise[k].push(t, v);
-                    Some((t, v))
-                }
-                None => fd,
-            };
-        }
-    }
-
-    /// Scans joint `j` of `table`: its position check and derivative checks, and whether
-    /// every peak is exact (see [`Extremes`]).
-    fn run(
-        table: &SampleTable,
-        jl: &JointLimits,
-        j: usize,
-    ) -> (PositionCheck, [DerivativeCheck; 3], bool) {
-        let (dof, times) = (table.dof(), table.times());
-        let q = table.matrix(Order::Position).unwrap_or_default();
-        let own = DERIVATIVES.map(|o| table.matrix(o));
-        let mut scan = Self::new(jl, times[0]);
-        for (i, &t) in times.iter().enumerate() {
-            let at = i * dof + j;
-            let x = q.get(at).copied().unwrap_or(f64::NAN);
-            scan.push(t, x, own.map(|m| m.map(|m| m[at])));
-        }
-        let exact = scan
-            .pointwise
-            .iter()
-            .chain(&scan.finite_difference)
-            .all(S::exact);
-        let position = PositionCheck {
-            min: scan.min,
-            max: scan.max,
-            excursion: scan.beyond.max(0.0),
-            time: scan.time,
-        };
-        let derivatives = [0, 1, 2].map(|k| DerivativeCheck {
-            order: DERIVATIVES[k],
-            pointwise: scan.pointwise[k].peak(),
-            finite_difference: scan.finite_difference[k].peak(),
-        });
-        (position, derivatives, exact)
-    }
-}
-
 /// Checks a sample table against limits (see the module documentation).
 ///
 /// When the table and the limits both name their joints, columns take the limits of their
 /// name, in any order (limit joints no column names are not used); otherwise they pair by
 /// position ([`crate::limits::match_names`]).
 ///
-/// One pass over the rows per joint, comparisons only per value (see [`Extremes`]; a joint
-/// whose differences overflow is scanned again value by value); nothing allocated per row.
+/// One pass over the rows (row by row with the joints side by side when every column is
+/// present), comparisons only per value: the first largest and smallest values decide each
+/// peak; a series with a non-finite difference, or a zero limit, is scanned again value by
+/// value. Nothing is allocated per row.
 ///
 /// Errors: [`Error::JointNames`] for a named column without limits of its name;
 /// [`Error::DimensionMismatch`] when unnamed tables and limits have different joint counts;
@@ -636,13 +383,22 @@ pub fn check_samples(table: &SampleTable, limits: &Limits) -> Result<LimitReport
             reason: "is too small to check (at least 1 sample is needed)",
         });
     }
+    let full = full_table_scan(table, limits);
     let joints = (0..table.dof())
         .map(|j| {
             let jl = limits.joint(j);
-            let (mut position, mut derivatives, exact) = JointScan::<Extremes>::run(table, jl, j);
-            if !exact {
-                (position, derivatives, _) = JointScan::<PeakTracker>::run(table, jl, j);
-            }
+            let (position, derivatives) = match &full {
+                Some(f) => f[j],
+                None => {
+                    let (p, d, exact) = JointScan::<Extremes>::run(table, jl, j);
+                    if exact {
+                        (p, d)
+                    } else {
+                        let (p, d, _) = JointScan::<PeakTracker>::run(table, jl, j);
+                        (p, d)
+                    }
+                }
+            };
             let name = match table.names().get(j) {
                 Some(n) if !n.is_empty() => n.clone(),
                 _ => jl.name.clone(),
@@ -677,6 +433,7 @@ pub fn check_trajectory<T: Trajectory + ?Sized>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::limits::JointLimits;
 
     fn table(dof: usize, t: Vec<f64>, cols: [Option<Vec<f64>>; 4]) -> SampleTable {
         SampleTable::new(dof, t, cols).unwrap()

@@ -39,3 +39,37 @@ fn jerk_limited_outputs_evaluate_without_allocating() {
         assert_eq!(n, 0, "evaluation allocated {n} times");
     }
 }
+
+/// The filter's output, scaled and in a sequence behind a trait object (as `plan` holds it),
+/// fills sample rows in blocks (`Trajectory::eval_rows`, what sampling calls) without
+/// allocating, on sorted and on shuffled times.
+#[test]
+fn filtered_rows_evaluate_without_allocating() {
+    use trajkit::topp::jerk::{limit_jerk_sequence, JerkOptions as FilterOptions};
+    use trajkit::topp::messy::{plan_waypoints, PlanOptions};
+    use trajkit::topp::Scaled;
+    let lim = Limits::preset("panda").unwrap();
+    let wp = [
+        0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785, //
+        0.21, -0.52, 0.13, -2.10, 0.05, 1.69, 0.92, //
+        0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785, //
+        0.55, -0.31, 0.28, -1.87, 0.18, 1.83, 1.12,
+    ];
+    let raw = plan_waypoints(&wp, 7, &lim, &PlanOptions::default()).unwrap();
+    let seq = limit_jerk_sequence(&raw, &lim, &FilterOptions::default()).unwrap();
+    let tr: Box<dyn Trajectory> = Box::new(Scaled::new(seq, 1.0 + 1e-7).unwrap());
+    let d = tr.duration();
+    let sorted: Vec<f64> = (0..=2000)
+        .map(|i| -0.1 + (d + 0.2) * i as f64 / 2000.0)
+        .collect();
+    let shuffled: Vec<f64> = (0..2000)
+        .map(|i| d * ((i * 7919) % 2000) as f64 / 2000.0)
+        .collect();
+    let mut cols = [0; 4].map(|_| vec![0.0; 2001 * 7]);
+    for times in [&sorted, &shuffled] {
+        let [a, b, c, e] = &mut cols;
+        let n = allocations(|| tr.eval_rows(times, [a, b, c, e]));
+        assert_eq!(n, 0, "eval_rows allocated {n} times");
+    }
+    assert!(cols.iter().flatten().all(|v| v.is_finite()));
+}

@@ -118,17 +118,7 @@ impl JointLimits {
     /// Only for orders 1..=3.
     pub fn ratio(&self, order: crate::Order, value: f64) -> f64 {
         let (lo, hi) = self.range(order);
-        if value >= 0.0 {
-            if hi.is_infinite() {
-                0.0
-            } else {
-                value / hi
-            }
-        } else if lo.is_infinite() {
-            0.0
-        } else {
-            value / lo
-        }
+        ratio_in(lo, hi, value)
     }
 
     /// The smaller magnitude of the two directional limits of `order` (1..=3): the symmetric
@@ -372,6 +362,22 @@ impl Limits {
             })
             .collect();
         Limits::new(joints)
+    }
+}
+
+/// [`JointLimits::ratio`] for the limits `(lo, hi)` of one order, read once.
+#[inline]
+pub(crate) fn ratio_in(lo: f64, hi: f64, value: f64) -> f64 {
+    if value >= 0.0 {
+        if hi.is_infinite() {
+            0.0
+        } else {
+            value / hi
+        }
+    } else if lo.is_infinite() {
+        0.0
+    } else {
+        value / lo
     }
 }
 

@@ -266,7 +266,7 @@ impl<T: Trajectory> Trajectory for Sequence<T> {
     }
 
     /// Runs of times in one piece go to that piece's `eval_rows` (in blocks of
-    /// [`crate::traj::ROW_BLOCK`]), shifted as in `eval`.
+    /// 64), shifted as in `eval`.
     fn eval_rows(&self, times: &[f64], mut out: [&mut [f64]; 4]) {
         use crate::traj::{row_block, ROW_BLOCK};
         let (big_t, dof) = (self.duration(), self.dof());

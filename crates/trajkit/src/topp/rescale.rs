@@ -158,7 +158,7 @@ impl<P: Path, L: TimeLaw> Trajectory for Retimed<P, L> {
     }
 
     /// One law evaluation per time and one path sweep per order ([`Path::eval_many`]), in
-    /// blocks of [`crate::traj::ROW_BLOCK`] times; the chain rule as in `eval`, term by term.
+    /// blocks of 64 times; the chain rule as in `eval`, term by term.
     fn eval_rows(&self, times: &[f64], mut out: [&mut [f64]; 4]) {
         use crate::traj::{row_block, ROW_BLOCK};
         let n = self.path.dim();
@@ -326,7 +326,7 @@ impl<T: Trajectory> Trajectory for Scaled<T> {
         }
     }
 
-    /// The inner rows at `t/k` in blocks of [`crate::traj::ROW_BLOCK`], then scaled as in
+    /// The inner rows at `t/k` in blocks of 64, then scaled as in
     /// `eval`.
     fn eval_rows(&self, times: &[f64], mut out: [&mut [f64]; 4]) {
         use crate::traj::{row_block, ROW_BLOCK};
