@@ -1,6 +1,6 @@
 //! `trajkit check`: a sampled trajectory (any tool's CSV/JSON) against limits.
 
-use super::common::{CliError, CliResult, LimitsArgs};
+use super::common::{say, CliError, CliResult, LimitsArgs};
 use clap::Args;
 use std::path::PathBuf;
 use trajkit::check::{check_samples, LimitReport, Tolerance};
@@ -88,23 +88,26 @@ fn print_report(a: &CheckArgs, report: &LimitReport, tol: &Tolerance, limits: &P
                 .collect();
             o.insert("not_checked".into(), nc.into());
         }
-        println!("{v}");
+        say(format_args!("{v}\n"));
     } else {
-        print!("{}", report.to_text());
+        say(format_args!("{}", report.to_text()));
         let not_checked = not_checked(limits);
         if !not_checked.is_empty() {
-            println!("not checked (no limit given): {}", not_checked.join("; "));
+            say(format_args!(
+                "not checked (no limit given): {}\n",
+                not_checked.join("; ")
+            ));
         }
         let bad = report.violations(tol);
         if bad.is_empty() {
-            println!(
-                "PASS: worst ratio {:.6} (tolerance {})",
+            say(format_args!(
+                "PASS: worst ratio {:.6} (tolerance {})\n",
                 report.worst(),
                 a.tolerance
-            );
+            ));
         } else {
             for b in &bad {
-                println!("FAIL: {b}");
+                say(format_args!("FAIL: {b}\n"));
             }
         }
     }

@@ -382,8 +382,13 @@ impl Outputs {
         if let Some(s) = self.stdout {
             use std::io::Write;
             let mut out = std::io::stdout().lock();
-            out.write_all(s.as_bytes())
-                .map_err(|e| CliError(format!("<stdout>: {e}")))?;
+            // A reader that went away (`| head`) is not an error, as for any Unix filter.
+            match out.write_all(s.as_bytes()).and_then(|()| out.flush()) {
+                Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+                    return Err(CliError(format!("<stdout>: {e}")));
+                }
+                _ => {}
+            }
         }
         Ok(())
     }
@@ -444,7 +449,22 @@ pub fn print_summary(out: &Path, summary: &str) {
     if out.as_os_str() == "-" {
         eprintln!("{summary}");
     } else {
-        println!("{summary}");
+        say(format_args!("{summary}\n"));
+    }
+}
+
+/// Writes `text` to standard output. A reader that went away (`trajkit plan | head`) ends the
+/// process quietly with status 0, as a Unix filter does, instead of a panic; any other write
+/// error is reported on stderr once and ends it with status 1.
+pub fn say(text: fmt::Arguments<'_>) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    if let Err(e) = out.write_fmt(text).and_then(|()| out.flush()) {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(0);
+        }
+        eprintln!("trajkit: cannot write to standard output: {e}");
+        std::process::exit(1);
     }
 }
 

@@ -145,7 +145,7 @@ fn shortest(
 /// Runs `trajkit poly`.
 pub fn run(a: &PolyArgs) -> CliResult<u8> {
     if a.table {
-        print!("{}", table_text());
+        super::common::say(format_args!("{}", table_text()));
         return Ok(0);
     }
     for (flag, v) in [
