@@ -28,6 +28,14 @@
 //! attempt (step 2 for every synchronized DOF), and step 1 (before the search) and the
 //! single-DOF shortcut run to the end.
 //!
+//! Bounded mode (`calculate_bounded`, crate-private; the waypoint planner's search uses it to
+//! rate candidate waypoint velocities): the same search, but it gives up instead of walking
+//! durations past the last candidate (an error), and it keeps the first success after a
+//! failure instead of bisecting below it. Its duration is therefore at least the full
+//! search's (equal whenever the full search needs neither), its profiles are valid at that
+//! duration, and its cost is bounded by the number of candidate durations, never by the
+//! 200 + 64 attempts of the full search.
+//!
 //! Phase synchronization (Ruckig's) and trajkit's straight-line mode live in `phase.rs`.
 
 use super::input::{DurationDiscretization, InputView, Synchronization};
@@ -155,6 +163,29 @@ pub(crate) fn calculate(
     calculate_status(view, delta_time, out, scratch, spare).map(|c| c.duration)
 }
 
+/// [`calculate`] in bounded mode (see the module docs): no bisection and no durations past the
+/// last candidate. The duration is at least [`calculate`]'s (equal when that search needs
+/// neither); `Err` where [`calculate`] would have walked past the candidates. A cheap, never
+/// optimistic rating of an input, for searches that call the generator many times.
+pub(crate) fn calculate_bounded(
+    view: &InputView<'_>,
+    delta_time: f64,
+    out: &mut [DofTrajectory],
+    scratch: &mut [Scratch],
+    spare: &mut [Spare],
+) -> Result<f64, OtgError> {
+    let mut interrupted = false;
+    calculate_profiles(
+        view,
+        delta_time,
+        out,
+        scratch,
+        spare,
+        &mut interrupted,
+        true,
+    )
+}
+
 /// What a calculation reports besides its profiles.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Calculated {
@@ -175,8 +206,16 @@ pub(crate) fn calculate_status(
 ) -> Result<Calculated, OtgError> {
     let n = view.dof();
     let mut interrupted = false;
-    let d = calculate_profiles(view, delta_time, out, scratch, spare, &mut interrupted)
-        .map_err(|e| limits_error(e, &scratch[..n.min(scratch.len())], view))?;
+    let d = calculate_profiles(
+        view,
+        delta_time,
+        out,
+        scratch,
+        spare,
+        &mut interrupted,
+        false,
+    )
+    .map_err(|e| limits_error(e, &scratch[..n.min(scratch.len())], view))?;
     for i in 0..n {
         if !view.enabled[i] {
             continue;
@@ -229,7 +268,8 @@ fn limits_error(e: OtgError, scratch: &[Scratch], view: &InputView<'_>) -> OtgEr
 /// [`calculate`] without the error translation: validation, the single-DOF shortcut, step 1
 /// where it is needed ([`Planner::prepare`]), the straight-line mode, the DOFs that are not
 /// synchronized, and the search for the common duration ([`Planner::synchronize`]). Sets
-/// `interrupted` when the budget cut the search short.
+/// `interrupted` when the budget cut the search short; `bounded` selects the bounded mode
+/// (module docs).
 fn calculate_profiles(
     view: &InputView<'_>,
     delta_time: f64,
@@ -237,6 +277,7 @@ fn calculate_profiles(
     scratch: &mut [Scratch],
     spare: &mut [Spare],
     interrupted: &mut bool,
+    bounded: bool,
 ) -> Result<f64, OtgError> {
     view.check_shape(delta_time)?;
     let n = view.dof();
@@ -276,6 +317,7 @@ fn calculate_profiles(
         min_dur: opts.minimum_duration.unwrap_or(0.0),
         budget: opts.interrupt_calculation_duration.map(Budget::start),
         interrupted: false,
+        bounded,
     };
     let (t_lead, lazy) = p.prepare()?;
     if opts.synchronization == Synchronization::StraightLine
@@ -306,6 +348,8 @@ struct Planner<'a, 'v> {
     budget: Option<Budget>,
     /// Whether the budget stopped the bisection before the edge of the feasible range.
     interrupted: bool,
+    /// Bounded mode (module docs): no bisection, no durations past the last candidate.
+    bounded: bool,
 }
 
 /// A calculation budget: its deadline and its size in microseconds.
@@ -523,7 +567,7 @@ impl Planner<'_, '_> {
             self.check_budget()?;
             match try_all(self.scratch, self.spare, self.out, self.n, t) {
                 Ok(()) => {
-                    if let Some(lo) = last_fail {
+                    if let Some(lo) = last_fail.filter(|_| !self.bounded) {
                         t = self.bisect(lo, t, failed)?;
                     }
                     return finish(self.view, self.delta_time, self.out, self.scratch, t);
@@ -554,6 +598,9 @@ impl Planner<'_, '_> {
                 }
             }
             t = self.next_duration(t, &mut grow);
+            if grow > 0 && self.bounded {
+                break;
+            }
         }
         Err(OtgError::SynchronizationFailed {
             dof: Some(failed),

@@ -1,5 +1,5 @@
 //! Unit tests of synchronization (`super`): the step-1 profile kept for the minimum duration,
-//! the duration bounds, the lazy step 1, the budget's cut of the bisection.
+//! the duration bounds, the lazy step 1, the budget's cut of the bisection, the bounded mode.
 
 use super::*;
 use crate::otg::problem::ProfileOrder;
@@ -196,6 +196,7 @@ fn a_spent_budget_stops_the_bisection_and_is_reported() {
             min_dur: 0.0,
             budget,
             interrupted: false,
+            bounded: false,
         };
         // As `search` calls it: after a success at `hi`. Every duration from the minimum
         // on is feasible, so bisecting from below it ends at the minimum unless stopped.
@@ -236,4 +237,61 @@ fn minimum_durations_of_unsolved_dofs_are_computed_on_request() {
             assert!(tr.duration() >= mins[i] * (1.0 - 1e-12));
         }
     }
+}
+
+/// The bounded mode is never shorter than the full search, plans whenever it succeeds (every
+/// profile of its duration, at its target), equals the full search on most problems and is
+/// longer, or gives up, only where the full search bisects or walks past the candidates.
+#[test]
+fn the_bounded_mode_is_never_shorter_and_its_profiles_are_valid() {
+    let mut r = crate::rng::SplitMix64::new(16);
+    let (mut equal, mut longer, mut gave_up) = (0, 0, 0);
+    for _ in 0..400 {
+        // Waypoint-like sections: DOF 0 rests at both ends and sets a long duration; the
+        // others move a little, along their velocities, and pass their ends at speed
+        // (blocked intervals below DOF 0's minimum, where the full search bisects).
+        let mut ds = [
+            random_dof(&mut r, false, false),
+            random_dof(&mut r, false, false),
+            random_dof(&mut r, false, true),
+        ];
+        ds[0].pf = ds[0].p0 + r.uniform(1.0, 4.0);
+        for d in &mut ds[1..] {
+            d.pf = d.p0 + r.uniform(0.01, 0.5);
+            d.v0 = r.uniform(0.0, 0.9) * d.vmax;
+            d.vf = r.uniform(0.0, 0.9) * d.vmax;
+        }
+        let inp = input_of(&ds);
+        let view = inp.view();
+        let mut out = [DofTrajectory::default(); 3];
+        let mut scratch = [Scratch::default(); 3];
+        let mut spare: [Spare; 3] = [None, None, None];
+        let full = calculate(&view, 0.001, &mut out, &mut scratch, &mut spare);
+        let Ok(tb) = calculate_bounded(&view, 0.001, &mut out, &mut scratch, &mut spare) else {
+            gave_up += 1;
+            continue;
+        };
+        let tf = full.expect("the full search plans what the bounded mode plans");
+        // (Each profile's duration is the common one to 1e-12 relative.)
+        assert!(tb >= tf * (1.0 - 4e-12), "bounded {tb} < full {tf}");
+        if (tb - tf).abs() <= 4e-12 * tf {
+            equal += 1;
+        } else {
+            longer += 1;
+        }
+        for (i, d) in ds.iter().enumerate() {
+            let p = &out[i].profile;
+            assert!((p.duration() - tb).abs() <= 1e-12 * tb, "dof {i}");
+            let e = p.end();
+            assert!(
+                (e.p - d.pf).abs() <= 1e-8 && (e.v - d.vf).abs() <= 1e-8,
+                "dof {i}"
+            );
+        }
+    }
+    eprintln!("bounded mode: {equal} equal, {longer} longer, {gave_up} gave up");
+    assert!(
+        equal > 300 && longer + gave_up > 0,
+        "{equal} {longer} {gave_up}"
+    );
 }

@@ -47,9 +47,9 @@
 //!    largest scale that keeps every joint within both adjacent sections' velocity limits.
 //!    Coordinate descent over the waypoints: for each one a golden-section search over its
 //!    scale minimizes the sum of the durations of its two adjacent sections (each evaluation
-//!    = two section solves; a section the generator cannot plan counts as infinitely long,
-//!    so only feasible velocities are kept). Two sweeps: the whole range first, then a window
-//!    around the first sweep's choice.
+//!    = two section solves in the synchronization's bounded mode, see Cost; a section it
+//!    cannot plan counts as infinitely long, so only feasible velocities are kept). Two
+//!    sweeps: the whole range first, then a window around the first sweep's choice.
 //!
 //! The result is the shorter of the descent's motion and stopping at every waypoint.
 //!
@@ -65,12 +65,13 @@
 //!   jerk limits along the same corners) can be shorter.
 //!
 //! # Cost
-//! About `22 × waypoints + 3 × sections` section solves. Most take microseconds, but a
-//! section whose synchronized duration lies above every DOF's own minimum (a DOF with a
-//! non-zero waypoint velocity that cannot be slowed a little: a blocked interval) sends
-//! the generator's synchronization into its bisection, about 1.5 ms per solve in a release
-//! build; a few such evaluations per plan dominate its time (BENCHMARKS.md: 7 DOF × 5
-//! waypoints, median 21 ms on a loaded machine, against a 1 ms target).
+//! About `22 × waypoints + 3 × sections` section solves, most of them microseconds. The
+//! search rates candidates with the synchronization's bounded mode: a section whose
+//! synchronized duration lies above every DOF's own minimum (a DOF with a non-zero waypoint
+//! velocity that cannot be slowed a little: a blocked interval) would send the full search
+//! into a bisection of about 1.5 ms; the bounded mode keeps the first candidate duration that
+//! works (or rates the section ∞ when none does), so such velocities, poor anyway, are rated
+//! long rather than exactly. Only the reference and the chosen sections get full solves.
 //!
 //! # Precision contract
 //! Every section is a generator result: it ends at its waypoint (and the last one at the

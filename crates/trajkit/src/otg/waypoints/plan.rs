@@ -2,15 +2,20 @@
 //! method): stop at every waypoint, tangent directions, coordinate descent with a
 //! golden-section search on each waypoint's speed scale.
 //!
-//! Every evaluation solves whole sections with the generator (`sync::calculate`) into
-//! buffers the planner reuses; the final trajectory solves each chosen section once more
-//! into its own storage.
+//! Every evaluation solves whole sections with the generator into buffers the planner
+//! reuses: the search rates candidate velocities with the synchronization's bounded mode
+//! (`sync::calculate_bounded`: no bisection, no durations past the last candidate, never
+//! shorter than the full solve), the reference (stopping at every waypoint) and the final
+//! trajectory are full solves (`sync::calculate`), each chosen section once more into its
+//! own storage. A full solve is never longer than the bounded rating the search kept (to
+//! round-off), so the result is never longer than the search believed; the final check
+//! against stopping at every waypoint uses the built durations.
 
 use super::trajectory::WaypointTrajectory;
 use super::{section_inputs, Waypoints};
 use crate::otg::input::DynInputParameter;
 use crate::otg::result::OtgError;
-use crate::otg::sync::{calculate, Scratch, Spare};
+use crate::otg::sync::{calculate, calculate_bounded, Scratch, Spare};
 use crate::otg::trajectory::{DofTrajectory, OtgTrajectory};
 
 /// Golden-section evaluations per waypoint in the first sweep (whole scale range) and in the
@@ -109,15 +114,27 @@ impl<'a> Planner<'a> {
         )
     }
 
-    /// The two sections around waypoint `w` at scale `s`: their durations (∞ when one
-    /// cannot be planned).
+    /// The search's rating of section `s` with the current waypoint velocities: its duration
+    /// from the bounded synchronization (at least the full solve's), ∞ when that cannot plan it.
+    fn rate(&mut self, s: usize) -> f64 {
+        calculate_bounded(
+            &self.secs[s].view(),
+            self.dt,
+            &mut self.dofs,
+            &mut self.scratch,
+            &mut self.spare,
+        )
+        .unwrap_or(f64::INFINITY)
+    }
+
+    /// The two sections around waypoint `w` at scale `s`: their ratings ([`Planner::rate`]).
     fn around(&mut self, w: usize, s: f64) -> (f64, f64) {
         self.set_scale(w, s);
-        let a = self.solve(w).unwrap_or(f64::INFINITY);
+        let a = self.rate(w);
         if a.is_infinite() {
             return (a, a);
         }
-        (a, self.solve(w + 1).unwrap_or(f64::INFINITY))
+        (a, self.rate(w + 1))
     }
 
     /// Plans the motion (see the module docs).
@@ -149,7 +166,20 @@ impl<'a> Planner<'a> {
         for w in 0..self.m {
             self.set_scale(w, self.scale[w]);
         }
-        self.build(stop_total)
+        match self.build(stop_total) {
+            // The full solve plans whatever the bounded rating planned, at most as long (to
+            // round-off); should it ever not, stopping at every waypoint is the answer.
+            r if self.scale.iter().any(|&s| s != 0.0)
+                && !r.as_ref().is_ok_and(|t| t.duration <= stop_total) =>
+            {
+                for w in 0..self.m {
+                    self.scale[w] = 0.0;
+                    self.set_scale(w, 0.0);
+                }
+                self.build(stop_total)
+            }
+            r => r,
+        }
     }
 
     /// The tangent direction of every waypoint and its largest scale, from the section
@@ -205,13 +235,11 @@ impl<'a> Planner<'a> {
         }
         let mut dur = vec![0.0; self.m + 1];
         let mut ok = true;
-        for (s, d) in dur.iter_mut().enumerate() {
-            match self.solve(s) {
-                Ok(t) => *d = t,
-                Err(_) => {
-                    ok = false;
-                    break;
-                }
+        for s in 0..=self.m {
+            dur[s] = self.rate(s);
+            if dur[s].is_infinite() {
+                ok = false;
+                break;
             }
         }
         if ok && dur.iter().sum::<f64>() < self.dur.iter().sum::<f64>() {
