@@ -146,41 +146,8 @@ impl Pieces {
                 }
                 continue;
             }
-            let (d0, rest) = d.split_at_mut(dim);
-            let (d1, rest) = rest.split_at_mut(dim);
-            let (d2, rest) = rest.split_at_mut(dim);
-            let d3 = &mut rest[..dim];
-            if !(starts_at_break || ends_at_break) {
-                let here = &at_points[3 * dim * i..3 * dim * (i + 1)];
-                let next_ddq = &at_points[3 * dim * (i + 1) + 2 * dim..3 * dim * (i + 2)];
-                d0.copy_from_slice(&here[..dim]);
-                d1.copy_from_slice(&here[dim..2 * dim]);
-                d2.copy_from_slice(&here[2 * dim..]);
-                let h = s1 - s0;
-                for j in 0..dim {
-                    d3[j] = (next_ddq[j] - d2[j]) / h;
-                }
-                continue;
-            }
-            let sm = 0.5 * (s0 + s1);
-            if need_q {
-                path.eval(sm, 0, d0);
-            } else {
-                d0.iter_mut().for_each(|v| *v = 0.0);
-            }
-            path.eval_derivatives(sm, d1, d2);
-            path.eval(sm, 3, d3);
-            // From the midpoint to s0: t = −h/2.
-            let t = s0 - sm;
-            for j in 0..dim {
-                let (a, b, c) = (d1[j], d2[j], d3[j]);
-                if need_q {
-                    d0[j] += t * (a + t * (0.5 * b + t * c / 6.0));
-                }
-                d1[j] = a + t * (b + 0.5 * t * c);
-                d2[j] = b + t * c;
-            }
-            if !d.iter().all(|v| v.is_finite()) {
+            let at_break = starts_at_break || ends_at_break;
+            if !cubic_taylor(path, (s0, s1), at_break, need_q, at_points, i, d) {
                 self.exact[i] = false;
             }
         }
@@ -285,6 +252,57 @@ impl PieceAnchor {
         }
         true
     }
+}
+
+/// The cubic Taylor data (σ, σ′, σ″, σ‴ at s0) of interval i = \[s0, s1\] of a cubic path
+/// into `d`: from the values at the gridpoints `at_points` (σ‴ by differencing σ″) when the
+/// interval touches no breakpoint, else expanded from the midpoint's derivatives (σ zero
+/// unless `need_q`). Returns whether all are finite.
+fn cubic_taylor<P: Path>(
+    path: &P,
+    (s0, s1): (f64, f64),
+    at_break: bool,
+    need_q: bool,
+    at_points: &[f64],
+    i: usize,
+    d: &mut [f64],
+) -> bool {
+    let dim = path.dim();
+    let (d0, rest) = d.split_at_mut(dim);
+    let (d1, rest) = rest.split_at_mut(dim);
+    let (d2, rest) = rest.split_at_mut(dim);
+    let d3 = &mut rest[..dim];
+    if !at_break {
+        let here = &at_points[3 * dim * i..3 * dim * (i + 1)];
+        let next_ddq = &at_points[3 * dim * (i + 1) + 2 * dim..3 * dim * (i + 2)];
+        d0.copy_from_slice(&here[..dim]);
+        d1.copy_from_slice(&here[dim..2 * dim]);
+        d2.copy_from_slice(&here[2 * dim..]);
+        let h = s1 - s0;
+        for j in 0..dim {
+            d3[j] = (next_ddq[j] - d2[j]) / h;
+        }
+        return true;
+    }
+    let sm = 0.5 * (s0 + s1);
+    if need_q {
+        path.eval(sm, 0, d0);
+    } else {
+        d0.iter_mut().for_each(|v| *v = 0.0);
+    }
+    path.eval_derivatives(sm, d1, d2);
+    path.eval(sm, 3, d3);
+    // From the midpoint to s0: t = −h/2.
+    let t = s0 - sm;
+    for j in 0..dim {
+        let (a, b, c) = (d1[j], d2[j], d3[j]);
+        if need_q {
+            d0[j] += t * (a + t * (0.5 * b + t * c / 6.0));
+        }
+        d1[j] = a + t * (b + 0.5 * t * c);
+        d2[j] = b + t * c;
+    }
+    d.iter().all(|v| v.is_finite())
 }
 
 /// Taylor data σ, σ′, …, σ⁽⁵⁾ of a polynomial of degree ≤ 5 (`src`, `6·dim` numbers, block k

@@ -232,109 +232,138 @@ pub(crate) fn min_x(st: &IntervalState) -> (f64, f64) {
 /// acceleration, jerk]` as (ratio, δ); a limit whose Bernstein bound settles it reports the
 /// bound (≤ 1) and δ = NaN.
 pub(crate) fn cubic_joint(st: &IntervalState, cu: &Cubic, lim: &JointRange) -> [(f64, f64); 3] {
+    let mut out = [(f64::NEG_INFINITY, f64::NAN); 3];
+    if lim.v.0.is_finite() || lim.v.1.is_finite() {
+        out[0] = cubic_velocity(st, cu, lim);
+    }
+    if lim.a.0.is_finite() || lim.a.1.is_finite() {
+        out[1] = cubic_acceleration(st, cu, lim);
+    }
+    if lim.j.is_finite() {
+        out[2] = cubic_jerk(st, cu, lim);
+    }
+    out
+}
+
+/// The worst velocity ratio of [`cubic_joint`] (some velocity limit finite):
+/// q̇² = σ′²x against the limit of σ′'s sign.
+fn cubic_velocity(st: &IntervalState, cu: &Cubic, lim: &JointRange) -> (f64, f64) {
     let d = st.len;
     let xp = st.x_poly();
+    let (mut t1, mut t2) = ([0.0; 16], [0.0; 16]);
+    let mut roots = [0.0; MAX_DEGREE];
+    let xd = [xp[1], 2.0 * xp[2], 3.0 * xp[3]];
+    let p1 = cu.d1();
+    let p2 = cu.d2();
+    let (slo, shi) = bernstein_range(&p1, d);
+    let vl = if slo >= 0.0 {
+        lim.v.1
+    } else if shi <= 0.0 {
+        -lim.v.0
+    } else {
+        lim.v.1.min(-lim.v.0)
+    };
+    let l1 = mul(&p1, &p1, &mut t1);
+    let l2 = mul(&t1[..l1], &xp, &mut t2);
+    let (_, hi) = bernstein_range(&t2[..l2], d);
+    if vl.is_finite() && vl > 0.0 && hi <= vl * vl * (1.0 + BOUND_TOL) {
+        ((hi.max(0.0)).sqrt() / vl, f64::NAN)
+    } else {
+        // Critical points of σ′√x: 2σ″x + σ′x′ = 0.
+        let l1 = mul(&p2, &xp, &mut t1);
+        let l2 = mul(&p1, &xd, &mut t2);
+        let mut crit = [0.0; 8];
+        for k in 0..l1.max(l2) {
+            crit[k] = 2.0 * if k < l1 { t1[k] } else { 0.0 } + if k < l2 { t2[k] } else { 0.0 };
+        }
+        let nr = roots_in(&crit[..l1.max(l2)], 0.0, d, &mut roots);
+        worst_of(
+            |z| {
+                ratio(
+                    horner(&p1, z) * st.x_at(z).max(0.0).sqrt(),
+                    lim.v.0,
+                    lim.v.1,
+                )
+            },
+            &roots[..nr],
+            d,
+        )
+    }
+}
+
+/// The worst acceleration ratio of [`cubic_joint`] (some acceleration limit finite):
+/// σ″x + σ′u (degree 4).
+fn cubic_acceleration(st: &IntervalState, cu: &Cubic, lim: &JointRange) -> (f64, f64) {
+    let d = st.len;
+    let xp = st.x_poly();
+    let (mut t1, mut t2) = ([0.0; 16], [0.0; 16]);
+    let mut roots = [0.0; MAX_DEGREE];
+    let up = st.u_poly();
+    let p1 = cu.d1();
+    let p2 = cu.d2();
+    let l1 = mul(&p2, &xp, &mut t1);
+    let l2 = mul(&p1, &up, &mut t2);
+    let mut acc = [0.0; 5];
+    for k in 0..l1.max(l2) {
+        acc[k] = if k < l1 { t1[k] } else { 0.0 } + if k < l2 { t2[k] } else { 0.0 };
+    }
+    let (lo, hi) = bernstein_range(&acc, d);
+    let r = ratio(hi, lim.a.0, lim.a.1).max(ratio(lo, lim.a.0, lim.a.1));
+    if r <= 1.0 + BOUND_TOL {
+        (r, f64::NAN)
+    } else {
+        let dacc = [acc[1], 2.0 * acc[2], 3.0 * acc[3], 4.0 * acc[4]];
+        let nr = roots_in(&dacc, 0.0, d, &mut roots);
+        worst_of(
+            |z| ratio(horner(&acc, z), lim.a.0, lim.a.1),
+            &roots[..nr],
+            d,
+        )
+    }
+}
+
+/// The worst jerk ratio of [`cubic_joint`] (the jerk limit finite):
+/// √x·g, g = σ‴x + 3σ″u + σ′vθ′ (degree 3); q⃛² = x·g² (degree 9).
+fn cubic_jerk(st: &IntervalState, cu: &Cubic, lim: &JointRange) -> (f64, f64) {
+    let d = st.len;
+    let xp = st.x_poly();
+    let (mut t1, mut t2) = ([0.0; 16], [0.0; 16]);
+    let mut roots = [0.0; MAX_DEGREE];
     let up = st.u_poly();
     let xd = [xp[1], 2.0 * xp[2], 3.0 * xp[3]];
     let p1 = cu.d1();
     let p2 = cu.d2();
-    let mut roots = [0.0; MAX_DEGREE];
-    let (mut t1, mut t2) = ([0.0; 16], [0.0; 16]);
-    let mut out = [(f64::NEG_INFINITY, f64::NAN); 3];
-    // Velocity: q̇² = σ′²x against the limit of σ′'s sign.
-    if lim.v.0.is_finite() || lim.v.1.is_finite() {
-        let (slo, shi) = bernstein_range(&p1, d);
-        let vl = if slo >= 0.0 {
-            lim.v.1
-        } else if shi <= 0.0 {
-            -lim.v.0
-        } else {
-            lim.v.1.min(-lim.v.0)
-        };
-        let l1 = mul(&p1, &p1, &mut t1);
-        let l2 = mul(&t1[..l1], &xp, &mut t2);
-        let (_, hi) = bernstein_range(&t2[..l2], d);
-        if vl.is_finite() && vl > 0.0 && hi <= vl * vl * (1.0 + BOUND_TOL) {
-            out[0] = ((hi.max(0.0)).sqrt() / vl, f64::NAN);
-        } else {
-            // Critical points of σ′√x: 2σ″x + σ′x′ = 0.
-            let l1 = mul(&p2, &xp, &mut t1);
-            let l2 = mul(&p1, &xd, &mut t2);
-            let mut crit = [0.0; 8];
-            for k in 0..l1.max(l2) {
-                crit[k] = 2.0 * if k < l1 { t1[k] } else { 0.0 } + if k < l2 { t2[k] } else { 0.0 };
-            }
-            let nr = roots_in(&crit[..l1.max(l2)], 0.0, d, &mut roots);
-            out[0] = worst_of(
-                |z| {
-                    ratio(
-                        horner(&p1, z) * st.x_at(z).max(0.0).sqrt(),
-                        lim.v.0,
-                        lim.v.1,
-                    )
-                },
-                &roots[..nr],
-                d,
-            );
-        }
+    let l1 = mul(&p2, &up, &mut t1);
+    let th = [st.v * st.shape.p, st.v * st.shape.q];
+    let l2 = mul(&p1, &th, &mut t2);
+    let mut g = [0.0; 4];
+    for k in 0..4 {
+        g[k] = cu.c * xp[k]
+            + 3.0 * if k < l1 { t1[k] } else { 0.0 }
+            + if k < l2 { t2[k] } else { 0.0 };
     }
-    // Acceleration: σ″x + σ′u (degree 4).
-    if lim.a.0.is_finite() || lim.a.1.is_finite() {
-        let l1 = mul(&p2, &xp, &mut t1);
-        let l2 = mul(&p1, &up, &mut t2);
-        let mut acc = [0.0; 5];
+    let l1 = mul(&g, &g, &mut t1);
+    let l2 = mul(&t1[..l1], &xp, &mut t2);
+    let (_, hi) = bernstein_range(&t2[..l2], d);
+    let jl = lim.j;
+    if jl > 0.0 && hi <= jl * jl * (1.0 + BOUND_TOL) {
+        (hi.max(0.0).sqrt() / jl, f64::NAN)
+    } else {
+        // Critical points: x′g + 2xg′ = 0 (degree 5).
+        let dg = [g[1], 2.0 * g[2], 3.0 * g[3]];
+        let l1 = mul(&xd, &g, &mut t1);
+        let l2 = mul(&xp, &dg, &mut t2);
+        let mut crit = [0.0; 8];
         for k in 0..l1.max(l2) {
-            acc[k] = if k < l1 { t1[k] } else { 0.0 } + if k < l2 { t2[k] } else { 0.0 };
+            crit[k] = if k < l1 { t1[k] } else { 0.0 } + 2.0 * if k < l2 { t2[k] } else { 0.0 };
         }
-        let (lo, hi) = bernstein_range(&acc, d);
-        let r = ratio(hi, lim.a.0, lim.a.1).max(ratio(lo, lim.a.0, lim.a.1));
-        if r <= 1.0 + BOUND_TOL {
-            out[1] = (r, f64::NAN);
-        } else {
-            let dacc = [acc[1], 2.0 * acc[2], 3.0 * acc[3], 4.0 * acc[4]];
-            let nr = roots_in(&dacc, 0.0, d, &mut roots);
-            out[1] = worst_of(
-                |z| ratio(horner(&acc, z), lim.a.0, lim.a.1),
-                &roots[..nr],
-                d,
-            );
-        }
+        let nr = roots_in(&crit[..l1.max(l2)], 0.0, d, &mut roots);
+        worst_of(
+            |z| ratio(st.x_at(z).max(0.0).sqrt() * horner(&g, z), -jl, jl),
+            &roots[..nr],
+            d,
+        )
     }
-    // Jerk: √x·g, g = σ‴x + 3σ″u + σ′vθ′ (degree 3); q⃛² = x·g² (degree 9).
-    if lim.j.is_finite() {
-        let l1 = mul(&p2, &up, &mut t1);
-        let th = [st.v * st.shape.p, st.v * st.shape.q];
-        let l2 = mul(&p1, &th, &mut t2);
-        let mut g = [0.0; 4];
-        for k in 0..4 {
-            g[k] = cu.c * xp[k]
-                + 3.0 * if k < l1 { t1[k] } else { 0.0 }
-                + if k < l2 { t2[k] } else { 0.0 };
-        }
-        let l1 = mul(&g, &g, &mut t1);
-        let l2 = mul(&t1[..l1], &xp, &mut t2);
-        let (_, hi) = bernstein_range(&t2[..l2], d);
-        let jl = lim.j;
-        if jl > 0.0 && hi <= jl * jl * (1.0 + BOUND_TOL) {
-            out[2] = (hi.max(0.0).sqrt() / jl, f64::NAN);
-        } else {
-            // Critical points: x′g + 2xg′ = 0 (degree 5).
-            let dg = [g[1], 2.0 * g[2], 3.0 * g[3]];
-            let l1 = mul(&xd, &g, &mut t1);
-            let l2 = mul(&xp, &dg, &mut t2);
-            let mut crit = [0.0; 8];
-            for k in 0..l1.max(l2) {
-                crit[k] = if k < l1 { t1[k] } else { 0.0 } + 2.0 * if k < l2 { t2[k] } else { 0.0 };
-            }
-            let nr = roots_in(&crit[..l1.max(l2)], 0.0, d, &mut roots);
-            out[2] = worst_of(
-                |z| ratio(st.x_at(z).max(0.0).sqrt() * horner(&g, z), -jl, jl),
-                &roots[..nr],
-                d,
-            );
-        }
-    }
-    out
 }
 
 /// The ratios of one joint's limits at a single point with derivatives `d` = (σ′, σ″, σ‴) and

@@ -139,35 +139,7 @@ impl JerkProfile {
         let t1 = (6.0 * d0 / u[1]).sqrt();
         let j0 = u[1] / t1;
         t[1] = t1;
-        let mut pan_off = Vec::with_capacity(n + 1);
-        let mut pan_t = Vec::with_capacity(2 * n);
-        pan_off.extend([0, 0]);
-        for i in 1..n - 1 {
-            let d = s[i + 1] - s[i];
-            let cu = Cubic {
-                x0: x[i],
-                u: u[i],
-                v: v[i],
-                shape: shape[i],
-            };
-            let (dt, m) = cu.adaptive_time(d);
-            if !dt.is_finite() {
-                return Err(Error::Infeasible(format!(
-                    "the path velocity vanishes between s = {} and s = {}",
-                    s[i],
-                    s[i + 1]
-                )));
-            }
-            let w = d / m as f64;
-            let mut acc = 0.0;
-            for k in 0..m {
-                acc += cu.panel(k as f64 * w, (k + 1) as f64 * w);
-                pan_t.push(acc);
-            }
-            pan_off.push(pan_t.len());
-            t[i + 1] = t[i] + acc;
-        }
-        pan_off.push(pan_t.len());
+        let (pan_off, pan_t) = middle_panels(&s, &x, &u, &v, &shape, &mut t)?;
         let dl = s[n] - s[n - 1];
         if u[n - 1].is_nan() || u[n - 1] >= 0.0 {
             return Err(Error::Infeasible(format!(
@@ -329,6 +301,50 @@ impl JerkProfile {
         }
         self.middle(i, t - self.t[i])
     }
+}
+
+/// The times of the middle intervals (1..n − 1) into `t` from t\[1\] on, and their panels:
+/// the cumulative time of each panel and, per interval, where its panels start
+/// (`pan_off`, n + 1 entries).
+fn middle_panels(
+    s: &[f64],
+    x: &[f64],
+    u: &[f64],
+    v: &[f64],
+    shape: &[Shape],
+    t: &mut [f64],
+) -> Result<(Vec<usize>, Vec<f64>)> {
+    let n = s.len() - 1;
+    let mut pan_off = Vec::with_capacity(n + 1);
+    let mut pan_t = Vec::with_capacity(2 * n);
+    pan_off.extend([0, 0]);
+    for i in 1..n - 1 {
+        let d = s[i + 1] - s[i];
+        let cu = Cubic {
+            x0: x[i],
+            u: u[i],
+            v: v[i],
+            shape: shape[i],
+        };
+        let (dt, m) = cu.adaptive_time(d);
+        if !dt.is_finite() {
+            return Err(Error::Infeasible(format!(
+                "the path velocity vanishes between s = {} and s = {}",
+                s[i],
+                s[i + 1]
+            )));
+        }
+        let w = d / m as f64;
+        let mut acc = 0.0;
+        for k in 0..m {
+            acc += cu.panel(k as f64 * w, (k + 1) as f64 * w);
+            pan_t.push(acc);
+        }
+        pan_off.push(pan_t.len());
+        t[i + 1] = t[i] + acc;
+    }
+    pan_off.push(pan_t.len());
+    Ok((pan_off, pan_t))
 }
 
 impl TimeLaw for JerkProfile {

@@ -53,20 +53,7 @@ pub(crate) fn time_grid(
     even[steps] = b;
     even.dedup_by(|x, y| *x <= *y);
     let inner: Vec<f64> = breaks.iter().copied().filter(|&x| x > a && x < b).collect();
-    // Drop time-even points too close to a breakpoint (never the ends).
-    let mut keep = vec![true; even.len()];
-    for &x in &inner {
-        let k = even.partition_point(|&e| e < x);
-        for j in [k.wrapping_sub(1), k] {
-            if j == 0 || j + 1 >= even.len() {
-                continue;
-            }
-            let h = (even[j + 1] - even[j - 1]) * 0.5;
-            if (even[j] - x).abs() < 0.2 * h {
-                keep[j] = false;
-            }
-        }
-    }
+    let keep = keep_off_breaks(&even, &inner);
     let mut pts: Vec<(f64, bool)> = even
         .iter()
         .zip(&keep)
@@ -92,19 +79,7 @@ pub(crate) fn time_grid(
         pts.sort_by(|p, q| p.0.total_cmp(&q.0));
         pts.dedup_by(|x, y| x.0 <= y.0);
     }
-    // Geometric refinement of the two end intervals.
-    let n = pts.len();
-    let (h0, h1) = (pts[1].0 - a, b - pts[n - 2].0);
-    let mut out: Vec<(f64, bool)> = Vec::with_capacity(n + 2 * levels);
-    out.push((a, false));
-    for k in (1..=levels).rev() {
-        out.push((a + h0 * 0.5f64.powi(k as i32), false));
-    }
-    out.extend_from_slice(&pts[1..n - 1]);
-    for k in 1..=levels {
-        out.push((b - h1 * 0.5f64.powi(k as i32), false));
-    }
-    out.push((b, false));
+    let mut out = refine_ends(&pts, a, b, levels);
     out.dedup_by(|x, y| {
         if x.0 <= y.0 {
             y.1 |= x.1;
@@ -117,6 +92,43 @@ pub(crate) fn time_grid(
         s: out.iter().map(|p| p.0).collect(),
         brk: out.iter().map(|p| p.1).collect(),
     }
+}
+
+/// Which time-even points to keep: not those too close to an inner breakpoint (never the
+/// ends).
+fn keep_off_breaks(even: &[f64], inner: &[f64]) -> Vec<bool> {
+    let mut keep = vec![true; even.len()];
+    for &x in inner {
+        let k = even.partition_point(|&e| e < x);
+        for j in [k.wrapping_sub(1), k] {
+            if j == 0 || j + 1 >= even.len() {
+                continue;
+            }
+            let h = (even[j + 1] - even[j - 1]) * 0.5;
+            if (even[j] - x).abs() < 0.2 * h {
+                keep[j] = false;
+            }
+        }
+    }
+    keep
+}
+
+/// The points `pts` (sorted, from a to b) with the first and last intervals refined
+/// geometrically: `levels` halvings towards each end.
+fn refine_ends(pts: &[(f64, bool)], a: f64, b: f64, levels: usize) -> Vec<(f64, bool)> {
+    let n = pts.len();
+    let (h0, h1) = (pts[1].0 - a, b - pts[n - 2].0);
+    let mut out: Vec<(f64, bool)> = Vec::with_capacity(n + 2 * levels);
+    out.push((a, false));
+    for k in (1..=levels).rev() {
+        out.push((a + h0 * 0.5f64.powi(k as i32), false));
+    }
+    out.extend_from_slice(&pts[1..n - 1]);
+    for k in 1..=levels {
+        out.push((b - h1 * 0.5f64.powi(k as i32), false));
+    }
+    out.push((b, false));
+    out
 }
 
 #[cfg(test)]

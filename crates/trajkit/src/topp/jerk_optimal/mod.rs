@@ -264,35 +264,11 @@ impl<'c, P: Path> JerkOptimal<'c, P> {
     /// Solves and returns the timing law only.
     pub fn solve_profile(&self) -> Result<JerkProfile> {
         let tol = self.options.tolerance;
-        if !(tol > 0.0 && tol <= 0.1) {
-            return Err(Error::InvalidValue {
-                field: "jerk planner duration tolerance".into(),
-                value: tol,
-                reason: "is not in (0, 0.1]",
-            });
-        }
-        if let Some(st) = self.options.steps {
-            if !(3..=MAX_STEPS).contains(&st) {
-                return Err(Error::InvalidValue {
-                    field: "jerk planner grid steps".into(),
-                    value: st as f64,
-                    reason: "is not in 3..=1048576",
-                });
-            }
-        }
+        self.check_options()?;
         let breaks = self.path.breakpoints();
         let segments = breaks.len().saturating_sub(1).max(1);
         let raw = self.raw_profile(RAW_STEPS.max(RAW_PER_SEGMENT * segments))?;
-        let ranges: Vec<JointRange> = self
-            .limits
-            .joints()
-            .iter()
-            .map(|j| JointRange {
-                v: j.range(Order::Velocity),
-                a: j.range(Order::Acceleration),
-                j: j.symmetric_limit(Order::Jerk),
-            })
-            .collect();
+        let ranges = self.joint_ranges();
         let jerk: Vec<f64> = ranges.iter().map(|r| r.j).collect();
         let umax = raw
             .accelerations()
@@ -314,23 +290,7 @@ impl<'c, P: Path> JerkOptimal<'c, P> {
         let mut total_rounds = 0;
         loop {
             let grid = mesh::time_grid(&ref_s, &ref_t, &breaks, steps, END_LEVELS);
-            let nn = grid.s.len() - 1;
-            let mids: Vec<f64> = (0..nn).map(|i| 0.5 * (grid.s[i] + grid.s[i + 1])).collect();
-            let guess = |s: f64| match &previous {
-                Some(p) => p.x_at(s),
-                None => raw_x(&raw, s)
-                    .min(rest_curve.0.x(s - a))
-                    .min(rest_curve.1.x(b - s)),
-            };
-            let reference = problem::Reference {
-                grid: grid.s.iter().map(|&s| guess(s)).collect(),
-                mid: mids.iter().map(|&s| guess(s)).collect(),
-            };
-            let xbox: Vec<f64> = grid
-                .s
-                .iter()
-                .map(|&s| 2.0 * raw_x(&raw, s) + 1e-300)
-                .collect();
+            let (reference, xbox) = grid_seed(&grid, previous.as_ref(), &raw, &rest_curve, (a, b));
             let mut prob =
                 problem::Problem::new(&self.path, extra, &ranges, &grid, reference, &xbox, ubox)?;
             let max_rounds = if previous.is_some() { 8 } else { 16 };
@@ -350,29 +310,14 @@ impl<'c, P: Path> JerkOptimal<'c, P> {
                 }
             };
             total_rounds += solved.rounds;
-            let mut profile = solved.profile;
-            let scale = time_scale_for(solved.worst);
-            profile.set_scale(scale);
-            let t_new = profile.duration();
-            let change = previous
-                .as_ref()
-                .map_or(f64::INFINITY, |p| (p.duration() - t_new).abs() / t_new);
-            // Second order in the step: the finer result is off by about a third of the change.
-            let estimate = change / 3.0;
-            profile.report = JerkReport {
+            let round = RoundInfo {
                 gridpoints: grid.s.len(),
                 steps,
-                rounds: solved.rounds,
                 total_rounds,
-                cuts: solved.cuts,
-                tightened: solved.tightened,
-                worst_excess: solved.worst,
-                sampled_intervals: solved.sampled_intervals,
-                time_scale: scale,
                 raw_duration: raw.duration(),
-                grid_change: change,
-                error_estimate: estimate,
             };
+            let profile = finish_round(solved, previous.as_ref(), round);
+            let estimate = profile.report.error_estimate;
             let done =
                 self.options.steps.is_some() || estimate <= tol || 2 * steps > MAX_AUTO_STEPS;
             if done {
@@ -384,6 +329,110 @@ impl<'c, P: Path> JerkOptimal<'c, P> {
             steps *= 2;
         }
     }
+
+    /// Checks the duration tolerance and the fixed grid steps of the options.
+    fn check_options(&self) -> Result<()> {
+        let tol = self.options.tolerance;
+        if !(tol > 0.0 && tol <= 0.1) {
+            return Err(Error::InvalidValue {
+                field: "jerk planner duration tolerance".into(),
+                value: tol,
+                reason: "is not in (0, 0.1]",
+            });
+        }
+        if let Some(st) = self.options.steps {
+            if !(3..=MAX_STEPS).contains(&st) {
+                return Err(Error::InvalidValue {
+                    field: "jerk planner grid steps".into(),
+                    value: st as f64,
+                    reason: "is not in 3..=1048576",
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// The velocity and acceleration ranges and the symmetric jerk limit of each joint.
+    fn joint_ranges(&self) -> Vec<JointRange> {
+        self.limits
+            .joints()
+            .iter()
+            .map(|j| JointRange {
+                v: j.range(Order::Velocity),
+                a: j.range(Order::Acceleration),
+                j: j.symmetric_limit(Order::Jerk),
+            })
+            .collect()
+    }
+}
+
+/// The first x̄ of a grid's problem and the box on x at its gridpoints: x̄ follows the last
+/// (coarser) grid's result when there is one, else the raw TOPP-RA timing capped by the rest
+/// curves at the ends `(a, b)`; the box is twice the raw x.
+fn grid_seed(
+    grid: &mesh::Grid,
+    previous: Option<&JerkProfile>,
+    raw: &Profile,
+    rest_curve: &(RestCurve, RestCurve),
+    (a, b): (f64, f64),
+) -> (problem::Reference, Vec<f64>) {
+    let nn = grid.s.len() - 1;
+    let mids: Vec<f64> = (0..nn).map(|i| 0.5 * (grid.s[i] + grid.s[i + 1])).collect();
+    let guess = |s: f64| match previous {
+        Some(p) => p.x_at(s),
+        None => raw_x(raw, s)
+            .min(rest_curve.0.x(s - a))
+            .min(rest_curve.1.x(b - s)),
+    };
+    let reference = problem::Reference {
+        grid: grid.s.iter().map(|&s| guess(s)).collect(),
+        mid: mids.iter().map(|&s| guess(s)).collect(),
+    };
+    let xbox: Vec<f64> = grid
+        .s
+        .iter()
+        .map(|&s| 2.0 * raw_x(raw, s) + 1e-300)
+        .collect();
+    (reference, xbox)
+}
+
+/// What the report of one grid's round records besides the solve itself.
+struct RoundInfo {
+    gridpoints: usize,
+    steps: usize,
+    total_rounds: usize,
+    raw_duration: f64,
+}
+
+/// The profile of one grid's solve, slowed down uniformly by its certified excess, with its
+/// report; the grid change and error estimate compare it with `previous` (the coarser grid).
+fn finish_round(
+    solved: problem::Solved,
+    previous: Option<&JerkProfile>,
+    round: RoundInfo,
+) -> JerkProfile {
+    let mut profile = solved.profile;
+    let scale = time_scale_for(solved.worst);
+    profile.set_scale(scale);
+    let t_new = profile.duration();
+    let change = previous.map_or(f64::INFINITY, |p| (p.duration() - t_new).abs() / t_new);
+    // Second order in the step: the finer result is off by about a third of the change.
+    let estimate = change / 3.0;
+    profile.report = JerkReport {
+        gridpoints: round.gridpoints,
+        steps: round.steps,
+        rounds: solved.rounds,
+        total_rounds: round.total_rounds,
+        cuts: solved.cuts,
+        tightened: solved.tightened,
+        worst_excess: solved.worst,
+        sampled_intervals: solved.sampled_intervals,
+        time_scale: scale,
+        raw_duration: round.raw_duration,
+        grid_change: change,
+        error_estimate: estimate,
+    };
+    profile
 }
 
 /// TOPP-RA intervals of the raw timing that seeds the planner (at least, and per path

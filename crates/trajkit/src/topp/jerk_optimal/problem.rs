@@ -469,49 +469,7 @@ impl<'a, 'c, P: Path> Problem<'a, 'c, P> {
             }
         }
         if sampled || !self.extra.is_empty() {
-            buf.resize(n);
-            let mut best = vec![(f64::NEG_INFINITY, 0.0); if sampled { 3 * n } else { 0 }];
-            let mut extra_worst = (f64::NEG_INFINITY, 0.0);
-            let samples = if self.extra.is_empty() {
-                certify::SAMPLES
-            } else {
-                certify::EXTRA_SAMPLES
-            };
-            for k in 0..=samples + 1 {
-                let delta = st.len * k as f64 / (samples + 1) as f64;
-                let s = self.g.s[i] + delta;
-                let (xs, us) = (st.x_at(delta), st.u_at(delta));
-                self.path.eval_derivatives(s, &mut buf.d1, &mut buf.d2);
-                if sampled {
-                    self.path.eval(s, 3, &mut buf.d3);
-                    for j in 0..n {
-                        let d = [buf.d1[j], buf.d2[j], buf.d3[j]];
-                        let r = certify::point_joint(xs, us, st.w_at(delta), d, &self.ranges[j]);
-                        for o in 0..3 {
-                            if r[o] > best[3 * j + o].0 {
-                                best[3 * j + o] = (r[o], delta);
-                            }
-                        }
-                    }
-                }
-                if !self.extra.is_empty() && k > 0 && k <= samples {
-                    self.path.eval(s, 0, &mut buf.q);
-                    let p = PathPoint {
-                        s,
-                        q: &buf.q,
-                        dq: &buf.d1,
-                        ddq: &buf.d2,
-                    };
-                    for c in self.extra {
-                        buf.cr.clear();
-                        c.write(&p, &mut buf.cr);
-                        let e = buf.cr.relative_excess(us, xs);
-                        if e > extra_worst.0 {
-                            extra_worst = (e, delta);
-                        }
-                    }
-                }
-            }
+            let (best, extra_worst) = self.sample_interval(st, i, sampled, buf);
             for (k, &(r, delta)) in best.iter().enumerate() {
                 push(k / 3, k % 3, r, delta, out);
             }
@@ -532,6 +490,64 @@ impl<'a, 'c, P: Path> Problem<'a, 'c, P> {
         (worst, sampled)
     }
 
+    /// Samples middle interval i: the largest ratio to each (joint, limit) and where it
+    /// occurs, `3 · joint + order` (only when `sampled`, i.e. the path is not a cubic there),
+    /// and the largest relative excess of the extra constraints and where (none when there
+    /// are none).
+    fn sample_interval(
+        &self,
+        st: &IntervalState,
+        i: usize,
+        sampled: bool,
+        buf: &mut Scratch,
+    ) -> (Vec<(f64, f64)>, (f64, f64)) {
+        let n = self.g.n;
+        buf.resize(n);
+        let mut best = vec![(f64::NEG_INFINITY, 0.0); if sampled { 3 * n } else { 0 }];
+        let mut extra_worst = (f64::NEG_INFINITY, 0.0);
+        let samples = if self.extra.is_empty() {
+            certify::SAMPLES
+        } else {
+            certify::EXTRA_SAMPLES
+        };
+        for k in 0..=samples + 1 {
+            let delta = st.len * k as f64 / (samples + 1) as f64;
+            let s = self.g.s[i] + delta;
+            let (xs, us) = (st.x_at(delta), st.u_at(delta));
+            self.path.eval_derivatives(s, &mut buf.d1, &mut buf.d2);
+            if sampled {
+                self.path.eval(s, 3, &mut buf.d3);
+                for j in 0..n {
+                    let d = [buf.d1[j], buf.d2[j], buf.d3[j]];
+                    let r = certify::point_joint(xs, us, st.w_at(delta), d, &self.ranges[j]);
+                    for o in 0..3 {
+                        if r[o] > best[3 * j + o].0 {
+                            best[3 * j + o] = (r[o], delta);
+                        }
+                    }
+                }
+            }
+            if !self.extra.is_empty() && k > 0 && k <= samples {
+                self.path.eval(s, 0, &mut buf.q);
+                let p = PathPoint {
+                    s,
+                    q: &buf.q,
+                    dq: &buf.d1,
+                    ddq: &buf.d2,
+                };
+                for c in self.extra {
+                    buf.cr.clear();
+                    c.write(&p, &mut buf.cr);
+                    let e = buf.cr.relative_excess(us, xs);
+                    if e > extra_worst.0 {
+                        extra_worst = (e, delta);
+                    }
+                }
+            }
+        }
+        (best, extra_worst)
+    }
+
     /// Rounds of backward/forward passes, certification and re-linearization on this grid,
     /// until every interval is certified and the duration has settled (relative change ≤
     /// `settle`), at most `max_rounds`.
@@ -540,7 +556,6 @@ impl<'a, 'c, P: Path> Problem<'a, 'c, P> {
         let (mut x, mut u, mut v) = (Vec::new(), Vec::new(), Vec::new());
         let mut last_t = f64::INFINITY;
         let mut buf = Scratch::default();
-        let nn = self.nint();
         let mut findings = Vec::new();
         let mut tightened = 0;
         for round in 1..=max_rounds {
@@ -550,23 +565,8 @@ impl<'a, 'c, P: Path> Problem<'a, 'c, P> {
             passes
                 .forward(self, &mut x, &mut u, &mut v)
                 .map_err(|e| self.explain(e))?;
-            let mut worst: f64 = f64::NEG_INFINITY;
-            let mut sampled = 0;
             findings.clear();
-            let mut big_t = 0.0;
-            for i in 1..nn - 1 {
-                let st = self.state(&x, &u, &v, i);
-                let (e, smp) = self.certify_interval(&st, i, &mut buf, &mut findings);
-                sampled += smp as usize;
-                worst = worst.max(e);
-                big_t += super::law::Cubic {
-                    x0: st.x,
-                    u: st.u,
-                    v: st.v,
-                    shape: st.shape,
-                }
-                .time(st.len, 2);
-            }
+            let (worst, sampled, big_t) = self.certify_all(&x, &u, &v, &mut buf, &mut findings);
             let settled = (last_t - big_t).abs() <= settle * big_t;
             if (findings.is_empty() && settled) || round == max_rounds {
                 let has_gap = findings.iter().any(|f| f.kind == Kind::Positive);
@@ -600,31 +600,68 @@ impl<'a, 'c, P: Path> Problem<'a, 'c, P> {
                 tightened += self.handle(f, &x, &u, &v)? as usize;
             }
             findings = fs;
-            // Re-linearize at the new solution.
-            for i in 0..nn {
-                let len = self.len(i);
-                if (1..nn - 1).contains(&i) {
-                    let st = self.state(&x, &u, &v, i);
-                    // Not below the smaller end: x dipping towards zero inside an interval
-                    // would put the jerk rows' tangent there, which then forbids any x above
-                    // three times that dip (the velocity would have to vanish).
-                    self.xbar_m[i] = st.x_at(0.5 * len).max(x[i].min(x[i + 1])).max(1e-300);
-                } else {
-                    self.xbar_m[i] = 0.5 * (x[i] + x[i + 1]);
-                }
-            }
-            for k in 0..self.cuts.len() {
-                let cut = self.cuts[k];
-                let st = self.state(&x, &u, &v, cut.interval);
-                let ends = x[cut.interval].min(x[cut.interval + 1]);
-                self.xbar_c[k] = st.x_at(cut.delta).max(ends).max(1e-300);
-            }
-            self.xbar.copy_from_slice(&x);
-            for i in 1..nn - 1 {
-                self.shape[i] = Shape::new(x[i], x[i + 1], self.len(i));
-            }
+            self.relinearize(&x, &u, &v);
         }
         unreachable!("the loop returns in its last round")
+    }
+
+    /// Certifies every middle interval of a solution, appending the findings to `out`;
+    /// returns the worst ratio − 1, the number of sampled intervals and the duration of the
+    /// middle intervals.
+    fn certify_all(
+        &self,
+        x: &[f64],
+        u: &[f64],
+        v: &[f64],
+        buf: &mut Scratch,
+        out: &mut Vec<Finding>,
+    ) -> (f64, usize, f64) {
+        let nn = self.nint();
+        let mut worst: f64 = f64::NEG_INFINITY;
+        let mut sampled = 0;
+        let mut big_t = 0.0;
+        for i in 1..nn - 1 {
+            let st = self.state(x, u, v, i);
+            let (e, smp) = self.certify_interval(&st, i, buf, out);
+            sampled += smp as usize;
+            worst = worst.max(e);
+            big_t += super::law::Cubic {
+                x0: st.x,
+                u: st.u,
+                v: st.v,
+                shape: st.shape,
+            }
+            .time(st.len, 2);
+        }
+        (worst, sampled, big_t)
+    }
+
+    /// Re-linearizes at a solution: the references x̄ at gridpoints, midpoints and cuts and
+    /// the interval shapes follow it.
+    fn relinearize(&mut self, x: &[f64], u: &[f64], v: &[f64]) {
+        let nn = self.nint();
+        for i in 0..nn {
+            let len = self.len(i);
+            if (1..nn - 1).contains(&i) {
+                let st = self.state(x, u, v, i);
+                // Not below the smaller end: x dipping towards zero inside an interval
+                // would put the jerk rows' tangent there, which then forbids any x above
+                // three times that dip (the velocity would have to vanish).
+                self.xbar_m[i] = st.x_at(0.5 * len).max(x[i].min(x[i + 1])).max(1e-300);
+            } else {
+                self.xbar_m[i] = 0.5 * (x[i] + x[i + 1]);
+            }
+        }
+        for k in 0..self.cuts.len() {
+            let cut = self.cuts[k];
+            let st = self.state(x, u, v, cut.interval);
+            let ends = x[cut.interval].min(x[cut.interval + 1]);
+            self.xbar_c[k] = st.x_at(cut.delta).max(ends).max(1e-300);
+        }
+        self.xbar.copy_from_slice(x);
+        for i in 1..nn - 1 {
+            self.shape[i] = Shape::new(x[i], x[i + 1], self.len(i));
+        }
     }
 
     /// Acts on one finding: scales the limit (returns true) or adds a cut.

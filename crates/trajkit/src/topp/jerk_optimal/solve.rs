@@ -141,28 +141,7 @@ impl Passes {
     /// combined without dividing by either coefficient of v, `|a_v,l|·r_k + a_v,k·r_l ≤ 0`, so
     /// that a row almost free of v keeps its own scale (and its own tolerance).
     fn project(&mut self, p: &mut Polygon) {
-        self.up.clear();
-        self.lo.clear();
-        let (ex, eu) = p.extent();
-        for r in &self.rows {
-            let [ax, au, av, c] = *r;
-            if av == 0.0 {
-                p.clip([ax, au], c, &mut self.scratch);
-                continue;
-            }
-            let m = ax.abs() * ex + au.abs() * eu + c.abs();
-            let m = if m > 0.0 && m.is_finite() {
-                1.0 / m
-            } else {
-                1.0
-            };
-            let row = [ax * m, au * m, av * m, c * m];
-            if av > 0.0 {
-                self.up.push(row);
-            } else {
-                self.lo.push(row);
-            }
-        }
+        self.split_rows(p);
         if self.up.is_empty() || self.lo.is_empty() || p.is_empty() {
             return;
         }
@@ -177,24 +156,7 @@ impl Passes {
         self.act_l.clear();
         let mut budget = nu * nl;
         loop {
-            let mut added = false;
-            for q in &p.v {
-                let (umin, ku) = binding(&self.up, None, q, true);
-                let (lmax, kl) = binding(&self.lo, None, q, false);
-                if lmax <= umin || self.used[ku * nl + kl] {
-                    continue;
-                }
-                if gap_of(&self.up[ku], &self.lo[kl], q).is_none() {
-                    continue;
-                }
-                for (act, k) in [(&mut self.act_u, ku), (&mut self.act_l, kl)] {
-                    if !act.contains(&k) {
-                        act.push(k);
-                        added = true;
-                    }
-                }
-            }
-            if !added {
+            if !self.activate_binding(p, nl) {
                 return;
             }
             while budget > 0 {
@@ -229,6 +191,56 @@ impl Passes {
                 return;
             }
         }
+    }
+
+    /// Clips `p` by the rows free of v and sorts the others, normalized by the polygon's
+    /// extent, into upper (`self.up`) and lower (`self.lo`) bounds on v.
+    fn split_rows(&mut self, p: &mut Polygon) {
+        self.up.clear();
+        self.lo.clear();
+        let (ex, eu) = p.extent();
+        for r in &self.rows {
+            let [ax, au, av, c] = *r;
+            if av == 0.0 {
+                p.clip([ax, au], c, &mut self.scratch);
+                continue;
+            }
+            let m = ax.abs() * ex + au.abs() * eu + c.abs();
+            let m = if m > 0.0 && m.is_finite() {
+                1.0 / m
+            } else {
+                1.0
+            };
+            let row = [ax * m, au * m, av * m, c * m];
+            if av > 0.0 {
+                self.up.push(row);
+            } else {
+                self.lo.push(row);
+            }
+        }
+    }
+
+    /// Makes active the unused pair of rows binding at each vertex of `p` that it cuts off
+    /// (checked against every row, `nl` lower rows); returns whether any row was added.
+    fn activate_binding(&mut self, p: &Polygon, nl: usize) -> bool {
+        let mut added = false;
+        for q in &p.v {
+            let (umin, ku) = binding(&self.up, None, q, true);
+            let (lmax, kl) = binding(&self.lo, None, q, false);
+            if lmax <= umin || self.used[ku * nl + kl] {
+                continue;
+            }
+            if gap_of(&self.up[ku], &self.lo[kl], q).is_none() {
+                continue;
+            }
+            for (act, k) in [(&mut self.act_u, ku), (&mut self.act_l, kl)] {
+                if !act.contains(&k) {
+                    act.push(k);
+                    added = true;
+                }
+            }
+        }
+        added
     }
 
     /// The greedy forward pass; returns x and u at every gridpoint and v of every interval.
