@@ -200,3 +200,21 @@ pub fn default_waypoints_csv() -> String {
     ))
     .expect("default waypoints")
 }
+
+/// Asserts a 4xx refusal naming `field` (a prefix of the field reported) and mentioning
+/// `needle` in its message.
+pub fn refused(r: &Response, status: u16, field: &str, needle: &str) {
+    assert_eq!(
+        r.status,
+        status,
+        "{}",
+        String::from_utf8_lossy(&r.body[..r.body.len().min(400)])
+    );
+    let (message, got) = r.error();
+    let got = got.unwrap_or_default();
+    assert!(
+        got.starts_with(field),
+        "field {got:?}, wanted {field:?} ({message})"
+    );
+    assert!(message.contains(needle), "{message:?} lacks {needle:?}");
+}

@@ -526,19 +526,7 @@ impl Workspace {
         self.q.iter_mut().for_each(|v| *v = 0.0);
         self.at_points.clear();
         self.at_points.reserve(3 * path.dim() * grid.len());
-        // On paths of degree ≤ 5 between breakpoints, points inside a piece take σ, σ′, σ″
-        // from the piece's Taylor data (one path evaluation per piece).
-        // Breakpoints out of order (a path breaking its contract) fall back to evaluating
-        // the path at every gridpoint.
-        let polynomial = path.piecewise_degree().is_some_and(|d| d <= 5);
-        let mut breaks = if polynomial {
-            path.breakpoints()
-        } else {
-            Vec::new()
-        };
-        if !breaks.windows(2).all(|w| w[0] <= w[1]) {
-            breaks.clear();
-        }
+        let breaks = anchor_breaks(path);
         let mut anchor = std::mem::take(&mut self.anchor);
         anchor.reset(path.dim());
         let mut b = 0;
@@ -586,10 +574,7 @@ impl Workspace {
                 self.cr.rows.reserve(per_point * grid.len());
             }
             if lo > hi * (1.0 + 1e-12) {
-                return Err(Error::Infeasible(format!(
-                    "at s = {s}: the velocity bounds contradict each other (ṡ² ≥ {lo} but ṡ² ≤ {hi} by '{}')",
-                    cons[by].name()
-                )));
+                return Err(contradiction(s, lo, hi, &cons[by].name()));
             }
             self.xlo.push(lo);
             self.xhi.push(hi.max(lo));
@@ -852,4 +837,27 @@ pub(crate) fn check_path_values(s: f64, q: &[f64], dq: &[f64], ddq: &[f64]) -> R
         }
     }
     Ok(())
+}
+
+/// The breakpoints whose pieces [`Workspace::evaluate_rows`] expands from Taylor data: on paths
+/// of degree ≤ 5 between breakpoints, points inside a piece take σ, σ′, σ″ from the piece's
+/// Taylor data (one path evaluation per piece). Empty (evaluate the path at every gridpoint)
+/// for other paths, and for breakpoints out of order (a path breaking its contract).
+fn anchor_breaks<P: Path>(path: &P) -> Vec<f64> {
+    if path.piecewise_degree().is_none_or(|d| d > 5) {
+        return Vec::new();
+    }
+    let breaks = path.breakpoints();
+    if breaks.windows(2).all(|w| w[0] <= w[1]) {
+        breaks
+    } else {
+        Vec::new()
+    }
+}
+
+/// The error of a gridpoint whose lower velocity bound exceeds the upper one set by `by`.
+fn contradiction(s: f64, lo: f64, hi: f64, by: &str) -> Error {
+    Error::Infeasible(format!(
+        "at s = {s}: the velocity bounds contradict each other (ṡ² ≥ {lo} but ṡ² ≤ {hi} by '{by}')"
+    ))
 }
