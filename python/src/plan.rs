@@ -176,6 +176,11 @@ fn torque_model(
 /// `'filter'` (the filter on every piece) or `'third-order'` (`'auto'` plus the third-order
 /// time-optimal planner on curved pieces, the shorter result kept; seconds per piece).
 /// `jerk_limit=False` plans without a jerk stage and takes no `jerk_stage`.
+///
+/// Longer than trajkit's usual 80 lines on purpose: it is the Python signature itself
+/// (25 keyword arguments, each converted once) plus the pickling recipe that must name every
+/// one of them again; the work is in the library's [`trajkit::plan::plan`] and the shared
+/// limit helpers.
 #[pyfunction]
 #[pyo3(signature = (
     waypoints, limits = None, *, method = "toppra", joint_names = None, path = "natural",
