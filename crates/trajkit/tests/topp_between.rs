@@ -6,11 +6,11 @@
 
 mod topp_common;
 
-use topp_common::{fixture_path, fixtures, floats, worst_ratios};
+use topp_common::{fixture_path, fixture_waypoints, fixtures, floats, worst_ratios};
 use trajkit::rng::SplitMix64;
 use trajkit::spline::{BoundedSpline, CubicSpline, PchipSpline};
 use trajkit::topp::{
-    Constraint, ConstraintRows, CubicPiece, Discretization, Gridpoints, JointAcceleration,
+    messy, Constraint, ConstraintRows, CubicPiece, Discretization, Gridpoints, JointAcceleration,
     JointVelocity, LinearPath, Toppra, ToppraOptions,
 };
 use trajkit::{Limits, Order, Path, Trajectory};
@@ -427,6 +427,30 @@ fn default_grid_is_within_its_duration_tolerance() {
 #[ignore = "long: every fixture problem and 20 random paths against 2·10⁵ intervals (run with --release)"]
 fn default_grid_is_within_its_duration_tolerance_all_problems() {
     auto_suite(None, 20, 200_000);
+    repaired_auto_suite(200_000);
+}
+
+/// The pieces `plan` times on the standard problem (range-repaired splines with quintic
+/// pieces), where the default grid is graded: at most 1e-4 above `reference` equal intervals.
+fn repaired_auto_suite(reference: usize) {
+    let lim = Limits::preset("panda").unwrap();
+    let (_, vmax) = panda_ranges(&lim, Order::Velocity);
+    let (amin, amax) = panda_ranges(&lim, Order::Acceleration);
+    let wp = fixture_waypoints("standard_7wp_natural_N1000");
+    let paths = messy::piece_paths(&wp, 7, &lim, &messy::PlanOptions::default()).unwrap();
+    for (k, piece) in paths.pieces.iter().enumerate() {
+        check_auto(
+            &format!("standard piece {k}"),
+            &piece.path,
+            (&vmax, &amin, &amax),
+            reference,
+        );
+    }
+}
+
+#[test]
+fn default_grid_is_within_its_duration_tolerance_on_repaired_pieces() {
+    repaired_auto_suite(50_000);
 }
 
 /// Natural splines through random Panda waypoints that leave a position range are repaired

@@ -44,6 +44,9 @@ use crate::Order;
 
 mod dynamics;
 mod quintic;
+mod worst;
+
+use worst::{enclosed_excess, worst_over};
 
 pub use dynamics::{EndEffectorSpeed, Jacobian, JointTorque};
 
@@ -621,28 +624,15 @@ impl JointVelocity {
         JointVelocity { lo, hi }
     }
 
-    /// Raises `worst` (squared ratio v²/limit², where) to joint j's values at the offsets `ts`
-    /// from the piece's start.
-    fn worst_at(
-        &self,
-        piece: &CubicPiece<'_>,
-        j: usize,
-        u: f64,
-        x0: f64,
-        ts: &[f64],
-        worst: &mut (f64, f64),
-    ) {
-        for &t in ts {
-            let x = (x0 + 2.0 * u * t).max(0.0);
-            let (d1, _) = piece.derivatives(j, piece.s0 + t);
+    /// Joint j's squared ratio v²/limit² from (σ′_j, σ″_j, x): the value
+    /// [`worst_over`] maximises.
+    fn squared_ratio(&self, j: usize) -> impl Fn(f64, f64, f64) -> f64 + '_ {
+        move |d1, _, x| {
             let limit = if d1 > 0.0 { self.hi[j] } else { self.lo[j] };
-            let r2 = if d1 == 0.0 || x == 0.0 {
+            if d1 == 0.0 || x == 0.0 {
                 0.0
             } else {
                 d1 * d1 * x / (limit * limit)
-            };
-            if r2 > worst.0 {
-                *worst = (r2, piece.s0 + t);
             }
         }
     }
@@ -699,7 +689,8 @@ impl Constraint for JointVelocity {
             }
             let (roots, nr) = quadratic_roots_in(piece.acceleration_quadratic(j, u, x0), 0.0, h);
             let candidates = [0.0, h, roots[0], roots[1]];
-            self.worst_at(piece, j, u, x0, &candidates[..2 + nr], &mut worst);
+            let f = (j, self.squared_ratio(j));
+            worst_over(piece, u, x0, &candidates[..2 + nr], &mut worst, f);
         }
         Some((worst.0.sqrt() - 1.0, worst.1))
     }
@@ -783,22 +774,13 @@ impl JointAcceleration {
         JointAcceleration { lo, hi }
     }
 
-    /// Raises `worst` (relative excess, where) to joint j's values at the offsets `ts` from
-    /// the piece's start.
-    fn worst_at(
-        &self,
-        piece: &CubicPiece<'_>,
-        j: usize,
-        u: f64,
-        x0: f64,
-        ts: &[f64],
-        worst: &mut (f64, f64),
-    ) {
-        for &t in ts {
-            let x = (x0 + 2.0 * u * t).max(0.0);
-            let (d1, d2) = piece.derivatives(j, piece.s0 + t);
+    /// Joint j's relative excess over its limits from (σ′_j, σ″_j, x) at path acceleration
+    /// `u`: the value [`worst_over`] maximises.
+    fn excess_at(&self, j: usize, u: f64) -> impl Fn(f64, f64, f64) -> f64 + '_ {
+        move |d1, d2, x| {
             let a = d1 * u + d2 * x;
             let terms = (d1 * u).abs().max((d2 * x).abs());
+            let mut e = f64::NEG_INFINITY;
             for (limit, sign) in [(self.hi[j], 1.0), (self.lo[j], -1.0)] {
                 if limit.is_infinite() {
                     continue;
@@ -806,15 +788,13 @@ impl JointAcceleration {
                 // Relative to the limit (its extreme is the acceleration's); a zero limit is
                 // measured against the terms.
                 let scale = if limit != 0.0 { limit.abs() } else { terms };
-                let e = if scale > 0.0 {
+                e = e.max(if scale > 0.0 {
                     sign * (a - limit) / scale
                 } else {
                     -1.0
-                };
-                if e > worst.0 {
-                    *worst = (e, piece.s0 + t);
-                }
+                });
             }
+            e
         }
     }
 }
@@ -844,13 +824,6 @@ impl Constraint for JointAcceleration {
         }
         let h = piece.s1 - piece.s0;
         let mut worst = (f64::NEG_INFINITY, piece.s0);
-        let ratio = |v: f64, l: f64| {
-            if l == 0.0 || l.is_infinite() {
-                -1.0
-            } else {
-                v / l - 1.0
-            }
-        };
         for j in 0..self.hi.len() {
             let c = piece.acceleration_quadratic(j, u, x0);
             // Cheap bound first: the Bernstein coefficients (values at both ends and
@@ -859,8 +832,9 @@ impl Constraint for JointAcceleration {
             let a1 = a0 + 0.5 * h * c[1];
             let (amin, amax) = (a0.min(a1).min(a2), a0.max(a1).max(a2));
             if amax <= self.hi[j] && amin >= self.lo[j] {
-                let e = ratio(amax.max(0.0), self.hi[j]).max(ratio(amin.min(0.0), self.lo[j]));
-                worst.0 = worst.0.max(e);
+                worst.0 = worst
+                    .0
+                    .max(enclosed_excess(amin, amax, self.lo[j], self.hi[j]));
                 continue;
             }
             let vertex = if c[2] != 0.0 {
@@ -870,7 +844,14 @@ impl Constraint for JointAcceleration {
             };
             let candidates = [0.0, h, vertex];
             let n = if vertex > 0.0 && vertex < h { 3 } else { 2 };
-            self.worst_at(piece, j, u, x0, &candidates[..n], &mut worst);
+            worst_over(
+                piece,
+                u,
+                x0,
+                &candidates[..n],
+                &mut worst,
+                (j, self.excess_at(j, u)),
+            );
         }
         Some(worst)
     }

@@ -23,6 +23,13 @@ pub fn floats(v: &Value) -> Vec<f64> {
         .collect()
 }
 
+/// The waypoints (row-major) of the fixture problem `name`.
+pub fn fixture_waypoints(name: &str) -> Vec<f64> {
+    let problem = fixtures().into_iter().find(|p| p["name"] == name);
+    let rows = problem.expect("a fixture problem of that name")["waypoints"].clone();
+    rows.as_array().unwrap().iter().flat_map(floats).collect()
+}
+
 /// The fixture's cubic as a trajkit piecewise polynomial (same coefficients).
 pub fn fixture_path(p: &Value) -> PiecewisePolynomial {
     let breaks = floats(&p["breaks"]);

@@ -7,6 +7,7 @@
 //! and at the real roots of the acceleration (velocity) or of its derivative (acceleration),
 //! isolated by [`crate::roots::roots_in`] (bracketed to 4 ulp).
 
+use super::worst::{enclosed_excess, worst_over};
 use super::{ConstraintRows, CubicPiece, JointAcceleration, JointVelocity};
 
 /// Bernstein coefficients of a quartic on [0, 1] from its power coefficients (lowest first):
@@ -91,7 +92,14 @@ impl JointVelocity {
                 continue;
             }
             let n = candidates_in(&piece.acceleration_quartic(j, u, x0), h, &mut ts);
-            self.worst_at(piece, j, u, x0, &ts[..n], &mut worst);
+            worst_over(
+                piece,
+                u,
+                x0,
+                &ts[..n],
+                &mut worst,
+                (j, self.squared_ratio(j)),
+            );
         }
         (worst.0.sqrt() - 1.0, worst.1)
     }
@@ -157,13 +165,6 @@ impl JointAcceleration {
     pub(super) fn excess_quintic(&self, piece: &CubicPiece<'_>, u: f64, x0: f64) -> (f64, f64) {
         let h = piece.s1 - piece.s0;
         let mut worst = (f64::NEG_INFINITY, piece.s0);
-        let ratio = |v: f64, l: f64| {
-            if l == 0.0 || l.is_infinite() {
-                -1.0
-            } else {
-                v / l - 1.0
-            }
-        };
         let mut ts = [0.0; crate::roots::MAX_DEGREE + 2];
         for j in 0..self.hi.len() {
             let (ra, rb) = Self::bernstein_rows(piece, j);
@@ -174,14 +175,22 @@ impl JointAcceleration {
                 amax = amax.max(b);
             }
             if amax <= self.hi[j] && amin >= self.lo[j] {
-                let e = ratio(amax.max(0.0), self.hi[j]).max(ratio(amin.min(0.0), self.lo[j]));
-                worst.0 = worst.0.max(e);
+                worst.0 = worst
+                    .0
+                    .max(enclosed_excess(amin, amax, self.lo[j], self.hi[j]));
                 continue;
             }
             let c = piece.acceleration_quartic(j, u, x0);
             let dc = [c[1], 2.0 * c[2], 3.0 * c[3], 4.0 * c[4]];
             let n = candidates_in(&dc, h, &mut ts);
-            self.worst_at(piece, j, u, x0, &ts[..n], &mut worst);
+            worst_over(
+                piece,
+                u,
+                x0,
+                &ts[..n],
+                &mut worst,
+                (j, self.excess_at(j, u)),
+            );
         }
         worst
     }
