@@ -50,6 +50,11 @@ use worst::{enclosed_excess, worst_over};
 
 pub use dynamics::{EndEffectorSpeed, Jacobian, JointTorque};
 
+/// 1/6 and 1/24: the Taylor factors of the quintic pieces' rows, multiplied rather than
+/// divided (the rows of every interval of a quintic path need them).
+const INV6: f64 = 1.0 / 6.0;
+const INV24: f64 = 1.0 / 24.0;
+
 /// The path's derivatives at one path point, handed to every constraint.
 #[derive(Debug, Clone, Copy)]
 pub struct PathPoint<'a> {
@@ -121,14 +126,14 @@ impl CubicPiece<'_> {
             self.d1[j],
             self.d2[j],
             0.5 * self.d3[j],
-            self.d4[j] / 6.0,
-            self.d5[j] / 24.0,
+            self.d4[j] * INV6,
+            self.d5[j] * INV24,
         ];
         let q = [
             self.d2[j],
             self.d3[j],
             0.5 * self.d4[j],
-            self.d5[j] / 6.0,
+            self.d5[j] * INV6,
             0.0,
         ];
         let alpha = std::array::from_fn(|k| p[k] + if k > 0 { 2.0 * q[k - 1] } else { 0.0 });
@@ -144,8 +149,8 @@ impl CubicPiece<'_> {
             self.d1[j],
             self.d2[j] * h,
             0.5 * self.d3[j] * h * h,
-            self.d4[j] / 6.0 * h * h * h,
-            self.d5[j] / 24.0 * h * h * h * h,
+            self.d4[j] * INV6 * h * h * h,
+            self.d5[j] * INV24 * h * h * h * h,
         ];
         quintic::power_to_bernstein4(p)
     }
