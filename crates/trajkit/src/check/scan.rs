@@ -291,21 +291,18 @@ impl ExtremesRow {
         }
     }
 
-    /// The next element of every joint's series; false when one is not finite.
+    /// The next element of every joint's series (the caller checks that they are finite).
     #[inline]
-    fn push(&mut self, time: f64, values: &[f64]) -> bool {
-        let mut finite = true;
+    fn push(&mut self, time: f64, values: &[f64]) {
         let it = self.max.iter_mut().zip(&mut self.t_max);
         let it = it.zip(self.min.iter_mut().zip(&mut self.t_min));
         for (((mx, tmx), (mn, tmn)), &v) in it.zip(values) {
-            finite &= v.is_finite();
             let (up, down) = (v > *mx, v < *mn);
             *mx = if up { v } else { *mx };
             *tmx = if up { time } else { *tmx };
             *mn = if down { v } else { *mn };
             *tmn = if down { time } else { *tmn };
         }
-        finite
     }
 
     /// Joint `j`'s series as [`Extremes`] for limits `(lo, hi)`.
@@ -358,7 +355,7 @@ pub(crate) struct RowScan<'a> {
     /// Per joint: the position part of [`JointScan`].
     position: Vec<JointScan<Extremes>>,
     diff: Vec<f64>,
-    /// Every derivative value seen after the first row, and every difference, is finite.
+    /// Every divided difference seen is finite.
     finite: bool,
     /// Every value seen (the first row and positions included) is finite.
     all_finite: bool,
@@ -421,18 +418,18 @@ impl<'a> RowScan<'a> {
                 for ((d, &x1), &x0) in d.iter_mut().zip(row(k, i)).zip(prev[k]) {
                     *d = (x1 - x0) / dt;
                 }
-                self.finite &= pointwise[k].push(t1, row(k + 1, i));
+                pointwise[k].push(t1, row(k + 1, i));
             }
             let diff = &self.diff;
+            self.finite &= diff.iter().fold(true, |f, d| f & d.is_finite());
             let diffs = |k: usize| &diff[k * dof..(k + 1) * dof];
             match &mut self.fd {
                 Some(f) => {
                     for (k, f) in f.iter_mut().enumerate() {
-                        self.finite &= f.push(mid, diffs(k));
+                        f.push(mid, diffs(k));
                     }
                 }
                 None => {
-                    self.finite &= diff.iter().all(|d| d.is_finite());
                     self.fd = Some([0, 1, 2].map(|k| ExtremesRow::first(mid, diffs(k))));
                 }
             }
@@ -449,10 +446,10 @@ impl<'a> RowScan<'a> {
         self.rows += n;
     }
 
-    /// Per joint, its checks; `None` when no row was pushed, a value is not finite or a limit
-    /// is 0 (see [`full_table_scan`]).
+    /// Per joint, its checks; `None` when no row was pushed, a value or a difference is not
+    /// finite or a limit is 0 (see [`full_table_scan`]).
     pub(crate) fn finish(self) -> Option<Vec<ScanResult>> {
-        if !self.finite {
+        if !(self.finite && self.all_finite) {
             return None;
         }
         let pointwise = self.pointwise?;
