@@ -36,7 +36,7 @@
 
 use crate::error::{Error, Result};
 use crate::limits::Limits;
-use scan::{full_table_scan, Extremes, JointScan, PeakTracker};
+use scan::{full_table_scan, Extremes, JointScan, PeakTracker, RowScan, ScanResult};
 #[cfg(test)]
 use scan::{PeakScan, DERIVATIVES};
 
@@ -372,18 +372,30 @@ impl LimitReport {
 /// [`Error::DimensionMismatch`] when unnamed tables and limits have different joint counts;
 /// [`Error::InvalidValue`] for a table without samples.
 pub fn check_samples(table: &SampleTable, limits: &Limits) -> Result<LimitReport> {
-    let named = table.names().iter().all(|n| !n.is_empty());
-    let (limits, _) = limits.for_joints("table", named.then_some(table.names()))?;
-    let limits = &limits;
-    limits.expect_dof(table.dof(), "the sample table")?;
-    if table.is_empty() {
+    let limits = table_limits(table.names(), table.dof(), table.len(), limits)?;
+    let full = full_table_scan(table, &limits);
+    Ok(assemble(table, &limits, full))
+}
+
+/// The limits of each column of a table with these `names`, `dof` columns and `rows` rows
+/// (the pairing and refusals of [`check_samples`]).
+fn table_limits(names: &[String], dof: usize, rows: usize, limits: &Limits) -> Result<Limits> {
+    let named = names.iter().all(|n| !n.is_empty());
+    let (limits, _) = limits.for_joints("table", named.then_some(names))?;
+    limits.expect_dof(dof, "the sample table")?;
+    if rows == 0 {
         return Err(Error::InvalidValue {
             field: "sample table row count".into(),
             value: 0.0,
             reason: "is too small to check (at least 1 sample is needed)",
         });
     }
-    let full = full_table_scan(table, limits);
+    Ok(limits)
+}
+
+/// The report of `table` against its column `limits`, from the one-pass scan `full` when it
+/// decided, else joint by joint ([`JointScan`], value by value where needed).
+fn assemble(table: &SampleTable, limits: &Limits, full: Option<Vec<ScanResult>>) -> LimitReport {
     let joints = (0..table.dof())
         .map(|j| {
             let jl = limits.joint(j);
@@ -411,12 +423,66 @@ pub fn check_samples(table: &SampleTable, limits: &Limits) -> Result<LimitReport
             }
         })
         .collect();
-    Ok(LimitReport {
+    LimitReport {
         joints,
         samples: table.len(),
         duration: table.duration(),
-    })
+    }
 }
+
+/// [`crate::sample::sample`] of `traj` at `rate_hz` named `names`, and [`check_samples`] of
+/// that table against `limits`, in one pass: the rows are made a block at a time into the
+/// table (allocated once, with its final size) and scanned while in cache. The table and the report are exactly those of the two calls (same
+/// rows, same scan; a non-finite value takes the same paths and errors).
+pub(crate) fn sample_and_check<T: Trajectory + ?Sized>(
+    traj: &T,
+    rate_hz: f64,
+    names: Vec<String>,
+    limits: &Limits,
+) -> Result<(SampleTable, LimitReport)> {
+    crate::sample::check_sample_count(traj.duration(), rate_hz, traj.dof())?;
+    let times = crate::sample::sample_times(traj.duration(), rate_hz)?;
+    let dof = traj.dof();
+    crate::sample::check_table_memory(times.len(), dof)?;
+    let col_limits = table_limits(&names, dof, times.len(), limits);
+    let mut scan = col_limits.as_ref().ok().map(|l| RowScan::new(l, dof));
+    let rows = times.len();
+    let mut values = vec![0.0; 4 * rows * dof];
+    {
+        let mut cols = SampleTable::split_matrices(&mut values, rows, dof);
+        for (b, chunk) in times.chunks(SCAN_BLOCK).enumerate() {
+            let (from, to) = (b * SCAN_BLOCK * dof, (b * SCAN_BLOCK + chunk.len()) * dof);
+            let [q, v, a, j] = &mut cols;
+            let block = [q, v, a, j].map(|c| &mut c[from..to]);
+            traj.eval_rows(chunk, block);
+            if let Some(s) = &mut scan {
+                s.push_rows(chunk, cols.each_ref().map(|c| &c[from..to]));
+            }
+        }
+    }
+    let valid = dof > 0
+        && scan.as_ref().is_some_and(RowScan::all_finite)
+        && times.iter().all(|t| t.is_finite())
+        && times.windows(2).all(|w| w[1] > w[0]);
+    let table = if valid {
+        // Joints, every value finite, times finite and strictly increasing: what
+        // `SampleTable::new` checks.
+        SampleTable::from_sampled(dof, times, values)
+    } else {
+        let n = rows * dof;
+        let cols = [0, 1, 2, 3].map(|k| Some(values[k * n..(k + 1) * n].to_vec()));
+        SampleTable::new(dof, times, cols)?
+    };
+    let table = table.with_names(names)?;
+    let full = scan.and_then(RowScan::finish);
+    let limits = col_limits?;
+    let report = assemble(&table, &limits, full);
+    Ok((table, report))
+}
+
+/// Rows per block of [`sample_and_check`]: the four blocks of a 7-joint trajectory (28 KiB)
+/// stay in the first-level cache between their evaluation and their scan.
+const SCAN_BLOCK: usize = 128;
 
 /// Samples `traj` at `rate_hz` with [`crate::sample::sample`] (both ends included, exact
 /// derivatives) and checks the samples against `limits`.
@@ -646,6 +712,97 @@ mod tests {
             check_trajectory(&Ramp, &Limits::uniform(3, 1.0, 1.0, 1.0).unwrap(), 10.0).is_err()
         );
         assert!(check_trajectory(&Ramp, &lim, 0.0).is_err());
+    }
+
+    /// A seeded random smooth motion of 3 joints with a NaN or an infinity where asked.
+    struct Wave {
+        amp: [[f64; 3]; 3],
+        bad_at: Option<(f64, f64)>,
+        duration: f64,
+    }
+    impl Trajectory for Wave {
+        fn dof(&self) -> usize {
+            3
+        }
+        fn duration(&self) -> f64 {
+            self.duration
+        }
+        fn eval(&self, t: f64, order: Order, out: &mut [f64]) {
+            for (j, o) in out[..3].iter_mut().enumerate() {
+                let [a, w, p] = self.amp[j];
+                let x = w * t + p;
+                *o = a
+                    * w.powi(order.index() as i32)
+                    * match order.index() {
+                        0 => x.sin(),
+                        1 => x.cos(),
+                        2 => -x.sin(),
+                        _ => -x.cos(),
+                    };
+            }
+            if let Some((at, value)) = self.bad_at {
+                if (t - at).abs() < 1e-12 && order == Order::Jerk {
+                    out[1] = value;
+                }
+            }
+        }
+    }
+
+    /// The one-pass sampling and check gives bitwise the table and the report of sampling
+    /// and then checking, on random motions, durations off the grid, a single sample, named
+    /// and unnamed columns, and with a NaN or an infinity in the first, a middle and the last row
+    /// (the same error or report).
+    #[test]
+    fn one_pass_sampling_and_check_equals_the_two_calls() {
+        let mut rng = crate::rng::SplitMix64::new(11);
+        let lim = Limits::preset("panda").unwrap().joints()[..3].to_vec();
+        let named = Limits::new(lim).unwrap();
+        let unnamed = Limits::uniform(3, 2.0, 5.0, 40.0).unwrap();
+        for case in 0..40 {
+            let duration = match case {
+                0 => 0.0,
+                1 => 0.0004,
+                _ => rng.uniform(0.01, 2.0),
+            };
+            let amp = [0; 3].map(|_| {
+                [
+                    rng.uniform(0.1, 1.0),
+                    rng.uniform(0.5, 8.0),
+                    rng.uniform(-3.0, 3.0),
+                ]
+            });
+            let rate = [1000.0, 250.0, 333.0][case % 3];
+            let times = crate::sample::sample_times(duration, rate).unwrap();
+            let bad_at = match case % 5 {
+                1 => Some((times[0], f64::NAN)),
+                2 => Some((times[times.len() / 2], f64::INFINITY)),
+                3 => Some((*times.last().unwrap(), f64::NAN)),
+                _ => None,
+            };
+            let traj = Wave {
+                amp,
+                bad_at,
+                duration,
+            };
+            let (limits, names) = if case % 2 == 0 {
+                let n = named.joints().iter().map(|j| j.name.clone()).collect();
+                (&named, n)
+            } else {
+                (&unnamed, vec![String::new(); 3])
+            };
+            let two = crate::sample::sample(&traj, rate)
+                .and_then(|t| t.with_names(names.clone()))
+                .and_then(|t| check_samples(&t, limits).map(|r| (t, r)));
+            let one = sample_and_check(&traj, rate, names, limits);
+            match (one, two) {
+                (Ok((t1, r1)), Ok((t2, r2))) => {
+                    assert_eq!(t1, t2, "case {case}");
+                    assert_eq!(format!("{r1:?}"), format!("{r2:?}"), "case {case}");
+                }
+                (Err(e1), Err(e2)) => assert_eq!(e1.to_string(), e2.to_string()),
+                (a, b) => panic!("case {case}: {:?} vs {:?}", a.err(), b.err()),
+            }
+        }
     }
 
     #[test]

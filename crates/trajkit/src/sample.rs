@@ -17,8 +17,12 @@ pub struct SampleTable {
     dof: usize,
     /// Sample times, non-decreasing.
     t: Vec<f64>,
-    /// `data[k]` is derivative order k (position..jerk), row-major, or `None` if absent.
-    data: [Option<Vec<f64>>; 4],
+    /// The present derivative matrices (row-major, `rows × dof` each), one after the other
+    /// in one allocation: a large table is then one block of memory, which the allocator
+    /// reuses from one table to the next instead of mapping fresh pages for each column.
+    values: Vec<f64>,
+    /// Where derivative order k (position..jerk) starts in `values`, or `None` if absent.
+    offsets: [Option<usize>; 4],
     /// Joint names (may be empty strings).
     names: Vec<String>,
 }
@@ -82,12 +86,53 @@ impl SampleTable {
                 });
             }
         }
+        let present = data.iter().filter(|c| c.is_some()).count();
+        let mut offsets = [None; 4];
+        let mut values = Vec::new();
+        for (k, col) in data.into_iter().enumerate() {
+            if let Some(c) = col {
+                offsets[k] = Some(values.len());
+                if present == 1 {
+                    values = c;
+                } else {
+                    values.reserve_exact(present * rows * dof - values.len());
+                    values.extend_from_slice(&c);
+                }
+            }
+        }
         Ok(SampleTable {
             dof,
             t,
-            data,
+            values,
+            offsets,
             names: vec![String::new(); dof],
         })
+    }
+
+    /// A table of every derivative, `values` holding the four `rows × dof` matrices one after
+    /// the other (position first), already known to be finite, with times known to increase
+    /// strictly (made by sampling): [`SampleTable::new`] without its checks and copies.
+    pub(crate) fn from_sampled(dof: usize, t: Vec<f64>, values: Vec<f64>) -> Self {
+        let n = t.len() * dof;
+        debug_assert_eq!(values.len(), 4 * n);
+        debug_assert!(t.windows(2).all(|w| w[1] > w[0]));
+        SampleTable {
+            dof,
+            t,
+            values,
+            offsets: [0, 1, 2, 3].map(|k| Some(k * n)),
+            names: vec![String::new(); dof],
+        }
+    }
+
+    /// The four `rows × dof` matrices of `values` (position..jerk, one after the other), as
+    /// [`SampleTable::from_sampled`] takes them.
+    pub(crate) fn split_matrices(values: &mut [f64], rows: usize, dof: usize) -> [&mut [f64]; 4] {
+        let n = rows * dof;
+        let (q, rest) = values.split_at_mut(n);
+        let (v, rest) = rest.split_at_mut(n);
+        let (a, j) = rest.split_at_mut(n);
+        [q, v, a, &mut j[..n]]
     }
 
     /// Sets joint names (used as column headers); `names.len()` must equal `dof`.
@@ -130,26 +175,24 @@ impl SampleTable {
 
     /// True when derivative `order` is present.
     pub fn has(&self, order: Order) -> bool {
-        self.data[order.index()].is_some()
+        self.offsets[order.index()].is_some()
     }
 
     /// Row `i` of derivative `order` (`dof` values), if that derivative is present.
     pub fn row(&self, order: Order, i: usize) -> Option<&[f64]> {
-        self.data[order.index()]
-            .as_ref()
+        self.matrix(order)
             .map(|c| &c[i * self.dof..(i + 1) * self.dof])
     }
 
     /// Value of derivative `order` for joint `j` at sample `i`, if present.
     pub fn value(&self, order: Order, i: usize, j: usize) -> Option<f64> {
-        self.data[order.index()]
-            .as_ref()
-            .map(|c| c[i * self.dof + j])
+        self.matrix(order).map(|c| c[i * self.dof + j])
     }
 
     /// The whole row-major matrix of derivative `order`, if present.
     pub fn matrix(&self, order: Order) -> Option<&[f64]> {
-        self.data[order.index()].as_deref()
+        let n = self.t.len() * self.dof;
+        self.offsets[order.index()].map(|o| &self.values[o..o + n])
     }
 
     /// Duration: last time minus first time (0 for fewer than two samples).
@@ -232,17 +275,24 @@ pub fn check_sample_memory(
     )
 }
 
-/// Samples `traj` at the given increasing times ([`Trajectory::eval_rows`]: every row what
-/// [`Trajectory::eval`] gives).
-pub fn sample_at<T: Trajectory + ?Sized>(traj: &T, times: Vec<f64>) -> Result<SampleTable> {
-    let dof = traj.dof();
-    let rows = times.len();
+/// Refuses a table of `rows` samples of `dof` joints (time, position, velocity,
+/// acceleration, jerk) that would exceed [`crate::size::MEMORY_BUDGET`].
+pub(crate) fn check_table_memory(rows: usize, dof: usize) -> Result<()> {
     crate::size::check_memory(
         "sample count",
         rows as f64,
         8.0 * (1.0 + 4.0 * dof as f64),
         &format!("a sample of {dof} joint(s)"),
     )?;
+    Ok(())
+}
+
+/// Samples `traj` at the given increasing times ([`Trajectory::eval_rows`]: every row what
+/// [`Trajectory::eval`] gives).
+pub fn sample_at<T: Trajectory + ?Sized>(traj: &T, times: Vec<f64>) -> Result<SampleTable> {
+    let dof = traj.dof();
+    let rows = times.len();
+    check_table_memory(rows, dof)?;
     let mut cols = [0; 4].map(|_| vec![0.0; rows * dof]);
     {
         let [q, v, a, j] = &mut cols;

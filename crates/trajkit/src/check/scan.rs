@@ -291,21 +291,18 @@ impl ExtremesRow {
         }
     }
 
-    /// The next element of every joint's series; false when one is not finite.
+    /// The next element of every joint's series (the caller checks that they are finite).
     #[inline]
-    fn push(&mut self, time: f64, values: &[f64]) -> bool {
-        let mut finite = true;
+    fn push(&mut self, time: f64, values: &[f64]) {
         let it = self.max.iter_mut().zip(&mut self.t_max);
         let it = it.zip(self.min.iter_mut().zip(&mut self.t_min));
         for (((mx, tmx), (mn, tmn)), &v) in it.zip(values) {
-            finite &= v.is_finite();
             let (up, down) = (v > *mx, v < *mn);
             *mx = if up { v } else { *mx };
             *tmx = if up { time } else { *tmx };
             *mn = if down { v } else { *mn };
             *tmn = if down { time } else { *tmn };
         }
-        finite
     }
 
     /// Joint `j`'s series as [`Extremes`] for limits `(lo, hi)`.
@@ -324,62 +321,152 @@ impl ExtremesRow {
 /// (the divided differences of a row share its time step, so they vectorize): the same
 /// series, definitions and arithmetic as [`JointScan`]. `None` when a value is not finite or
 /// a limit is 0 (then [`JointScan`] decides, value by value where needed).
-pub(super) fn full_table_scan(
-    table: &SampleTable,
-    limits: &Limits,
-) -> Option<Vec<(PositionCheck, [DerivativeCheck; 3])>> {
+pub(super) fn full_table_scan(table: &SampleTable, limits: &Limits) -> Option<Vec<ScanResult>> {
     let (dof, times) = (table.dof(), table.times());
     let m = Order::ALL.map(|o| table.matrix(o));
-    let [Some(q), Some(_), Some(_), Some(_)] = m else {
+    let [Some(q), Some(v), Some(a), Some(j)] = m else {
         return None;
     };
-    let row = |k: usize, i: usize| m[k].map_or(&[][..], |c| &c[i * dof..(i + 1) * dof]);
-    let mut pointwise = [1, 2, 3].map(|k| ExtremesRow::first(times[0], row(k, 0)));
-    let mut fd: Option<[ExtremesRow; 3]> = None;
-    let mut diff = vec![0.0; 3 * dof];
-    let mut finite = true;
-    for i in 1..times.len() {
-        let (t0, t1) = (times[i - 1], times[i]);
-        let (dt, mid) = (t1 - t0, 0.5 * (t0 + t1));
-        for (k, d) in diff.chunks_exact_mut(dof).enumerate() {
-            for ((d, &x1), &x0) in d.iter_mut().zip(row(k, i)).zip(row(k, i - 1)) {
-                *d = (x1 - x0) / dt;
-            }
-            finite &= pointwise[k].push(t1, row(k + 1, i));
+    let mut scan = RowScan::new(limits, dof);
+    scan.push_rows(times, [q, v, a, j]);
+    scan.finish()
+}
+
+/// One joint's position check and velocity, acceleration and jerk checks.
+pub(crate) type ScanResult = (PositionCheck, [DerivativeCheck; 3]);
+
+/// [`full_table_scan`] fed block by block while the rows are made (the sampling of
+/// [`super::sample_and_check`]), so that each block is checked while it is in cache: every
+/// column present, the rows of a block as consecutive row-major slices. The state between
+/// blocks is the previous row, so that the result does not depend on the block sizes and is
+/// [`full_table_scan`]'s exactly.
+pub(crate) struct RowScan<'a> {
+    limits: &'a Limits,
+    dof: usize,
+    /// Rows seen so far.
+    rows: usize,
+    /// The previous row's time and its position, velocity and acceleration (3·dof values).
+    prev_t: f64,
+    prev: Vec<f64>,
+    /// Pointwise series of velocity, acceleration, jerk; finite-difference series of
+    /// position, velocity, acceleration (from the second row on).
+    pointwise: Option<[ExtremesRow; 3]>,
+    fd: Option<[ExtremesRow; 3]>,
+    /// Per joint: the position part of [`JointScan`].
+    position: Vec<JointScan<Extremes>>,
+    diff: Vec<f64>,
+    /// Every divided difference seen is finite.
+    finite: bool,
+    /// Every value seen (the first row and positions included) is finite.
+    all_finite: bool,
+}
+
+impl<'a> RowScan<'a> {
+    /// An empty scan of `dof` joints against `limits` (`limits.dof()` equals `dof`).
+    pub(crate) fn new(limits: &'a Limits, dof: usize) -> Self {
+        RowScan {
+            limits,
+            dof,
+            rows: 0,
+            prev_t: f64::NAN,
+            prev: vec![0.0; 3 * dof],
+            pointwise: None,
+            fd: None,
+            position: Vec::with_capacity(dof),
+            diff: vec![0.0; 3 * dof],
+            finite: true,
+            all_finite: true,
         }
-        let diffs = |k: usize| &diff[k * dof..(k + 1) * dof];
-        match &mut fd {
-            Some(f) => {
-                for (k, f) in f.iter_mut().enumerate() {
-                    finite &= f.push(mid, diffs(k));
+    }
+
+    /// True when every value pushed so far, times excluded, is finite.
+    pub(crate) fn all_finite(&self) -> bool {
+        self.all_finite
+    }
+
+    /// The next rows: `times` and, per order (position..jerk), `times.len() × dof` values
+    /// row-major.
+    pub(crate) fn push_rows(&mut self, times: &[f64], cols: [&[f64]; 4]) {
+        let (dof, n) = (self.dof, times.len());
+        if n == 0 {
+            return;
+        }
+        for c in cols {
+            self.all_finite &= c[..n * dof].iter().fold(true, |f, v| f & v.is_finite());
+        }
+        let row = |k: usize, i: usize| &cols[k][i * dof..(i + 1) * dof];
+        let mut from = 0;
+        if self.rows == 0 {
+            let t = times[0];
+            self.pointwise = Some([1, 2, 3].map(|k| ExtremesRow::first(t, row(k, 0))));
+            self.position = (0..dof)
+                .map(|j| JointScan::new(self.limits.joint(j), t))
+                .collect();
+            from = 1;
+        }
+        let pointwise = self.pointwise.as_mut().expect("set on the first row");
+        for i in from..n {
+            let (t0, prev) = if i == 0 {
+                let p = &self.prev;
+                (self.prev_t, [0, 1, 2].map(|k| &p[k * dof..(k + 1) * dof]))
+            } else {
+                (times[i - 1], [0, 1, 2].map(|k| row(k, i - 1)))
+            };
+            let t1 = times[i];
+            let (dt, mid) = (t1 - t0, 0.5 * (t0 + t1));
+            for (k, d) in self.diff.chunks_exact_mut(dof).enumerate() {
+                for ((d, &x1), &x0) in d.iter_mut().zip(row(k, i)).zip(prev[k]) {
+                    *d = (x1 - x0) / dt;
+                }
+                pointwise[k].push(t1, row(k + 1, i));
+            }
+            let diff = &self.diff;
+            self.finite &= diff.iter().fold(true, |f, d| f & d.is_finite());
+            let diffs = |k: usize| &diff[k * dof..(k + 1) * dof];
+            match &mut self.fd {
+                Some(f) => {
+                    for (k, f) in f.iter_mut().enumerate() {
+                        f.push(mid, diffs(k));
+                    }
+                }
+                None => {
+                    self.fd = Some([0, 1, 2].map(|k| ExtremesRow::first(mid, diffs(k))));
                 }
             }
-            None => {
-                finite &= diff.iter().all(|d| d.is_finite());
-                fd = Some([0, 1, 2].map(|k| ExtremesRow::first(mid, diffs(k))));
+        }
+        for (j, scan) in self.position.iter_mut().enumerate() {
+            for (i, &t) in times.iter().enumerate() {
+                scan.position(t, cols[0][i * dof + j]);
             }
         }
-    }
-    if !finite {
-        return None;
-    }
-    let out = (0..dof).map(|j| {
-        let jl = limits.joint(j);
-        let mut scan = JointScan::<Extremes>::new(jl, times[0]);
-        for (i, &t) in times.iter().enumerate() {
-            scan.position(t, q[i * dof + j]);
+        for (k, p) in self.prev.chunks_exact_mut(dof).enumerate() {
+            p.copy_from_slice(row(k, n - 1));
         }
-        for k in 0..3 {
-            let range = jl.range(DERIVATIVES[k]);
-            scan.pointwise[k] = pointwise[k].joint(j, range);
-            if let Some(f) = &fd {
-                scan.finite_difference[k] = f[k].joint(j, range);
+        self.prev_t = times[n - 1];
+        self.rows += n;
+    }
+
+    /// Per joint, its checks; `None` when no row was pushed, a value or a difference is not
+    /// finite or a limit is 0 (see [`full_table_scan`]).
+    pub(crate) fn finish(self) -> Option<Vec<ScanResult>> {
+        if !(self.finite && self.all_finite) {
+            return None;
+        }
+        let pointwise = self.pointwise?;
+        let out = self.position.into_iter().enumerate().map(|(j, mut scan)| {
+            let jl = self.limits.joint(j);
+            for k in 0..3 {
+                let range = jl.range(DERIVATIVES[k]);
+                scan.pointwise[k] = pointwise[k].joint(j, range);
+                if let Some(f) = &self.fd {
+                    scan.finite_difference[k] = f[k].joint(j, range);
+                }
             }
-        }
-        scan.report()
-    });
-    let out: Vec<_> = out.collect();
-    out.iter()
-        .all(|r| r.2)
-        .then(|| out.into_iter().map(|r| (r.0, r.1)).collect())
+            scan.report()
+        });
+        let out: Vec<_> = out.collect();
+        out.iter()
+            .all(|r| r.2)
+            .then(|| out.into_iter().map(|r| (r.0, r.1)).collect())
+    }
 }

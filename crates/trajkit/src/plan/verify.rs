@@ -1,7 +1,9 @@
 //! The last step of [`super::plan`]: the samples that will be written are checked exactly as
-//! `trajkit check` checks them, and nothing that fails is returned.
+//! `trajkit check` checks them, and nothing that fails is returned. Sampling and checking run
+//! in one pass, block by block ([`crate::check::sample_and_check`]): the same table and the
+//! same report as sampling first and checking the table after.
 
-use crate::check::{check_samples, LimitReport, Tolerance};
+use crate::check::{sample_and_check, LimitReport, Tolerance};
 use crate::error::{Error, Result};
 use crate::sample::SampleTable;
 use crate::topp::Scaled;
@@ -39,8 +41,7 @@ pub(crate) fn verified_samples(
             32.0,
             " with its text",
         )?;
-        let table = crate::sample::sample(&*traj, rate)?.with_names(names.to_vec())?;
-        let report = check_samples(&table, limits)?;
+        let (table, report) = sample_and_check(&*traj, rate, names.to_vec(), limits)?;
         if report.passes(&tol) {
             return Ok((traj, table, report, scale));
         }
