@@ -11,10 +11,7 @@ written with `InputParameter.to_json` reads back equal, and the command line rea
 file to the same duration.
 """
 import json
-import os
-import pathlib
 import pickle
-import shutil
 import subprocess
 
 import numpy as np
@@ -22,19 +19,9 @@ import pytest
 
 import trajkit
 from trajkit import otg as tk
+from test_plan import cli  # the trajkit CLI binary, as test_plan finds it
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
 TOL = 1e-8
-
-
-def cli():
-    env = os.environ.get("TRAJKIT_BIN")
-    if env:
-        return env
-    for p in [ROOT / "target" / "release" / "trajkit", ROOT / "target" / "debug" / "trajkit"]:
-        if p.exists():
-            return str(p)
-    return shutil.which("trajkit")
 
 
 def waypoint_problem(rng, dofs=7, waypoints=None, rest=False):

@@ -328,7 +328,8 @@ impl PyRuckig {
     /// Ruckig's `validate_input`: True when `input` can be calculated (lengths, options,
     /// finite values, signs of the limits) and, as asked, the current / target velocity and
     /// acceleration are within the limits; else raises `RuckigError` naming the field, the
-    /// DOF and the value.
+    /// DOF and the value. Intermediate waypoints and per-section fields are checked by
+    /// `calculate` / `update` (the library validates them as it plans).
     #[pyo3(signature = (input, check_current_state_within_limits = false, check_target_state_within_limits = true))]
     fn validate_input(
         &self,

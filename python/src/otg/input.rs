@@ -620,19 +620,14 @@ impl PyInput {
     fn __repr__(&self) -> String {
         let i = &self.inner;
         let mut s = String::new();
-        for (name, v) in [
-            ("current_position", &i.current_position),
-            ("current_velocity", &i.current_velocity),
-            ("current_acceleration", &i.current_acceleration),
-            ("target_position", &i.target_position),
-            ("target_velocity", &i.target_velocity),
-            ("target_acceleration", &i.target_acceleration),
+        let limits = [
             ("max_velocity", &i.max_velocity),
             ("max_acceleration", &i.max_acceleration),
             ("max_jerk", &i.max_jerk),
             ("min_position", &i.min_position),
             ("max_position", &i.max_position),
-        ] {
+        ];
+        for (name, v) in super::json::states(i).into_iter().chain(limits) {
             s.push_str(&format!("inp.{name} = {v:?}\n"));
         }
         if !self.wp.intermediate_positions.is_empty() {

@@ -90,17 +90,21 @@ const FINITE: Inf = (None, None);
 const UP: Inf = (Some("inf"), None);
 const DOWN: Inf = (None, Some("-inf"));
 
-/// The states, limits and options of `i` into `m`.
-fn input_fields(i: &DynInputParameter, m: &mut Map<String, Value>) -> PyResult<()> {
-    let states = [
+/// The current and target states of `i` by field name.
+pub fn states(i: &DynInputParameter) -> [(&'static str, &Vec<f64>); 6] {
+    [
         ("current_position", &i.current_position),
         ("current_velocity", &i.current_velocity),
         ("current_acceleration", &i.current_acceleration),
         ("target_position", &i.target_position),
         ("target_velocity", &i.target_velocity),
         ("target_acceleration", &i.target_acceleration),
-    ];
-    for (k, v) in states {
+    ]
+}
+
+/// The states, limits and options of `i` into `m`.
+fn input_fields(i: &DynInputParameter, m: &mut Map<String, Value>) -> PyResult<()> {
+    for (k, v) in states(i) {
         m.insert(k.into(), nums(k, v, FINITE)?);
     }
     for (k, v) in [
