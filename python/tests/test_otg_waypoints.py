@@ -11,6 +11,7 @@ written with `InputParameter.to_json` reads back equal, and the command line rea
 file to the same duration.
 """
 import json
+import pathlib
 import pickle
 import subprocess
 
@@ -306,3 +307,24 @@ def test_json_round_trip_equals_the_cli_reading(tmp_path):
     inp.current_velocity = [float("nan"), 0.0]
     with pytest.raises(trajkit.TrajkitError, match=r"current_velocity\[0\] = NaN"):
         inp.to_json()
+
+
+def test_ruckig_waypoint_example_runs_unchanged():
+    import copy
+    import sys
+    script = pathlib.Path(__file__).resolve().parents[1] / "examples" / "ruckig_waypoints.py"
+    r = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                       timeout=120, check=True)
+    lines = r.stdout.strip().splitlines()
+    last = [float(x) for x in lines[-4].split("\t")[1:]]
+    assert np.allclose(last, [0.5, 1.0, 0.0], atol=0.01)  # one control period past the end
+    assert lines[-2].startswith("Trajectory duration:")
+    # copy(out) keeps its own trajectory (Ruckig's __copy__).
+    inp = waypoint_problem(np.random.default_rng(3), dofs=2, waypoints=1, rest=True)
+    otg, out = tk.Ruckig(2, 0.01), tk.OutputParameter(2)
+    otg.update(inp, out)
+    kept = copy.copy(out)
+    inp.intermediate_positions = []
+    otg.update(inp, out)
+    assert kept.trajectory.duration != out.trajectory.duration
+    assert len(kept.trajectory.intermediate_durations) == 2

@@ -117,6 +117,21 @@ impl PyOutput {
         }
     }
 
+    /// A copy with its own trajectory (Ruckig's `copy(out)`, to keep an output of the loop).
+    fn __copy__(&self, py: Python<'_>) -> PyResult<Self> {
+        Ok(PyOutput {
+            inner: self.inner.clone(),
+            degrees_of_freedom: self.degrees_of_freedom,
+            new_section: self.new_section,
+            did_section_change: self.did_section_change,
+            trajectory: Py::new(py, self.trajectory.borrow(py).clone())?,
+        })
+    }
+
+    fn __deepcopy__(&self, py: Python<'_>, _memo: &Bound<'_, PyAny>) -> PyResult<Self> {
+        self.__copy__(py)
+    }
+
     fn __repr__(&self) -> String {
         let o = &self.inner;
         format!(
