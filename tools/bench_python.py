@@ -4,6 +4,8 @@
 - OTG: ``calculate`` per call on the same seeded 7-DOF problems, trajkit.otg vs the ruckig
   wheel (rest to rest and general states), median over repeated passes, and the mean of each
   problem's fastest call (the load-robust statistic on a shared machine);
+- OTG through 5 intermediate waypoints (7 DOF, trajkit only: the ruckig wheel has no local
+  waypoint calculation);
 - splines: vectorized evaluation of a 7-joint not-a-knot cubic spline (100 waypoints) at
   10^6 times, trajkit.spline.CubicSpline vs scipy.interpolate.CubicSpline (values);
 - TOPP: the standard problem of tools/bench_topp_peer.py (7-DOF Panda limits, natural cubic
@@ -119,6 +121,28 @@ def otg_per_problem_min(runs, repeats):
     return mean["trajkit.otg"], mean["ruckig"]
 
 
+def bench_waypoints(repeats):
+    """trajkit.otg.Ruckig.calculate through 5 intermediate waypoints, 7 DOF (Ruckig Pro's
+    feature; the ruckig wheel sends waypoint problems to a remote service, so there is no
+    local peer): 20 seeded bent paths from rest to rest, time per call."""
+    from trajkit import otg as tk
+    rng = np.random.default_rng(11)
+    probs = []
+    for _ in range(20):
+        inp = tk.InputParameter(7)
+        start, step = rng.uniform(-1, 1, 7), rng.uniform(0.3, 1.0, 7) * rng.choice([-1, 1], 7)
+        pts = [start + (k + 1) * step + rng.uniform(-0.3, 0.3, 7) for k in range(6)]
+        inp.current_position, inp.target_position = list(start), list(pts[-1])
+        inp.intermediate_positions = pts[:-1]
+        inp.max_velocity = list(rng.uniform(0.5, 2.0, 7))
+        inp.max_acceleration = list(rng.uniform(1.0, 5.0, 7))
+        inp.max_jerk = list(rng.uniform(5.0, 40.0, 7))
+        probs.append(inp)
+    gen, traj = tk.Ruckig(7, 0.001), tk.Trajectory(7)
+    ts = timeit(lambda: [gen.calculate(p, traj) for p in probs], repeats)
+    return [("OTG calculate, 7 DOF, 5 waypoints (no local peer)", Times(t / 20 for t in ts), None)]
+
+
 def bench_spline(repeats):
     from scipy.interpolate import CubicSpline as SciCS
     from trajkit.spline import CubicSpline
@@ -228,9 +252,13 @@ def bench_plan(repeats):
 def main():
     repeats = int(sys.argv[1]) if len(sys.argv) > 1 else 15
     print(f"load: {os.getloadavg()}")
-    rows = bench_otg(repeats) + bench_spline(repeats) + bench_topp(repeats) + bench_plan(repeats)
+    rows = (bench_otg(repeats) + bench_waypoints(repeats) + bench_spline(repeats)
+            + bench_topp(repeats) + bench_plan(repeats))
     print(f"{'benchmark (median | min per call)':57} {'trajkit':>25} {'peer':>25} {'ratio med|min':>14}")
     for name, ours, peer in rows:
+        if peer is None:
+            print(f"{name:57} {ours.med() * 1e6:12.2f}|{min(ours) * 1e6:10.2f}us {'-':>25} {'-':>14}")
+            continue
         print(f"{name:57} {ours.med() * 1e6:12.2f}|{min(ours) * 1e6:10.2f}us "
               f"{peer.med() * 1e6:12.2f}|{min(peer) * 1e6:10.2f}us "
               f"{peer.med() / ours.med():6.1f}|{min(peer) / min(ours):5.1f}x")
