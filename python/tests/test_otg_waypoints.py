@@ -328,3 +328,16 @@ def test_ruckig_waypoint_example_runs_unchanged():
     otg.update(inp, out)
     assert kept.trajectory.duration != out.trajectory.duration
     assert len(kept.trajectory.intermediate_durations) == 2
+
+
+def test_sections_without_waypoints_as_in_ruckig():
+    ruckig = pytest.importorskip("ruckig")
+    for mod in (ruckig, tk):
+        inp = mod.InputParameter(2)
+        inp.current_position, inp.target_position = [0.0, 1.0], [1.0, -1.0]
+        inp.max_velocity, inp.max_acceleration, inp.max_jerk = [1.0, 1.0], [2.0, 2.0], [10.0, 10.0]
+        tr = mod.Trajectory(2)
+        mod.Ruckig(2, 0.01).calculate(inp, tr)
+        d = tr.duration
+        sections = [tr.at_time(t, return_section=True)[3] for t in [0.0, d / 2, d, d + 1.0]]
+        assert sections == [0, 0, 1, 1], (mod.__name__, sections)
