@@ -4,6 +4,8 @@
 - OTG: ``calculate`` per call on the same seeded 7-DOF problems, trajkit.otg vs the ruckig
   wheel (rest to rest and general states), median over repeated passes, and the mean of each
   problem's fastest call (the load-robust statistic on a shared machine);
+- OTG through 5 intermediate waypoints (7 DOF, trajkit only: the ruckig wheel has no local
+  waypoint calculation);
 - splines: vectorized evaluation of a 7-joint not-a-knot cubic spline (100 waypoints) at
   10^6 times, trajkit.spline.CubicSpline vs scipy.interpolate.CubicSpline (values);
 - TOPP: the standard problem of tools/bench_topp_peer.py (7-DOF Panda limits, natural cubic
@@ -12,8 +14,14 @@
   TOPPRA constructor + compute_parameterization (seidel); trajkit on the same grid
   (refine=False), and once more with its default grid refinement;
 - plan: trajkit.plan on the same waypoints and limits (+ the Panda jerk limits), without
-  the jerk stage on 1000 intervals, and with the defaults, vs toppra's whole job on the same
-  chord-length natural spline (constructor + compute_trajectory).
+  the jerk stage on 1000 intervals, and with the defaults. plan's job is waypoints in, a
+  trajectory sampled at 1 kHz with every sample checked against every limit out; the like
+  peer is toppra doing that same job: the chord-length natural spline through the waypoints,
+  the constraints, TOPPRA + compute_trajectory, then the 1 kHz samples (position, velocity,
+  acceleration) and the same velocity / acceleration check in numpy. toppra's solve alone
+  (spline + TOPPRA + compute_trajectory, no samples, no check) is printed too, marked as
+  unlike work; the defaults row runs plan's jerk stage, which toppra does not have (unlike
+  work too, printed for the record).
 
 Run inside an environment with the package and the peers (python/requirements-test.txt):
     python tools/bench_python.py [repeats]
@@ -113,6 +121,28 @@ def otg_per_problem_min(runs, repeats):
     return mean["trajkit.otg"], mean["ruckig"]
 
 
+def bench_waypoints(repeats):
+    """trajkit.otg.Ruckig.calculate through 5 intermediate waypoints, 7 DOF (Ruckig Pro's
+    feature; the ruckig wheel sends waypoint problems to a remote service, so there is no
+    local peer): 20 seeded bent paths from rest to rest, time per call."""
+    from trajkit import otg as tk
+    rng = np.random.default_rng(11)
+    probs = []
+    for _ in range(20):
+        inp = tk.InputParameter(7)
+        start, step = rng.uniform(-1, 1, 7), rng.uniform(0.3, 1.0, 7) * rng.choice([-1, 1], 7)
+        pts = [start + (k + 1) * step + rng.uniform(-0.3, 0.3, 7) for k in range(6)]
+        inp.current_position, inp.target_position = list(start), list(pts[-1])
+        inp.intermediate_positions = pts[:-1]
+        inp.max_velocity = list(rng.uniform(0.5, 2.0, 7))
+        inp.max_acceleration = list(rng.uniform(1.0, 5.0, 7))
+        inp.max_jerk = list(rng.uniform(5.0, 40.0, 7))
+        probs.append(inp)
+    gen, traj = tk.Ruckig(7, 0.001), tk.Trajectory(7)
+    ts = timeit(lambda: [gen.calculate(p, traj) for p in probs], repeats)
+    return [("OTG calculate, 7 DOF, 5 waypoints (no local peer)", Times(t / 20 for t in ts), None)]
+
+
 def bench_spline(repeats):
     from scipy.interpolate import CubicSpline as SciCS
     from trajkit.spline import CubicSpline
@@ -163,9 +193,11 @@ def bench_topp(repeats):
 
 def bench_plan(repeats):
     """trajkit.plan on the standard problem's waypoints and velocity/acceleration limits (Panda
-    jerk limits, no position ranges) next to toppra's whole job on the same path: its natural cubic spline
-    through the same waypoints with the same chord-length parameterization as plan's path,
-    the same limits, 1000 intervals plus breakpoints, constructor + compute_trajectory."""
+    jerk limits, no position ranges) next to toppra doing the same job on the same path: its
+    natural cubic spline through the same waypoints with plan's chord-length
+    parameterization, the same limits, 1000 intervals plus breakpoints, compute_trajectory,
+    then samples at plan's rate (1 kHz) checked against the limits as plan checks its own.
+    Everything from the waypoints on is timed on both sides (path and constraints included)."""
     import toppra as ta
     import toppra.algorithm as algo
     import toppra.constraint as constraint
@@ -180,34 +212,53 @@ def bench_plan(repeats):
     # plain spline (a range repair would reshape it).
     limits = panda.with_overrides(max_velocity=vmax, max_acceleration=amax,
                                   position_range=(-np.inf, np.inf))
-    ss = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(wp, axis=0), axis=1))])
-    g = np.linspace(0.0, ss[-1], 1001)
-    grid = np.array(sorted(set(list(ss) + [s for s in g if np.min(np.abs(ss - s)) > 1e-9 * ss[-1]])))
-    path_ref = ta.SplineInterpolator(ss, wp, bc_type="natural")
-    pc = [constraint.JointVelocityConstraint(np.vstack([-vmax, vmax]).T),
-          constraint.JointAccelerationConstraint(np.vstack([-amax, amax]).T,
-                                                 discretization_scheme=constraint.DiscretizationType.Interpolation)]
+    rate = 1000.0
 
-    def peer():
-        algo.TOPPRA(pc, path_ref, gridpoints=grid, solver_wrapper="seidel",
-                    parametrizer="ParametrizeConstAccel").compute_trajectory(0.0, 0.0)
+    def solve():
+        ss = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(wp, axis=0), axis=1))])
+        g = np.linspace(0.0, ss[-1], 1001)
+        grid = np.array(sorted(set(list(ss) + [s for s in g if np.min(np.abs(ss - s)) > 1e-9 * ss[-1]])))
+        path = ta.SplineInterpolator(ss, wp, bc_type="natural")
+        pc = [constraint.JointVelocityConstraint(np.vstack([-vmax, vmax]).T),
+              constraint.JointAccelerationConstraint(np.vstack([-amax, amax]).T,
+                                                     discretization_scheme=constraint.DiscretizationType.Interpolation)]
+        return algo.TOPPRA(pc, path, gridpoints=grid, solver_wrapper="seidel",
+                           parametrizer="ParametrizeConstAccel").compute_trajectory(0.0, 0.0)
+
+    def peer_job():
+        traj = solve()
+        d = traj.duration
+        t = np.append(np.arange(0.0, d, 1.0 / rate), d)
+        q, qd, qdd = traj(t), traj(t, 1), traj(t, 2)
+        # plan's check: every sample within every limit (toppra's answer may exceed them by
+        # its discretization; the count is computed, not acted on, as plan would report it).
+        over = int(np.sum(np.abs(qd) > vmax * (1 + 1e-9)) + np.sum(np.abs(qdd) > amax * (1 + 1e-9)))
+        return q, over
 
     def raw():
-        trajkit.plan(wp, limits, jerk_limit=False, gridpoints=1000)
+        trajkit.plan(wp, limits, jerk_limit=False, gridpoints=1000, sample_rate=rate)
 
     def default():
-        trajkit.plan(wp, limits)
-    t_peer = timeit(peer, max(3, repeats // 3))
-    return [("plan, standard problem, N = 1000, no jerk stage", timeit(raw, repeats), t_peer),
-            ("plan, standard problem, defaults (auto grid, jerk stage)", timeit(default, max(3, repeats // 3)), t_peer)]
+        trajkit.plan(wp, limits, sample_rate=rate)
+    n_peer = max(3, repeats // 3)
+    t_job = timeit(peer_job, n_peer)
+    t_solve = timeit(solve, n_peer)
+    t_raw = timeit(raw, repeats)
+    return [("plan, N = 1000, no jerk stage (toppra: same job)", t_raw, t_job),
+            ("  the same vs toppra's solve only (unlike: no samples)", t_raw, t_solve),
+            ("plan, defaults (jerk stage: unlike, toppra has none)", timeit(default, n_peer), t_job)]
 
 
 def main():
     repeats = int(sys.argv[1]) if len(sys.argv) > 1 else 15
     print(f"load: {os.getloadavg()}")
-    rows = bench_otg(repeats) + bench_spline(repeats) + bench_topp(repeats) + bench_plan(repeats)
+    rows = (bench_otg(repeats) + bench_waypoints(repeats) + bench_spline(repeats)
+            + bench_topp(repeats) + bench_plan(repeats))
     print(f"{'benchmark (median | min per call)':57} {'trajkit':>25} {'peer':>25} {'ratio med|min':>14}")
     for name, ours, peer in rows:
+        if peer is None:
+            print(f"{name:57} {ours.med() * 1e6:12.2f}|{min(ours) * 1e6:10.2f}us {'-':>25} {'-':>14}")
+            continue
         print(f"{name:57} {ours.med() * 1e6:12.2f}|{min(ours) * 1e6:10.2f}us "
               f"{peer.med() * 1e6:12.2f}|{min(peer) * 1e6:10.2f}us "
               f"{peer.med() / ours.med():6.1f}|{min(peer) / min(ours):5.1f}x")

@@ -1,6 +1,7 @@
 """A large batch of online-generation problems on Dask: chunks of trajkit.otg inputs are
-shipped to the workers (everything pickles), each chunk is solved there with
-trajkit.batch.otg (all the worker's cores), and the durations come back in order.
+shipped to the workers (everything pickles, intermediate waypoints included: every fourth
+problem passes through one), each chunk is solved there with trajkit.batch.otg (all the
+worker's cores), and the durations come back in order.
 
     python examples/dask_batch.py --problems 100000            # a local cluster
     python examples/dask_batch.py --scheduler tcp://host:8786  # the same code on a cluster
@@ -16,11 +17,14 @@ from trajkit import batch, otg
 def make_inputs(n, seed=0):
     rng = np.random.default_rng(seed)
     out = []
-    for _ in range(n):
+    for k in range(n):
         inp = otg.InputParameter(7)
         inp.current_position = list(rng.uniform(-1, 1, 7))
         inp.current_velocity = list(rng.uniform(-0.5, 0.5, 7))
         inp.target_position = list(rng.uniform(-1, 1, 7))
+        if k % 4 == 0:
+            middle = (np.array(inp.current_position) + inp.target_position) / 2
+            inp.intermediate_positions = [middle + rng.uniform(-0.3, 0.3, 7)]
         inp.max_velocity = [2.0] * 7
         inp.max_acceleration = [5.0] * 7
         inp.max_jerk = [50.0] * 7

@@ -11,13 +11,12 @@ use std::sync::Arc;
 
 use pyo3::prelude::*;
 use pyo3::types::PyList;
-use trajkit::otg::calculate_dyn;
 use trajkit::topp::messy::plan_waypoints as plan_pieces;
 use trajkit::topp::{plan_totg, TotgOptions};
 
 use crate::convert::{bad, table, Floats, TrajkitError};
 use crate::limits::complete_of;
-use crate::otg::{otg_err, PyInput, PyOtgTrajectory};
+use crate::otg::{otg_err, solve, PyInput, PyOtgTrajectory};
 use crate::topp::{piece_options, PIECES_NEEDS, TOTG_NEEDS};
 use crate::traj::{PyTrajectory, SharedTrajectory};
 
@@ -82,9 +81,9 @@ fn message(e: impl std::fmt::Display) -> PyErr {
     TrajkitError::new_err(e.to_string())
 }
 
-/// Calculates every `trajkit.otg.InputParameter` of `inputs` with control period
-/// `delta_time`: a list of `trajkit.otg.Trajectory` (or `TrajkitError` for a failed input), in
-/// input order.
+/// Calculates every `trajkit.otg.InputParameter` of `inputs` (through its intermediate
+/// waypoints when it has any) with control period `delta_time`: a list of
+/// `trajkit.otg.Trajectory` (or `TrajkitError` for a failed input), in input order.
 #[pyfunction]
 #[pyo3(signature = (inputs, delta_time = 0.001, threads = None))]
 fn otg<'py>(
@@ -93,9 +92,13 @@ fn otg<'py>(
     delta_time: f64,
     threads: Option<usize>,
 ) -> PyResult<Bound<'py, PyList>> {
-    let data: Vec<_> = inputs.iter().map(|i| i.inner.clone()).collect();
+    let data: Vec<PyInput> = inputs.iter().map(|i| (**i).clone()).collect();
     let th = threads_of(threads)?;
-    let results = py.detach(|| par_map(data.len(), th, |i| calculate_dyn(&data[i], delta_time)));
+    let results = py.detach(|| {
+        par_map(data.len(), th, |i| {
+            solve(&data[i].inner, data[i].waypoints(), delta_time)
+        })
+    });
     let paired: Vec<_> = results
         .into_iter()
         .zip(data)

@@ -22,24 +22,32 @@
 //! `was_calculation_interrupted = True` when the library says the budget cut its search short
 //! (`DynOutputParameter::was_calculation_interrupted`, `Trajectory.was_interrupted`).
 //!
+//! Ruckig Pro's intermediate waypoints: `InputParameter` also holds a
+//! `trajkit::otg::Waypoints` (`intermediate_positions`, `per_section_max_velocity`,
+//! `per_section_max_acceleration`, `per_section_max_jerk`, `per_section_minimum_duration`);
+//! an input with waypoints is calculated by `trajkit::otg::plan_waypoints` and its
+//! `Trajectory` holds the `WaypointTrajectory` (`trajectory.rs`). Ruckig Pro's fields the
+//! library refuses (per-section minimum velocity and acceleration, per-section position
+//! limits) raise `TrajkitError` naming them when set. `json.rs` reads and writes the JSON
+//! problem format of `trajkit otg` through the library's reader.
+//!
 //! `Ruckig.update` is `trajkit::otg::DynOtg::update` (Ruckig's contract): it calculates when
 //! the input differs from the one it last calculated for, then advances one control period and
 //! writes the state there; the state it returns is written into its copy of the input, so
 //! feeding it back (`pass_to_input`) does not cause a new calculation.
 
-use pyo3::exceptions::PyIndexError;
 use pyo3::prelude::*;
-use pyo3::types::PyTuple;
-use trajkit::otg::{
-    calculate_dyn, ControlInterface as CI, DurationDiscretization as DD, DynInputParameter,
-    DynTrajectory, OtgError, Synchronization as Sync_,
-};
+use trajkit::otg::{ControlInterface as CI, OtgError, Synchronization as Sync_};
 
-use crate::convert::{bad, floats, Floats};
+use crate::convert::bad;
 
 mod generator;
-use crate::traj::eval_traj;
+mod input;
+mod json;
+mod trajectory;
 use generator::{PyOutput, PyRuckig};
+pub use input::PyInput;
+pub use trajectory::{solve, PyOtgTrajectory, Solved};
 
 /// The library's error as `trajkit.TrajkitError` (exported as `trajkit.otg.RuckigError` too)
 /// with its message and the attributes `result` (the Ruckig `Result` member), `kind` and
@@ -148,7 +156,7 @@ pub enum PyDiscretization {
     Discrete = 1,
 }
 
-fn sync_to(s: PySync) -> Sync_ {
+pub(crate) fn sync_to(s: PySync) -> Sync_ {
     match s {
         PySync::Time => Sync_::Time,
         PySync::TimeIfNecessary => Sync_::TimeIfNecessary,
@@ -158,7 +166,7 @@ fn sync_to(s: PySync) -> Sync_ {
     }
 }
 
-fn sync_from(s: Sync_) -> PySync {
+pub(crate) fn sync_from(s: Sync_) -> PySync {
     match s {
         Sync_::Time => PySync::Time,
         Sync_::TimeIfNecessary => PySync::TimeIfNecessary,
@@ -168,422 +176,19 @@ fn sync_from(s: Sync_) -> PySync {
     }
 }
 
-fn interface_from(c: CI) -> PyInterface {
+pub(crate) fn interface_from(c: CI) -> PyInterface {
     match c {
         CI::Velocity => PyInterface::Velocity,
         _ => PyInterface::Position,
     }
 }
 
-fn interface_to(c: PyInterface) -> CI {
+pub(crate) fn interface_to(c: PyInterface) -> CI {
     match c {
         PyInterface::Position => CI::Position,
         PyInterface::Velocity => CI::Velocity,
     }
 }
-/// Ruckig's `InputParameter(dofs)`: current and target state, limits, options.
-#[pyclass(module = "trajkit.otg", name = "InputParameter", from_py_object)]
-#[derive(Clone)]
-pub struct PyInput {
-    /// The library's input.
-    pub inner: DynInputParameter,
-}
-
-impl PyInput {
-    /// A fresh input for `dofs` degrees of freedom.
-    pub fn with_dofs(dofs: usize) -> Self {
-        PyInput {
-            inner: DynInputParameter::new(dofs),
-        }
-    }
-}
-
-#[pymethods]
-impl PyInput {
-    /// `dofs` degrees of freedom: states zero, limits infinite (set them), all enabled.
-    #[new]
-    fn new(dofs: usize) -> Self {
-        PyInput::with_dofs(dofs)
-    }
-
-    /// Number of degrees of freedom.
-    #[getter]
-    fn degrees_of_freedom(&self) -> usize {
-        self.inner.dof()
-    }
-
-    /// `current_position`: a list, one value per DOF.
-    #[getter]
-    fn current_position(&self) -> Vec<f64> {
-        self.inner.current_position.clone()
-    }
-    #[setter]
-    fn set_current_position(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
-        self.inner.current_position = floats(v, "current_position", None)?;
-        Ok(())
-    }
-
-    /// `current_velocity`: a list, one value per DOF.
-    #[getter]
-    fn current_velocity(&self) -> Vec<f64> {
-        self.inner.current_velocity.clone()
-    }
-    #[setter]
-    fn set_current_velocity(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
-        self.inner.current_velocity = floats(v, "current_velocity", None)?;
-        Ok(())
-    }
-
-    /// `current_acceleration`: a list, one value per DOF.
-    #[getter]
-    fn current_acceleration(&self) -> Vec<f64> {
-        self.inner.current_acceleration.clone()
-    }
-    #[setter]
-    fn set_current_acceleration(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
-        self.inner.current_acceleration = floats(v, "current_acceleration", None)?;
-        Ok(())
-    }
-
-    /// `target_position`: a list, one value per DOF.
-    #[getter]
-    fn target_position(&self) -> Vec<f64> {
-        self.inner.target_position.clone()
-    }
-    #[setter]
-    fn set_target_position(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
-        self.inner.target_position = floats(v, "target_position", None)?;
-        Ok(())
-    }
-
-    /// `target_velocity`: a list, one value per DOF.
-    #[getter]
-    fn target_velocity(&self) -> Vec<f64> {
-        self.inner.target_velocity.clone()
-    }
-    #[setter]
-    fn set_target_velocity(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
-        self.inner.target_velocity = floats(v, "target_velocity", None)?;
-        Ok(())
-    }
-
-    /// `target_acceleration`: a list, one value per DOF.
-    #[getter]
-    fn target_acceleration(&self) -> Vec<f64> {
-        self.inner.target_acceleration.clone()
-    }
-    #[setter]
-    fn set_target_acceleration(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
-        self.inner.target_acceleration = floats(v, "target_acceleration", None)?;
-        Ok(())
-    }
-
-    /// `max_velocity`: a list, one value per DOF.
-    #[getter]
-    fn max_velocity(&self) -> Vec<f64> {
-        self.inner.max_velocity.clone()
-    }
-    #[setter]
-    fn set_max_velocity(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
-        self.inner.max_velocity = floats(v, "max_velocity", None)?;
-        Ok(())
-    }
-
-    /// `max_acceleration`: a list, one value per DOF.
-    #[getter]
-    fn max_acceleration(&self) -> Vec<f64> {
-        self.inner.max_acceleration.clone()
-    }
-    #[setter]
-    fn set_max_acceleration(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
-        self.inner.max_acceleration = floats(v, "max_acceleration", None)?;
-        Ok(())
-    }
-
-    /// `max_jerk`: a list, one value per DOF.
-    #[getter]
-    fn max_jerk(&self) -> Vec<f64> {
-        self.inner.max_jerk.clone()
-    }
-    #[setter]
-    fn set_max_jerk(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
-        self.inner.max_jerk = floats(v, "max_jerk", None)?;
-        Ok(())
-    }
-
-    /// Direction-dependent minimum velocity (negative), or `None` for `-max_velocity`.
-    #[getter]
-    fn min_velocity(&self) -> Option<Vec<f64>> {
-        self.inner.min_velocity.clone()
-    }
-    #[setter]
-    fn set_min_velocity(&mut self, v: Option<Bound<'_, PyAny>>) -> PyResult<()> {
-        self.inner.min_velocity = v.map(|v| floats(&v, "min_velocity", None)).transpose()?;
-        Ok(())
-    }
-
-    /// Direction-dependent minimum acceleration (negative), or `None` for `-max_acceleration`.
-    #[getter]
-    fn min_acceleration(&self) -> Option<Vec<f64>> {
-        self.inner.min_acceleration.clone()
-    }
-    #[setter]
-    fn set_min_acceleration(&mut self, v: Option<Bound<'_, PyAny>>) -> PyResult<()> {
-        self.inner.min_acceleration = v
-            .map(|v| floats(&v, "min_acceleration", None))
-            .transpose()?;
-        Ok(())
-    }
-
-    /// Ruckig Pro's `max_position`: the largest position of each DOF along the whole motion
-    /// (a list, `inf` = none, the default).
-    #[getter]
-    fn max_position(&self) -> Vec<f64> {
-        self.inner.max_position.clone()
-    }
-    #[setter]
-    fn set_max_position(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
-        self.inner.max_position = floats(v, "max_position", None)?;
-        Ok(())
-    }
-
-    /// Ruckig Pro's `min_position`: the smallest position of each DOF along the whole motion
-    /// (a list, `-inf` = none, the default).
-    #[getter]
-    fn min_position(&self) -> Vec<f64> {
-        self.inner.min_position.clone()
-    }
-    #[setter]
-    fn set_min_position(&mut self, v: &Bound<'_, PyAny>) -> PyResult<()> {
-        self.inner.min_position = floats(v, "min_position", None)?;
-        Ok(())
-    }
-
-    /// Ruckig Pro's calculation budget in microseconds, or `None` (no budget, the default):
-    /// when it runs out the calculation returns the shortest valid trajectory found so far,
-    /// or raises `RuckigError` with `kind == 'interrupted'` when it has none.
-    #[getter]
-    fn interrupt_calculation_duration(&self) -> Option<f64> {
-        self.inner.options.interrupt_calculation_duration
-    }
-    #[setter]
-    fn set_interrupt_calculation_duration(&mut self, v: Option<f64>) {
-        self.inner.options.interrupt_calculation_duration = v;
-    }
-
-    /// Which DOFs are planned (a disabled one keeps its current acceleration).
-    #[getter]
-    fn enabled(&self) -> Vec<bool> {
-        self.inner.enabled.clone()
-    }
-    #[setter]
-    fn set_enabled(&mut self, v: Vec<bool>) {
-        self.inner.enabled = v;
-    }
-
-    /// The trajectory lasts at least this long (seconds), or `None`.
-    #[getter]
-    fn minimum_duration(&self) -> Option<f64> {
-        self.inner.options.minimum_duration
-    }
-    #[setter]
-    fn set_minimum_duration(&mut self, v: Option<f64>) {
-        self.inner.options.minimum_duration = v;
-    }
-
-    /// Time synchronization of the DOFs.
-    #[getter]
-    fn synchronization(&self) -> PySync {
-        sync_from(self.inner.options.synchronization)
-    }
-    #[setter]
-    fn set_synchronization(&mut self, s: PySync) {
-        self.inner.options.synchronization = sync_to(s);
-    }
-
-    /// Synchronization per DOF (Ruckig's `per_dof_synchronization`; None: `synchronization`
-    /// for all). `StraightLine` is for all DOFs only.
-    #[getter]
-    fn per_dof_synchronization(&self) -> Option<Vec<PySync>> {
-        self.inner
-            .per_dof_synchronization
-            .as_ref()
-            .map(|v| v.iter().map(|&s| sync_from(s)).collect())
-    }
-    #[setter]
-    fn set_per_dof_synchronization(&mut self, v: Option<Vec<PySync>>) {
-        self.inner.per_dof_synchronization = v.map(|v| v.into_iter().map(sync_to).collect());
-    }
-
-    /// Control interface per DOF (Ruckig's `per_dof_control_interface`; None:
-    /// `control_interface` for all).
-    #[getter]
-    fn per_dof_control_interface(&self) -> Option<Vec<PyInterface>> {
-        self.inner
-            .per_dof_control_interface
-            .as_ref()
-            .map(|v| v.iter().map(|&c| interface_from(c)).collect())
-    }
-    #[setter]
-    fn set_per_dof_control_interface(&mut self, v: Option<Vec<PyInterface>>) {
-        self.inner.per_dof_control_interface = v.map(|v| v.into_iter().map(interface_to).collect());
-    }
-
-    /// Position or velocity control.
-    #[getter]
-    fn control_interface(&self) -> PyInterface {
-        interface_from(self.inner.options.control_interface)
-    }
-    #[setter]
-    fn set_control_interface(&mut self, c: PyInterface) {
-        self.inner.options.control_interface = interface_to(c);
-    }
-
-    /// Continuous duration, or a multiple of the control period.
-    #[getter]
-    fn duration_discretization(&self) -> PyDiscretization {
-        match self.inner.options.duration_discretization {
-            DD::Discrete => PyDiscretization::Discrete,
-            _ => PyDiscretization::Continuous,
-        }
-    }
-    #[setter]
-    fn set_duration_discretization(&mut self, d: PyDiscretization) {
-        self.inner.options.duration_discretization = match d {
-            PyDiscretization::Continuous => DD::Continuous,
-            PyDiscretization::Discrete => DD::Discrete,
-        };
-    }
-
-    fn __eq__(&self, other: &Self) -> bool {
-        self.inner == other.inner
-    }
-
-    fn __getnewargs__(&self) -> (usize,) {
-        (self.inner.dof(),)
-    }
-
-    fn __getstate__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyTuple>> {
-        let i = &self.inner;
-        let o = &i.options;
-        (
-            (
-                i.current_position.clone(),
-                i.current_velocity.clone(),
-                i.current_acceleration.clone(),
-                i.target_position.clone(),
-                i.target_velocity.clone(),
-                i.target_acceleration.clone(),
-            ),
-            (
-                i.max_velocity.clone(),
-                i.max_acceleration.clone(),
-                i.max_jerk.clone(),
-                i.min_velocity.clone(),
-                i.min_acceleration.clone(),
-                i.enabled.clone(),
-            ),
-            (
-                o.minimum_duration,
-                sync_from(o.synchronization) as i64,
-                matches!(o.control_interface, CI::Velocity),
-                matches!(o.duration_discretization, DD::Discrete),
-            ),
-            (
-                self.per_dof_synchronization()
-                    .map(|v| v.into_iter().map(|s| s as i64).collect::<Vec<_>>()),
-                i.per_dof_control_interface.as_ref().map(|v| {
-                    v.iter()
-                        .map(|c| matches!(c, CI::Velocity))
-                        .collect::<Vec<_>>()
-                }),
-            ),
-            (
-                i.min_position.clone(),
-                i.max_position.clone(),
-                o.interrupt_calculation_duration,
-            ),
-        )
-            .into_pyobject(py)
-    }
-
-    fn __setstate__(&mut self, state: &Bound<'_, PyTuple>) -> PyResult<()> {
-        type States = (Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>, Vec<f64>);
-        type Limits = (
-            Vec<f64>,
-            Vec<f64>,
-            Vec<f64>,
-            Option<Vec<f64>>,
-            Option<Vec<f64>>,
-            Vec<bool>,
-        );
-        type PerDof = (Option<Vec<i64>>, Option<Vec<bool>>);
-        type Options = (Option<f64>, i64, bool, bool);
-        type Pro = (Vec<f64>, Vec<f64>, Option<f64>);
-        let (s, l, o, d, pro): (States, Limits, Options, PerDof, Pro) = state.extract()?;
-        let i = &mut self.inner;
-        (
-            i.current_position,
-            i.current_velocity,
-            i.current_acceleration,
-            i.target_position,
-            i.target_velocity,
-            i.target_acceleration,
-        ) = s;
-        (
-            i.max_velocity,
-            i.max_acceleration,
-            i.max_jerk,
-            i.min_velocity,
-            i.min_acceleration,
-            i.enabled,
-        ) = l;
-        i.options.minimum_duration = o.0;
-        let sync_of = |k: i64| {
-            sync_to(match k {
-                1 => PySync::TimeIfNecessary,
-                2 => PySync::Phase,
-                3 => PySync::No,
-                4 => PySync::StraightLine,
-                _ => PySync::Time,
-            })
-        };
-        let iface_of = |v: bool| if v { CI::Velocity } else { CI::Position };
-        i.options.synchronization = sync_of(o.1);
-        i.options.control_interface = iface_of(o.2);
-        i.options.duration_discretization = if o.3 { DD::Discrete } else { DD::Continuous };
-        i.per_dof_synchronization = d.0.map(|v| v.into_iter().map(sync_of).collect());
-        i.per_dof_control_interface = d.1.map(|v| v.into_iter().map(iface_of).collect());
-        (
-            i.min_position,
-            i.max_position,
-            i.options.interrupt_calculation_duration,
-        ) = pro;
-        Ok(())
-    }
-
-    fn __repr__(&self) -> String {
-        let i = &self.inner;
-        let mut s = String::new();
-        for (name, v) in [
-            ("current_position", &i.current_position),
-            ("current_velocity", &i.current_velocity),
-            ("current_acceleration", &i.current_acceleration),
-            ("target_position", &i.target_position),
-            ("target_velocity", &i.target_velocity),
-            ("target_acceleration", &i.target_acceleration),
-            ("max_velocity", &i.max_velocity),
-            ("max_acceleration", &i.max_acceleration),
-            ("max_jerk", &i.max_jerk),
-            ("min_position", &i.min_position),
-            ("max_position", &i.max_position),
-        ] {
-            s.push_str(&format!("inp.{name} = {v:?}\n"));
-        }
-        s
-    }
-}
-
 /// One DOF's motion (Ruckig's `Profile`, read-only): jerk segments from a start state,
 /// a brake first when the start state was outside the limits.
 #[pyclass(module = "trajkit.otg", name = "Profile", frozen, get_all)]
@@ -612,7 +217,7 @@ pub struct PyProfile {
 }
 
 impl PyProfile {
-    fn of(pr: &trajkit::otg::Profile) -> Self {
+    pub(crate) fn of(pr: &trajkit::otg::Profile) -> Self {
         let n = pr.segments();
         let mut out = PyProfile {
             t: Vec::with_capacity(n),
@@ -662,214 +267,19 @@ impl PyProfile {
 #[derive(Clone)]
 pub struct PyBound {
     /// Smallest position.
-    min: f64,
+    pub(crate) min: f64,
     /// Largest position.
-    max: f64,
+    pub(crate) max: f64,
     /// Time of the smallest position.
-    t_min: f64,
+    pub(crate) t_min: f64,
     /// Time of the largest position.
-    t_max: f64,
+    pub(crate) t_max: f64,
 }
 
 #[pymethods]
 impl PyBound {
     fn __repr__(&self) -> String {
         format!("[{:.6}, {:.6}]", self.min, self.max)
-    }
-}
-
-/// Ruckig's `Trajectory(dofs)`: filled by `Ruckig.calculate`.
-#[pyclass(module = "trajkit.otg", name = "Trajectory")]
-#[derive(Clone)]
-pub struct PyOtgTrajectory {
-    dofs: usize,
-    traj: Option<DynTrajectory>,
-    /// The input and control period it was calculated from (for pickling).
-    source: Option<(DynInputParameter, f64)>,
-}
-
-impl PyOtgTrajectory {
-    fn get(&self) -> PyResult<&DynTrajectory> {
-        self.traj
-            .as_ref()
-            .ok_or_else(|| bad("this trajectory has not been calculated yet"))
-    }
-
-    /// A calculated trajectory (for batches).
-    pub fn calculated(input: DynInputParameter, delta_time: f64, traj: DynTrajectory) -> Self {
-        PyOtgTrajectory {
-            dofs: traj.dof(),
-            traj: Some(traj),
-            source: Some((input, delta_time)),
-        }
-    }
-}
-
-#[pymethods]
-impl PyOtgTrajectory {
-    #[new]
-    fn new(dofs: usize) -> Self {
-        PyOtgTrajectory {
-            dofs,
-            traj: None,
-            source: None,
-        }
-    }
-
-    /// Duration in seconds (0 before a calculation).
-    #[getter]
-    fn duration(&self) -> f64 {
-        self.traj.as_ref().map_or(0.0, |t| t.duration())
-    }
-
-    /// True when the calculation budget (`interrupt_calculation_duration`) cut the search
-    /// for the common duration short: the trajectory is valid but may be longer than the
-    /// shortest (False before a calculation and without a budget).
-    #[getter]
-    fn was_interrupted(&self) -> bool {
-        self.traj.as_ref().is_some_and(|t| t.was_interrupted())
-    }
-
-    /// Number of degrees of freedom.
-    #[getter]
-    fn degrees_of_freedom(&self) -> usize {
-        self.dofs
-    }
-
-    /// `(position, velocity, acceleration)` lists at `time`; after the end each DOF continues
-    /// with constant acceleration (Ruckig's convention). `return_section=True` appends the
-    /// section index (always 0: no intermediate waypoints).
-    #[pyo3(signature = (time, return_section = false))]
-    fn at_time<'py>(
-        &self,
-        py: Python<'py>,
-        time: f64,
-        return_section: bool,
-    ) -> PyResult<Bound<'py, PyTuple>> {
-        let t = self.get()?;
-        let n = t.dof();
-        let (mut p, mut v, mut a) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-        t.at_time(time, &mut p, &mut v, &mut a);
-        if return_section {
-            (p, v, a, 0usize).into_pyobject(py)
-        } else {
-            (p, v, a).into_pyobject(py)
-        }
-    }
-
-    /// The duration each DOF would need on its own.
-    #[getter]
-    fn independent_min_durations(&self) -> PyResult<Vec<f64>> {
-        let t = self.get()?;
-        let mut out = vec![0.0; t.dof()];
-        t.independent_min_durations(&mut out);
-        Ok(out)
-    }
-
-    /// Position extrema per DOF (`Bound` objects with `min`, `max`, `t_min`, `t_max`).
-    #[getter]
-    fn position_extrema(&self) -> PyResult<Vec<PyBound>> {
-        let t = self.get()?;
-        Ok((0..t.dof())
-            .filter_map(|i| t.position_extrema(i))
-            .map(|(min, t_min, max, t_max)| PyBound {
-                min,
-                max,
-                t_min,
-                t_max,
-            })
-            .collect())
-    }
-
-    /// The first time at or after `time_after` at which DOF `dof` is at `position`, or `None`.
-    #[pyo3(signature = (dof, position, time_after = 0.0))]
-    fn get_first_time_at_position(
-        &self,
-        dof: usize,
-        position: f64,
-        time_after: f64,
-    ) -> PyResult<Option<f64>> {
-        if time_after.is_nan() {
-            return Err(bad("time_after = NaN: expected a time in seconds"));
-        }
-        let t = self.get()?;
-        if dof >= t.dof() {
-            return Err(PyIndexError::new_err(format!(
-                "dof = {dof} is not below the number of DOFs ({})",
-                t.dof()
-            )));
-        }
-        Ok(t.first_time_at_position_after(dof, position, time_after))
-    }
-
-    /// Duration of each section (one section: no intermediate waypoints), Ruckig's
-    /// `intermediate_durations`.
-    #[getter]
-    fn intermediate_durations(&self) -> PyResult<Vec<f64>> {
-        Ok(vec![self.get()?.duration()])
-    }
-
-    /// The profiles, read-only: one list per section (one section), each with one
-    /// `Profile` per DOF.
-    #[getter]
-    fn profiles(&self) -> PyResult<Vec<Vec<PyProfile>>> {
-        let t = self.get()?;
-        Ok(vec![t
-            .dofs()
-            .iter()
-            .map(|d| PyProfile::of(&d.profile))
-            .collect()])
-    }
-
-    /// trajkit's vectorized evaluation: the `order`-th derivative (0..3) at every time of `t`
-    /// (any shape), shape `t.shape + (dofs,)`, time clamped to `[0, duration]`.
-    #[pyo3(signature = (t, order = 0))]
-    fn __call__<'py>(
-        &self,
-        py: Python<'py>,
-        t: Floats<'py>,
-        order: i64,
-    ) -> PyResult<Bound<'py, PyAny>> {
-        let traj = self.get()?;
-        eval_traj(py, traj, &t, order)
-    }
-
-    fn __getnewargs__(&self) -> (usize,) {
-        (self.dofs,)
-    }
-
-    fn __getstate__(&self, py: Python<'_>) -> PyResult<Py<PyAny>> {
-        match &self.source {
-            None => Ok(py.None()),
-            Some((input, dt)) => {
-                let inp = Py::new(
-                    py,
-                    PyInput {
-                        inner: input.clone(),
-                    },
-                )?;
-                Ok((inp, *dt).into_pyobject(py)?.into_any().unbind())
-            }
-        }
-    }
-
-    fn __setstate__(&mut self, state: &Bound<'_, PyAny>) -> PyResult<()> {
-        if state.is_none() {
-            return Ok(());
-        }
-        let (inp, dt): (PyInput, f64) = state.extract()?;
-        let traj = calculate_dyn(&inp.inner, dt).map_err(otg_err)?;
-        self.traj = Some(traj);
-        self.source = Some((inp.inner, dt));
-        Ok(())
-    }
-
-    fn __repr__(&self) -> String {
-        format!(
-            "trajkit.otg.Trajectory(dofs={}, duration={})",
-            self.dofs,
-            self.duration()
-        )
     }
 }
 
@@ -885,5 +295,6 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyBound>()?;
     m.add_class::<PyProfile>()?;
     m.add_class::<PyRuckig>()?;
+    m.add_function(wrap_pyfunction!(json::read_problem, m)?)?;
     Ok(())
 }

@@ -141,8 +141,8 @@ def test_invalid_input_raises_ruckig_error_with_trajkit_message():
         otg.calculate(inp, tk.Trajectory(1))
     with pytest.raises(trajkit.TrajkitError, match="degrees of freedom"):
         tk.Ruckig(2, 0.01).calculate(inp, tk.Trajectory(1))
-    with pytest.raises(AttributeError):
-        inp.intermediate_positions = [[1.0]]  # Ruckig Pro's waypoints: not silently ignored
+    with pytest.raises(trajkit.TrajkitError, match="per_section_min_velocity"):
+        inp.per_section_min_velocity = [[-1.0]]  # refused by name, not silently ignored
 
 
 def test_enums_and_options():

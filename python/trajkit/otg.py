@@ -38,8 +38,28 @@ library's message and ``result`` (the ``Result`` member: ``ErrorInvalidInput``,
 ``'zero_limits'``, ``'interrupted'``, ``'calculation_failed'``, ``'synchronization_failed'``)
 and ``dof`` (or ``None``). A budget that runs out before any valid trajectory is known raises
 with ``kind == 'interrupted'`` and ``result == Result.ErrorExecutionTimeCalculation``.
-Not supported (Ruckig Pro features): intermediate waypoints and per-section limits; setting
-those attributes raises ``AttributeError``.
+Ruckig Pro's intermediate waypoints are supported: ``InputParameter.intermediate_positions``
+(a list of per-DOF lists or a 2-D array) with ``per_section_max_velocity``,
+``per_section_max_acceleration``, ``per_section_max_jerk`` (one row per section, waypoints + 1)
+and ``per_section_minimum_duration``. ``Ruckig.calculate`` fills a ``Trajectory`` with one
+section per waypoint + 1 (``intermediate_durations``: the time each section ends;
+``at_time(t, return_section=True)``: the number of sections ended at ``t``), and
+``Ruckig.update`` follows it cycle by cycle (``OutputParameter.new_section``,
+``did_section_change``; ``pass_to_input`` removes a passed waypoint, and the first entry of
+each per-section list). The motion passes every waypoint, holds each section's limits and is
+never longer than stopping at every waypoint (the library's ``plan_waypoints``). Ruckig Pro's
+``per_section_min_velocity``, ``per_section_min_acceleration``, ``per_section_max_position``
+and ``per_section_min_position`` are not supported: setting one raises ``RuckigError`` naming
+it (the global ``min_velocity``, ``min_acceleration`` and position limits apply to every
+section). ``max_number_of_waypoints`` (of ``Ruckig``, ``InputParameter``, ``OutputParameter``,
+``Trajectory``) is accepted as a storage hint and is not a limit. ``filter_intermediate_positions``
+does not exist here.
+
+Problem files: ``read_problem(text)`` / ``load_problem(path)`` read the JSON format of
+``trajkit otg`` (the same reader and error messages as the command line) and return
+``(InputParameter, delta_time)``; ``InputParameter.from_json(text)`` and
+``InputParameter.to_json(delta_time=None, indent=None)`` convert one input (the text reads
+back as an equal input).
 
 trajkit adds vectorized evaluation: ``trajectory(t, order=0)`` for an array ``t``.
 """
@@ -58,6 +78,16 @@ Synchronization = _o.Synchronization
 ControlInterface = _o.ControlInterface
 DurationDiscretization = _o.DurationDiscretization
 RuckigError = TrajkitError
+read_problem = _o.read_problem
+
+
+def load_problem(path):
+    """Reads the problem file ``path`` (the JSON format of ``trajkit otg``, read by the same
+    reader with the same messages, the path naming the source): ``(InputParameter,
+    delta_time)``."""
+    with open(path, encoding="utf-8") as f:
+        return read_problem(f.read(), str(path))
+
 
 # Ruckig also exports the enum members at module level.
 Working = Result.Working
@@ -90,4 +120,6 @@ __all__ = [
     "ControlInterface",
     "DurationDiscretization",
     "RuckigError",
+    "read_problem",
+    "load_problem",
 ]

@@ -1,12 +1,21 @@
 //! `trajkit.otg`'s generator: `Ruckig` (the library's `DynOtg`) and `OutputParameter` (its
 //! `DynOutputParameter`). See the parent module for the API contract.
+//!
+//! With intermediate waypoints, `update` follows Ruckig's `update` step by step on the
+//! library's `plan_waypoints` (the library's `DynOtg` has no waypoints): it calculates when
+//! the input differs from the one it last calculated for (the time and section restart at
+//! 0), advances `delta_time`, writes the state and section there, and applies
+//! `pass_to_input` to its own copy of the input, so that feeding the output back (which
+//! removes a passed waypoint) does not cause a new calculation.
+
+use std::time::Instant;
 
 use pyo3::prelude::*;
-use trajkit::otg::{
-    DynInputParameter, DynOtg, DynOutputParameter, DynTrajectory, OtgError, OtgResult,
-};
+use trajkit::otg::{DynOtg, DynOutputParameter, DynTrajectory, OtgError, OtgResult};
 
-use super::{otg_err, PyInput, PyOtgTrajectory, PyResult_};
+use super::input::pass_section;
+use super::trajectory::set_source;
+use super::{otg_err, PyInput, PyOtgTrajectory, PyResult_, Solved};
 use crate::convert::bad;
 
 /// Ruckig's `OutputParameter(dofs)`: the state after an `update` (the library's
@@ -17,10 +26,12 @@ pub struct PyOutput {
     /// Number of degrees of freedom.
     #[pyo3(get)]
     degrees_of_freedom: usize,
-    /// Section index (always 0: no intermediate waypoints).
+    /// Section index at the new time (Ruckig's: the number of sections passed; always 0
+    /// without waypoints).
     #[pyo3(get)]
     new_section: usize,
-    /// Always False (no intermediate waypoints).
+    /// Whether the last `update` passed a waypoint (then `pass_to_input` removes it from the
+    /// input).
     #[pyo3(get)]
     did_section_change: bool,
     /// The trajectory being followed.
@@ -30,14 +41,18 @@ pub struct PyOutput {
 
 #[pymethods]
 impl PyOutput {
+    /// The output for `dofs` degrees of freedom (`max_number_of_waypoints`, Ruckig Pro's
+    /// storage hint, is accepted and unused).
     #[new]
-    fn new(py: Python<'_>, dofs: usize) -> PyResult<Self> {
+    #[pyo3(signature = (dofs, max_number_of_waypoints = 0))]
+    fn new(py: Python<'_>, dofs: usize, max_number_of_waypoints: usize) -> PyResult<Self> {
+        let _ = max_number_of_waypoints;
         Ok(PyOutput {
             inner: DynOutputParameter::new(dofs),
             degrees_of_freedom: dofs,
             new_section: 0,
             did_section_change: false,
-            trajectory: Py::new(py, PyOtgTrajectory::new(dofs))?,
+            trajectory: Py::new(py, PyOtgTrajectory::empty(dofs))?,
         })
     }
 
@@ -92,9 +107,29 @@ impl PyOutput {
         self.inner.calculation_duration_us
     }
 
-    /// Copies the new state into `input`'s current state (the usual control loop).
+    /// Copies the new state into `input`'s current state (the usual control loop); when the
+    /// last update passed a waypoint, removes it from `input.intermediate_positions` (and the
+    /// first entry of each per-section list, so one entry per section remains).
     fn pass_to_input(&self, input: &mut PyInput) {
         self.inner.pass_to_input(&mut input.inner);
+        if self.did_section_change {
+            pass_section(&mut input.wp);
+        }
+    }
+
+    /// A copy with its own trajectory (Ruckig's `copy(out)`, to keep an output of the loop).
+    fn __copy__(&self, py: Python<'_>) -> PyResult<Self> {
+        Ok(PyOutput {
+            inner: self.inner.clone(),
+            degrees_of_freedom: self.degrees_of_freedom,
+            new_section: self.new_section,
+            did_section_change: self.did_section_change,
+            trajectory: Py::new(py, self.trajectory.borrow(py).clone())?,
+        })
+    }
+
+    fn __deepcopy__(&self, py: Python<'_>, _memo: &Bound<'_, PyAny>) -> PyResult<Self> {
+        self.__copy__(py)
     }
 
     fn __repr__(&self) -> String {
@@ -122,6 +157,11 @@ pub struct PyRuckig {
     /// Storage `calculate` writes into before swapping it with the target trajectory's (so a
     /// failed calculation leaves that trajectory as it was).
     spare_traj: Option<DynTrajectory>,
+    /// Ruckig Pro's `max_number_of_waypoints` (a storage hint; not a limit here).
+    #[pyo3(get)]
+    max_number_of_waypoints: usize,
+    /// The motion through waypoints `update` follows, with its copy of the input.
+    run: Option<(PyInput, Solved)>,
 }
 
 impl PyRuckig {
@@ -136,34 +176,76 @@ impl PyRuckig {
     }
 }
 
-/// Records in `slot` the input and control period a trajectory was calculated from (for
-/// pickling), reusing its storage.
-fn set_source(slot: &mut Option<(DynInputParameter, f64)>, input: &DynInputParameter, dt: f64) {
-    match slot {
-        Some((inp, d)) => {
-            inp.clone_from(input);
-            *d = dt;
+impl PyRuckig {
+    /// `update` on a motion through waypoints (see the module documentation).
+    fn update_waypoints(
+        &mut self,
+        py: Python<'_>,
+        input: &PyInput,
+        out: &mut PyOutput,
+    ) -> PyResult<PyResult_> {
+        let start = Instant::now();
+        let dt = self.otg.delta_time;
+        out.inner.new_calculation = false;
+        let same = matches!(&self.run, Some((last, _)) if last.inner == input.inner && last.wp == input.wp);
+        if !same {
+            let solved = super::solve(&input.inner, input.waypoints(), dt).map_err(otg_err)?;
+            // The library's generator must calculate anew when an input without waypoints
+            // follows.
+            self.otg.reset();
+            let mut ot = out.trajectory.borrow_mut(py);
+            ot.traj = Some(solved.clone());
+            ot.dofs = self.degrees_of_freedom;
+            set_source(&mut ot.source, input, dt);
+            self.run = Some((input.clone(), solved));
+            out.inner.time = 0.0;
+            out.inner.new_calculation = true;
+            out.inner.was_calculation_interrupted = false;
+            out.new_section = 0;
         }
-        None => *slot = Some((input.clone(), dt)),
+        let Some((last, traj)) = self.run.as_mut() else {
+            return Err(bad("no motion through waypoints to follow"));
+        };
+        out.inner.time += dt;
+        let o = &mut out.inner;
+        traj.at_time(
+            o.time,
+            &mut o.new_position,
+            &mut o.new_velocity,
+            &mut o.new_acceleration,
+            &mut o.new_jerk,
+        );
+        let section = traj.section_at(o.time);
+        out.did_section_change = section > out.new_section;
+        out.new_section = section;
+        o.duration = traj.as_traj().duration();
+        o.pass_to_input(&mut last.inner);
+        if out.did_section_change {
+            pass_section(&mut last.wp);
+        }
+        o.calculation_duration_us = start.elapsed().as_secs_f64() * 1e6;
+        Ok(if o.time > o.duration {
+            PyResult_::Finished
+        } else {
+            PyResult_::Working
+        })
     }
 }
 
 #[pymethods]
 impl PyRuckig {
     /// A generator for `dofs` degrees of freedom with control period `delta_time` (seconds;
-    /// needed by `update` and by discrete durations). `max_number_of_waypoints` must be 0.
+    /// needed by `update` and by discrete durations). `max_number_of_waypoints` is Ruckig
+    /// Pro's storage hint: accepted, not a limit (trajkit sizes storage per calculation).
     #[new]
     #[pyo3(signature = (dofs, delta_time = 0.0, max_number_of_waypoints = 0))]
     fn new(dofs: usize, delta_time: f64, max_number_of_waypoints: usize) -> PyResult<Self> {
-        if max_number_of_waypoints != 0 {
-            return Err(bad(format!(
-                "max_number_of_waypoints = {max_number_of_waypoints}: intermediate waypoints are not supported"
-            )));
-        }
         Ok(PyRuckig {
             degrees_of_freedom: dofs,
             otg: DynOtg::new(dofs, delta_time),
             spare_traj: None,
+            max_number_of_waypoints,
+            run: None,
         })
     }
 
@@ -178,9 +260,10 @@ impl PyRuckig {
         self.otg.delta_time = dt;
     }
 
-    /// Calculates the trajectory for `input` into `trajectory`; returns `Result.Working`.
-    /// Raises `RuckigError` (= `trajkit.TrajkitError`) with trajkit's message on failure
-    /// (then `trajectory` is left as it was).
+    /// Calculates the trajectory for `input` into `trajectory` (through its intermediate
+    /// waypoints when it has any); returns `Result.Working`. Raises `RuckigError`
+    /// (= `trajkit.TrajkitError`) with trajkit's message on failure (then `trajectory` is
+    /// left as it was).
     fn calculate(
         &mut self,
         input: PyRef<'_, PyInput>,
@@ -188,6 +271,16 @@ impl PyRuckig {
     ) -> PyResult<PyResult_> {
         let n = input.inner.dof();
         self.check_dofs(n, "the input")?;
+        let dt = self.otg.delta_time;
+        if let Some(w) = input.waypoints() {
+            let solved = super::solve(&input.inner, Some(w), dt).map_err(otg_err)?;
+            if let Some(Solved::Plain(old)) = trajectory.traj.replace(solved) {
+                self.spare_traj = Some(old);
+            }
+            trajectory.dofs = n;
+            set_source(&mut trajectory.source, &input, dt);
+            return Ok(PyResult_::Working);
+        }
         let mut t = self
             .spare_traj
             .take()
@@ -196,14 +289,17 @@ impl PyRuckig {
             self.spare_traj = Some(t);
             return Err(otg_err(e));
         }
-        self.spare_traj = trajectory.traj.replace(t);
+        if let Some(Solved::Plain(old)) = trajectory.traj.replace(Solved::Plain(t)) {
+            self.spare_traj = Some(old);
+        }
         trajectory.dofs = n;
-        set_source(&mut trajectory.source, &input.inner, self.otg.delta_time);
+        set_source(&mut trajectory.source, &input, dt);
         Ok(PyResult_::Working)
     }
 
-    /// One control cycle (the library's `DynOtg::update`): calculate if `input` changed,
-    /// advance by `delta_time`, write the new state into `output`. Returns `Result.Working` or
+    /// One control cycle (the library's `DynOtg::update`; with waypoints, the same steps on
+    /// the motion through them): calculate if `input` changed, advance by `delta_time`, write
+    /// the new state (and section) into `output`. Returns `Result.Working` or
     /// `Result.Finished`.
     fn update(
         &mut self,
@@ -213,6 +309,13 @@ impl PyRuckig {
     ) -> PyResult<PyResult_> {
         self.check_dofs(input.inner.dof(), "the input")?;
         let out = &mut *output;
+        let following = matches!(&self.run, Some((last, _)) if last.inner == input.inner && last.wp == input.wp);
+        if following || input.waypoints().is_some() {
+            return self.update_waypoints(py, &input, out);
+        }
+        self.run = None;
+        out.new_section = 0;
+        out.did_section_change = false;
         let r = match self.otg.update(&input.inner, &mut out.inner) {
             Ok(r) => r,
             Err(e) => {
@@ -225,11 +328,11 @@ impl PyRuckig {
             let mut ot = out.trajectory.borrow_mut(py);
             let src = self.otg.trajectory();
             match ot.traj.as_mut() {
-                Some(t) => t.clone_from(src),
-                None => ot.traj = Some(src.clone()),
+                Some(Solved::Plain(t)) => t.clone_from(src),
+                _ => ot.traj = Some(Solved::Plain(src.clone())),
             }
             ot.dofs = src.dof();
-            set_source(&mut ot.source, &input.inner, self.otg.delta_time);
+            set_source(&mut ot.source, &input, self.otg.delta_time);
         }
         Ok(match r {
             OtgResult::Finished => PyResult_::Finished,
@@ -240,7 +343,8 @@ impl PyRuckig {
     /// Ruckig's `validate_input`: True when `input` can be calculated (lengths, options,
     /// finite values, signs of the limits) and, as asked, the current / target velocity and
     /// acceleration are within the limits; else raises `RuckigError` naming the field, the
-    /// DOF and the value.
+    /// DOF and the value. Intermediate waypoints and per-section fields are checked by
+    /// `calculate` / `update` (the library validates them as it plans).
     #[pyo3(signature = (input, check_current_state_within_limits = false, check_target_state_within_limits = true))]
     fn validate_input(
         &self,
@@ -263,5 +367,6 @@ impl PyRuckig {
     /// Forgets the last input: the next `update` calculates anew.
     fn reset(&mut self) {
         self.otg.reset();
+        self.run = None;
     }
 }
