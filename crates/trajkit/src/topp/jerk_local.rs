@@ -51,7 +51,7 @@
 //! over raw TOPP-RA (the filter: 101 %). The result depends erratically on the window
 //! multiples tried (a 4-waypoint path scores 0.61× with the default ones). Each round samples
 //! the filtered motion twice per TOPP-RA interval, and some run one analytic bound: tens to
-//! hundreds of milliseconds per piece, 14–75× the plain filter (BENCHMARKS.md).
+//! hundreds of milliseconds per piece, about 10–80× the plain filter (BENCHMARKS.md).
 
 use super::jerk::{filter_window, filter_with_window, JerkLimited, JerkOptions};
 use super::parametrized::PhaseProfile as Profile;
@@ -227,8 +227,10 @@ impl<'a> FastLaw<'a> {
         self.profile.duration() + self.window
     }
 
-    /// s*, ṡ*, s̈* and ∫₀ᵗ s* at t (rest outside the profile).
-    fn raw(&self, t: f64) -> [f64; 4] {
+    /// s*, ṡ*, s̈* and ∫₀ᵗ s* at t (rest outside the profile); `hint` is the piece of the
+    /// previous, not later, time (the search moves forward from it: O(1) per time on a sweep,
+    /// the same piece as a binary search).
+    fn raw(&self, t: f64, hint: &mut usize) -> [f64; 4] {
         let p = self.profile;
         let (s, times) = (p.gridpoints(), p.times());
         let n = s.len() - 1;
@@ -238,7 +240,11 @@ impl<'a> FastLaw<'a> {
         if t >= times[n] {
             return [s[n], 0.0, 0.0, self.prefix[n] + s[n] * (t - times[n])];
         }
-        let i = crate::traj::find_piece(times, t);
+        let mut i = *hint;
+        while i + 1 < n && times[i + 1] <= t {
+            i += 1;
+        }
+        *hint = i;
         let h = t - times[i];
         let (v, u) = (p.velocities()[i], p.accelerations()[i]);
         [
@@ -249,10 +255,12 @@ impl<'a> FastLaw<'a> {
         ]
     }
 
-    /// [s, ṡ, s̈, s⃛] of the filtered law at t.
-    fn eval(&self, t: f64) -> [f64; 4] {
+    /// [s, ṡ, s̈, s⃛] of the filtered law at t, with the pieces of the previous, not later,
+    /// time (`hints`: of t and of t − w).
+    fn eval(&self, t: f64, hints: &mut [usize; 2]) -> [f64; 4] {
         let w = self.window;
-        let (now, before) = (self.raw(t), self.raw(t - w));
+        let [h0, h1] = hints;
+        let (now, before) = (self.raw(t, h0), self.raw(t - w, h1));
         [
             (now[3] - before[3]) / w,
             (now[0] - before[0]) / w,
@@ -290,9 +298,9 @@ impl<'a, P: Path> Sampler<'a, P> {
         }
     }
 
-    /// r = max(r_v, √r_a, ∛r_j) of the law at time t.
-    fn ratio(&mut self, law: &FastLaw<'_>, t: f64) -> f64 {
-        let [s, v, a, j] = law.eval(t);
+    /// r = max(r_v, √r_a, ∛r_j) of the law at time t (`hints`: see [`FastLaw::eval`]).
+    fn ratio(&mut self, law: &FastLaw<'_>, t: f64, hints: &mut [usize; 2]) -> f64 {
+        let [s, v, a, j] = law.eval(t, hints);
         for (k, b) in self.buf.iter_mut().enumerate() {
             self.path.eval(s, k + 1, b);
         }
@@ -315,35 +323,61 @@ impl<'a, P: Path> Sampler<'a, P> {
     /// Sampled factors at `m` + 1 evenly spaced times of the filtered law.
     fn profile(&mut self, law: &FastLaw<'_>, m: usize) -> Vec<f64> {
         let big_t = law.duration();
+        let mut hints = [0; 2];
         (0..=m)
-            .map(|k| self.ratio(law, big_t * k as f64 / m as f64))
+            .map(|k| self.ratio(law, big_t * k as f64 / m as f64, &mut hints))
             .collect()
     }
 }
 
-/// Lowers the path velocities of `profile` where the factors `r` (pairs of a time of the law
-/// filtered over `w` and the factor there; `dt` the spacing of the samples) exceed 1, then
-/// restores consistency; `None` when nothing exceeds.
-fn lowered(profile: &Profile, rows: &Rows, r: &[(f64, f64)], w: f64, dt: f64) -> Option<Vec<f64>> {
-    let (s, times) = (profile.gridpoints(), profile.times());
-    let mut c = vec![1.0_f64; s.len()];
-    let mut any = false;
-    for &(t, rk) in r {
-        if rk <= TARGET {
-            continue;
-        }
-        any = true;
-        let (a, b) = (t - w - dt, t + dt);
-        let first = times.partition_point(|&x| x < a);
-        for (i, ci) in c.iter_mut().enumerate().skip(first) {
-            if times[i] > b {
-                break;
+/// Lowers the caps `c` (per gridpoint, at the raw `times`) to 1/r where a factor r > 1 of the
+/// law filtered over `w` at time t mixes that gridpoint in (t − w − dt ≤ time ≤ t + dt).
+/// `samples` are sorted by time: a sliding maximum over them, O(gridpoints + samples).
+fn lower_caps(times: &[f64], samples: &[(f64, f64)], w: f64, dt: f64, c: &mut [f64]) {
+    // Indices of samples in the current range, their factors decreasing.
+    let mut window = std::collections::VecDeque::new();
+    let mut next = 0;
+    for (&ti, ci) in times.iter().zip(c.iter_mut()) {
+        while next < samples.len() && samples[next].0 - w - dt <= ti {
+            while window
+                .back()
+                .is_some_and(|&b: &usize| samples[b].1 <= samples[next].1)
+            {
+                window.pop_back();
             }
-            *ci = ci.min(TARGET / rk);
+            window.push_back(next);
+            next += 1;
+        }
+        while window.front().is_some_and(|&f| samples[f].0 + dt < ti) {
+            window.pop_front();
+        }
+        if let Some(&f) = window.front() {
+            if samples[f].1 > TARGET {
+                *ci = ci.min(TARGET / samples[f].1);
+            }
         }
     }
-    if !any {
+}
+
+/// Lowers the path velocities of `profile` where the sampled factors `r` (pairs of a time of
+/// the law filtered over `w` and the factor there, sorted by time; `dt` their spacing) or the
+/// certified one `worst` exceed 1, then restores consistency; `None` when nothing exceeds.
+fn lowered(
+    profile: &Profile,
+    rows: &Rows,
+    r: &[(f64, f64)],
+    worst: Option<(f64, f64)>,
+    w: f64,
+    dt: f64,
+) -> Option<Vec<f64>> {
+    let (s, times) = (profile.gridpoints(), profile.times());
+    if r.iter().chain(&worst).all(|&(_, rk)| rk <= TARGET) {
         return None;
+    }
+    let mut c = vec![1.0_f64; s.len()];
+    lower_caps(times, r, w, dt, &mut c);
+    if let Some(extra) = worst {
+        lower_caps(times, &[extra], w, dt, &mut c);
     }
     let mut x: Vec<f64> = profile
         .velocities()
@@ -389,11 +423,12 @@ impl<P: Path + Clone> Context<'_, P> {
             let factors = self.sampler.profile(&law, self.m);
             let big_t = law.duration();
             let dt = big_t / self.m as f64;
-            let mut r: Vec<(f64, f64)> = factors
+            let r: Vec<(f64, f64)> = factors
                 .iter()
                 .enumerate()
                 .map(|(k, &rk)| (big_t * k as f64 / self.m as f64, rk))
                 .collect();
+            let mut worst = None;
             stale += 1;
             // The sampled duration is a lower bound of the certified one: certify only a
             // law that can win.
@@ -420,13 +455,13 @@ impl<P: Path + Clone> Context<'_, P> {
                         best.traj = traj;
                     }
                     // The certified bound's worst instant, which samples may miss.
-                    r.push((b.at.0, b.factor));
+                    worst = Some((b.at.0, b.factor));
                 }
             }
             if round == self.rounds || stale > 2 {
                 break;
             }
-            let Some(sd) = lowered(&current, self.rows, &r, w, dt) else {
+            let Some(sd) = lowered(&current, self.rows, &r, worst, w, dt) else {
                 break;
             };
             match Profile::new(current.gridpoints(), &sd) {
@@ -537,6 +572,31 @@ mod tests {
                     assert!(a.abs() <= 2.0 * (1.0 + 1e-9), "interval {i}: {a}");
                 }
             }
+        }
+    }
+
+    #[test]
+    fn sliding_caps_equal_the_direct_definition() {
+        let mut rng = crate::rng::SplitMix64::new(5);
+        let mut times = vec![0.0];
+        for _ in 0..300 {
+            let last = *times.last().unwrap();
+            times.push(last + rng.uniform(1e-4, 0.02));
+        }
+        let (w, m) = (0.07, 500);
+        let big_t = times[300] + w;
+        let dt = big_t / m as f64;
+        let samples: Vec<(f64, f64)> = (0..=m)
+            .map(|k| (big_t * k as f64 / m as f64, rng.uniform(0.5, 1.5)))
+            .collect();
+        let mut c = vec![1.0; times.len()];
+        lower_caps(&times, &samples, w, dt, &mut c);
+        for (i, &ti) in times.iter().enumerate() {
+            let direct = samples
+                .iter()
+                .filter(|&&(t, r)| r > TARGET && t - w - dt <= ti && ti <= t + dt)
+                .fold(1.0_f64, |ci, &(_, r)| ci.min(TARGET / r));
+            assert_eq!(c[i], direct, "gridpoint {i}");
         }
     }
 }
