@@ -48,18 +48,25 @@ fn run<P: Path + Clone>(path: &P, limits: &Limits) -> (f64, f64, LocalReport, [f
     let (w, _) = worst_ratio_with_range(&traj, limits, 50_000.0);
     assert!(w.iter().all(|&r| r <= 1.0 + 1e-9), "{w:?}");
     let fd = finite_difference_error(&traj, 400);
-    assert!(fd[0] < 1e-6 && fd[1] < 1e-5, "{fd:?}");
-    assert!(jerk_difference_error(&traj, 400) < 1e-3);
+    assert!(fd[0] < 1e-6, "{fd:?}");
+    let dv = difference_error(&traj, Order::Velocity, 1e-6, 400);
+    assert!(dv < 1e-5, "velocity against acceleration: {dv}");
+    assert!(difference_error(&traj, Order::Acceleration, 1e-7, 400) < 1e-3);
     (raw.duration(), filt.duration(), report, [filter_ms, ms])
 }
 
-/// Central differences of acceleration against the evaluated jerk (relative to 1 + its size)
-/// at `count` times, skipping the instants within 2h of a jerk jump larger than the tolerance (the
-/// filtered law's jerk jumps at its kinks, a few milliseconds apart; a smaller jump moves
-/// the difference by at most half of it).
-fn jerk_difference_error(traj: &dyn Trajectory, count: usize) -> f64 {
+/// Central differences (step h) of `order` (velocity or acceleration) against the evaluated
+/// next order (relative to 1 + its size) at `count` times, skipping the instants within 2h of
+/// a jerk jump larger than the tolerance: the filtered law's jerk jumps at its kinks, a few
+/// milliseconds apart (less on short segments), and a jump Δj within h of an instant moves
+/// the velocity's difference by up to Δj·h/4 and the acceleration's by up to Δj/2; a jump
+/// below the tolerance moves them by at most that much.
+fn difference_error(traj: &dyn Trajectory, order: Order, h: f64, count: usize) -> f64 {
+    let next = match order {
+        Order::Velocity => Order::Acceleration,
+        _ => Order::Jerk,
+    };
     let n = traj.dof();
-    let h = 1e-7;
     let (mut a, mut b, mut c, mut j0, mut j1) = (
         vec![0.0; n],
         vec![0.0; n],
@@ -81,9 +88,9 @@ fn jerk_difference_error(traj: &dyn Trajectory, count: usize) -> f64 {
             continue;
         }
         checked += 1;
-        traj.eval(t + h, Order::Acceleration, &mut a);
-        traj.eval(t - h, Order::Acceleration, &mut b);
-        traj.eval(t, Order::Jerk, &mut c);
+        traj.eval(t + h, order, &mut a);
+        traj.eval(t - h, order, &mut b);
+        traj.eval(t, next, &mut c);
         for q in 0..n {
             let num = (a[q] - b[q]) / (2.0 * h);
             err = err.max((num - c[q]).abs() / (1.0 + c[q].abs()));
@@ -101,10 +108,11 @@ fn curved_paths_hold_the_limits_and_beat_the_filter_at_one_percent_jerk() {
     let limits = panda_with_jerk_scale(0.01);
     for seed in [7, 8] {
         let (raw, filt, rep, _) = run(&random_path(seed, 4), &limits);
-        // Overhead over raw TOPP-RA well below the filter's (measured 0.47-0.67× on the
-        // seeded set in BENCHMARKS.md; the 0.6× target is not met on every path).
+        // Overhead over raw TOPP-RA at most 0.6× the filter's on the seeded set of
+        // BENCHMARKS.md (asserted by `report_curved_paths`: 0.33-0.56×); these two shorter
+        // paths measure 0.605× (seed 7) and 0.35× (seed 8).
         assert!(
-            rep.duration - raw <= 0.75 * (filt - raw),
+            rep.duration - raw <= 0.62 * (filt - raw),
             "seed {seed}: raw {raw} filter {filt} local {}",
             rep.duration
         );
@@ -112,12 +120,12 @@ fn curved_paths_hold_the_limits_and_beat_the_filter_at_one_percent_jerk() {
 }
 
 #[test]
-fn short_segments_stay_within_three_percent_of_raw_toppra() {
-    // The filter takes +101 % here; the local slow-down +2.65 % (the 2 % target is not met).
+fn short_segments_stay_within_two_percent_of_raw_toppra() {
+    // The filter takes +101 % here; the local slow-down +1.95 %.
     let limits = panda_with_jerk_scale(1.0);
     let (raw, filt, rep, _) = run(&short_segment_path(), &limits);
     assert!(
-        rep.duration <= 1.03 * raw,
+        rep.duration <= 1.02 * raw,
         "raw {raw} filter {filt} local {}",
         rep.duration
     );
@@ -158,6 +166,14 @@ fn report_curved_paths() {
     for (name, scale, path, reference) in cases {
         let limits = panda_with_jerk_scale(scale);
         let (raw, filt, rep, ms) = run(&path, &limits);
+        // The targets: at 1 % of the Panda's jerk at most 0.6× the filter's overhead on the
+        // seeded random paths; at its own limits at most 2 % over raw TOPP-RA.
+        if scale < 1.0 && !name.starts_with("short") {
+            assert!(rep.duration - raw <= 0.6 * (filt - raw), "{name}");
+        }
+        if scale == 1.0 {
+            assert!(rep.duration <= 1.02 * raw, "{name}");
+        }
         let reference_s = reference.map_or("—".to_string(), |r| format!("{r:.5}"));
         let vs = reference.map_or("—".to_string(), |r| format!("{:.4}", rep.duration / r));
         println!(
@@ -170,5 +186,76 @@ fn report_curved_paths() {
             ms[0],
             ms[1],
         );
+    }
+}
+
+/// Median of `runs` timings (ms) of the filter and of the local stage, alternating, on one
+/// rest-to-rest TOPP-RA result.
+fn median_costs<P: Path + Clone>(
+    path: &P,
+    law: &trajkit::topp::PhaseProfile,
+    limits: &Limits,
+    runs: usize,
+) -> [f64; 2] {
+    let mut ms = [Vec::new(), Vec::new()];
+    for _ in 0..runs {
+        let t0 = std::time::Instant::now();
+        let f = limit_jerk(path.clone(), law.clone(), limits, &JerkOptions::default()).unwrap();
+        ms[0].push(t0.elapsed().as_secs_f64() * 1e3);
+        let t0 = std::time::Instant::now();
+        let l = limit_jerk_local(path.clone(), law.clone(), limits, &LocalOptions::default());
+        ms[1].push(t0.elapsed().as_secs_f64() * 1e3);
+        assert!(l.unwrap().0.duration() <= f.duration());
+    }
+    ms.map(|mut v| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    })
+}
+
+/// BENCHMARKS.md: the stage's cost next to the filter's (medians of 7 alternating runs) on
+/// the standard problem's piece (as `plan` builds it) and the seeded paths.
+#[test]
+#[ignore]
+fn report_costs() {
+    println!("| path | jerk ×Panda | filter ms | local ms | ratio |");
+    println!("|---|---|---|---|---|");
+    let prob = topp_common::fixtures()
+        .into_iter()
+        .find(|p| p["name"] == "standard_7wp_natural_N1000")
+        .unwrap();
+    let w: Vec<f64> = prob["waypoints"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .flat_map(topp_common::floats)
+        .collect();
+    let mo = trajkit::topp::messy::PlanOptions::default();
+    let panda = Limits::preset("panda").unwrap();
+    let paths = trajkit::topp::messy::piece_paths(&w, 7, &panda, &mo).unwrap();
+    for scale in [1.0, 0.01] {
+        let limits = panda_with_jerk_scale(scale);
+        let raw =
+            trajkit::topp::messy::time_pieces(paths.clone(), &limits, &mo, &mut |_, _| {}).unwrap();
+        let piece = &raw.pieces()[0];
+        let [f, l] = median_costs(piece.path(), piece.law(), &limits, 7);
+        println!("| std7 | {scale} | {f:.2} | {l:.2} | {:.1} |", l / f);
+    }
+    let limits = panda_with_jerk_scale(0.01);
+    let mut cases: Vec<(String, trajkit::spline::CubicSpline)> = ipopt_cases()
+        .into_iter()
+        .filter(|c| c.1 == 0.01)
+        .map(|(n, _, w, _)| (n, chord_spline(&w)))
+        .collect();
+    for seed in 0..6u64 {
+        cases.push((format!("random7_{seed}"), random_path(100 + seed, 7)));
+    }
+    for (name, path) in cases {
+        let raw = Toppra::with_limits(path.clone(), &limits)
+            .unwrap()
+            .solve()
+            .unwrap();
+        let [f, l] = median_costs(&path, raw.law(), &limits, 7);
+        println!("| {name} | 0.01 | {f:.2} | {l:.2} | {:.1} |", l / f);
     }
 }

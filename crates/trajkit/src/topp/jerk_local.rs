@@ -5,21 +5,30 @@
 //! of width w and then slows the *whole* motion by one factor k. Two things make it long: w
 //! is sized for half the jerk limit (the other half is left for the path-curvature terms), and
 //! one local excess (a short path segment, a sharp bend) sets k for the whole motion.
-//! [`limit_jerk_local`] removes both, keeping the filter's certified limits:
+//! [`limit_jerk_local`] removes both, keeping the filter's certified limits. For each of a
+//! few window multiples f ([`LocalOptions::windows`]), independently:
 //!
-//! 1. **Window.** For the current law, candidate windows from the one that gives the switches
-//!    of s̈ the *whole* jerk limit ([`crate::topp::jerk::filter_window`] with budget 1) up to
-//!    the filter's own are scored by the duration `k̂·(T + w)`, with k̂ the factor found at
-//!    samples of the filtered motion (cheap; a lower bound of the certified one).
-//! 2. **Local slow-down.** At every sample of the best candidate where the filtered motion
-//!    uses more than its limits, by the factor r = max(r_v, √r_a, ∛r_j), the TOPP-RA path
-//!    velocities at the gridpoints that the moving average mixes into that instant (raw times
-//!    in `[t − w, t]`) are divided by r (velocity, acceleration and jerk shrink about like
-//!    those of a uniform slow-down by r, but only there). The lowered law is made consistent
-//!    again by a backward and a forward pass that keep every joint's acceleration row of
-//!    every interval (at both of its gridpoints, with the interval's constant s̈) within the
-//!    limits, lowering velocities only.
-//! 3. Repeat from 1 on the lowered law, a few rounds, and keep the shortest certified result.
+//! 1. **Window.** w = f·w₁, with w₁ the window that gives the switches of s̈ of the current law
+//!    the *whole* jerk limit ([`crate::topp::jerk::filter_window`] with budget 1).
+//! 2. **Certify.** The filtered law is sampled (twice per TOPP-RA interval) for the factor
+//!    r = max(r_v, √r_a, ∛r_j) it uses; its sampled duration k̂·(T + w) (k̂ the largest r, a
+//!    lower bound of the certified factor) is a lower bound of the certified duration, so the
+//!    analytic bound runs only when that can beat the best result so far.
+//! 3. **Local slow-down.** At every sample where r > 1, and at the certified bound's worst
+//!    instant (which samples may miss), the TOPP-RA path velocities at the gridpoints that the
+//!    moving average mixes into that instant (raw times in `[t − w, t]`) are divided by r
+//!    (velocity, acceleration and jerk shrink about like those of a uniform slow-down by r,
+//!    but only there). The lowered law is made consistent again by a backward and a forward
+//!    pass that keep every joint's acceleration row of every interval (at both of its
+//!    gridpoints, with the interval's constant s̈) within the limits, lowering velocities only.
+//! 4. Repeat from 1 on the lowered law, until [`LocalOptions::rounds`] or three rounds without
+//!    a shorter certified result for this multiple.
+//!
+//! The shortest certified result over all multiples and rounds is returned. Each multiple is
+//! iterated on its own because the best window depends on how much local slow-down it needs
+//! afterwards, which a single-round score cannot see (choosing the window per round by its
+//! sampled duration favours large windows: 0.61–0.67× of the filter's overhead on three
+//! seeded paths, against 0.33–0.56× now).
 //!
 //! Every candidate that is returned is a filtered law scaled by the analytic factor of
 //! [`crate::topp::jerk::filter_with_window`]: steps 1–2 are heuristics that only choose *which*
@@ -36,12 +45,13 @@
 //! The result starts and ends at rest with zero acceleration exactly at the path's ends.
 //!
 //! # Known limitations
-//! Heuristic, not optimal: on seeded random Panda paths at 1 % of its jerk the overhead over
-//! raw TOPP-RA is 0.36–0.67× the filter's and 2–4 % above a fine-grid IPOPT reference; a
-//! path with 1e-3 rad segments at the Panda's limits is 2.65 % over raw TOPP-RA (the filter:
-//! 101 %). Each round samples the filtered motion twice per TOPP-RA interval for five
-//! windows and runs one analytic bound: tens to hundreds of milliseconds per piece, 2–100×
-//! the plain filter (BENCHMARKS.md).
+//! Heuristic, not optimal: on the seeded random Panda paths of BENCHMARKS.md at 1 % of its
+//! jerk the overhead over raw TOPP-RA is 0.33–0.56× the filter's and 1.6–2.6 % above a
+//! fine-grid IPOPT reference; the path with 1e-3 rad segments at the Panda's limits is 1.95 %
+//! over raw TOPP-RA (the filter: 101 %). The result depends erratically on the window
+//! multiples tried (a 4-waypoint path scores 0.61× with the default ones). Each round samples
+//! the filtered motion twice per TOPP-RA interval, and some run one analytic bound: tens to
+//! hundreds of milliseconds per piece, about 10–80× the plain filter (BENCHMARKS.md).
 
 use super::jerk::{filter_window, filter_with_window, JerkLimited, JerkOptions};
 use super::parametrized::PhaseProfile as Profile;
@@ -55,16 +65,16 @@ const TARGET: f64 = 1.0;
 /// Settings of [`limit_jerk_local`].
 #[derive(Debug, Clone, PartialEq)]
 pub struct LocalOptions {
-    /// Rounds of local slow-down (0: the window search on the raw law only).
+    /// Rounds of local slow-down per window multiple (0: the raw law only).
     pub rounds: usize,
-    /// Windows tried, as multiples of the one that gives the switches of s̈ the whole jerk
-    /// limit (2: the filter's default budget of one half).
+    /// Window multiples, each iterated on its own: multiples of the window that gives the
+    /// switches of s̈ the whole jerk limit (2: the filter's default budget of one half).
     pub windows: Vec<f64>,
     /// Samples of the filtered motion per TOPP-RA interval used to score windows and locate
     /// excesses (heuristic only: the returned factor is certified independently).
     pub samples_per_interval: usize,
-    /// Most samples of the filtered motion per round over all windows (bounds the cost on
-    /// long paths: their samples get sparser).
+    /// Most samples of the filtered motion per round, summed over the window multiples
+    /// (bounds the cost on long paths: their samples get sparser).
     pub samples_per_round: usize,
     /// The filter's settings (its budget gives the baseline window; its check rate is used on
     /// paths that are not piecewise polynomials).
@@ -75,7 +85,7 @@ impl Default for LocalOptions {
     fn default() -> Self {
         LocalOptions {
             rounds: 6,
-            windows: vec![1.0, 1.2, 1.45, 1.7, 2.0],
+            windows: vec![1.2, 1.45, 1.7],
             samples_per_interval: 2,
             samples_per_round: 100_000,
             filter: JerkOptions::default(),
@@ -92,13 +102,14 @@ pub struct LocalReport {
     pub duration: f64,
     /// Duration of the unfiltered TOPP-RA law given (a lower bound).
     pub raw_duration: f64,
-    /// Round (0: raw law) of the returned result; `None` when the plain filter won.
+    /// Round (0: raw law) of the returned result within its window multiple; `None` when the
+    /// plain filter won.
     pub round: Option<usize>,
     /// Filter window of the returned result (s).
     pub window: f64,
     /// Certified uniform time-scale factor of the returned result.
     pub factor: f64,
-    /// Certified candidates evaluated (each one analytic bound).
+    /// Certified candidates evaluated (each one analytic bound), the plain filter included.
     pub certified: usize,
 }
 
@@ -216,8 +227,10 @@ impl<'a> FastLaw<'a> {
         self.profile.duration() + self.window
     }
 
-    /// s*, ṡ*, s̈* and ∫₀ᵗ s* at t (rest outside the profile).
-    fn raw(&self, t: f64) -> [f64; 4] {
+    /// s*, ṡ*, s̈* and ∫₀ᵗ s* at t (rest outside the profile); `hint` is the piece of the
+    /// previous, not later, time (the search moves forward from it: O(1) per time on a sweep,
+    /// the same piece as a binary search).
+    fn raw(&self, t: f64, hint: &mut usize) -> [f64; 4] {
         let p = self.profile;
         let (s, times) = (p.gridpoints(), p.times());
         let n = s.len() - 1;
@@ -227,7 +240,11 @@ impl<'a> FastLaw<'a> {
         if t >= times[n] {
             return [s[n], 0.0, 0.0, self.prefix[n] + s[n] * (t - times[n])];
         }
-        let i = crate::traj::find_piece(times, t);
+        let mut i = *hint;
+        while i + 1 < n && times[i + 1] <= t {
+            i += 1;
+        }
+        *hint = i;
         let h = t - times[i];
         let (v, u) = (p.velocities()[i], p.accelerations()[i]);
         [
@@ -238,10 +255,12 @@ impl<'a> FastLaw<'a> {
         ]
     }
 
-    /// [s, ṡ, s̈, s⃛] of the filtered law at t.
-    fn eval(&self, t: f64) -> [f64; 4] {
+    /// [s, ṡ, s̈, s⃛] of the filtered law at t, with the pieces of the previous, not later,
+    /// time (`hints`: of t and of t − w).
+    fn eval(&self, t: f64, hints: &mut [usize; 2]) -> [f64; 4] {
         let w = self.window;
-        let (now, before) = (self.raw(t), self.raw(t - w));
+        let [h0, h1] = hints;
+        let (now, before) = (self.raw(t, h0), self.raw(t - w, h1));
         [
             (now[3] - before[3]) / w,
             (now[0] - before[0]) / w,
@@ -279,9 +298,9 @@ impl<'a, P: Path> Sampler<'a, P> {
         }
     }
 
-    /// r = max(r_v, √r_a, ∛r_j) of the law at time t.
-    fn ratio(&mut self, law: &FastLaw<'_>, t: f64) -> f64 {
-        let [s, v, a, j] = law.eval(t);
+    /// r = max(r_v, √r_a, ∛r_j) of the law at time t (`hints`: see [`FastLaw::eval`]).
+    fn ratio(&mut self, law: &FastLaw<'_>, t: f64, hints: &mut [usize; 2]) -> f64 {
+        let [s, v, a, j] = law.eval(t, hints);
         for (k, b) in self.buf.iter_mut().enumerate() {
             self.path.eval(s, k + 1, b);
         }
@@ -304,52 +323,61 @@ impl<'a, P: Path> Sampler<'a, P> {
     /// Sampled factors at `m` + 1 evenly spaced times of the filtered law.
     fn profile(&mut self, law: &FastLaw<'_>, m: usize) -> Vec<f64> {
         let big_t = law.duration();
+        let mut hints = [0; 2];
         (0..=m)
-            .map(|k| self.ratio(law, big_t * k as f64 / m as f64))
+            .map(|k| self.ratio(law, big_t * k as f64 / m as f64, &mut hints))
             .collect()
     }
 }
 
-/// Sampled duration k̂·(T + w) of the law filtered over `w`, and the sampled factors.
-fn score<P: Path>(
-    sampler: &mut Sampler<'_, P>,
-    profile: &Profile,
-    w: f64,
-    m: usize,
-) -> Result<(f64, Vec<f64>)> {
-    let law = FastLaw::new(profile, w);
-    let r = sampler.profile(&law, m);
-    let k = r.iter().fold(0.0_f64, |a, &b| a.max(b));
-    Ok((k.max(1e-300) * law.duration(), r))
-}
-
-/// Lowers the path velocities of `profile` where the sampled factors `r` (at `m` + 1 evenly
-/// spaced times of the law filtered over `w`) exceed 1, then restores consistency; `None`
-/// when nothing exceeds.
-fn lowered(profile: &Profile, rows: &Rows, r: &[f64], w: f64) -> Option<Vec<f64>> {
-    let (s, times) = (profile.gridpoints(), profile.times());
-    let m = r.len() - 1;
-    let big_t = profile.duration() + w;
-    let dt = big_t / m as f64;
-    let mut c = vec![1.0_f64; s.len()];
-    let mut any = false;
-    for (k, &rk) in r.iter().enumerate() {
-        if rk <= TARGET {
-            continue;
-        }
-        any = true;
-        let t = big_t * k as f64 / m as f64;
-        let (a, b) = (t - w - dt, t + dt);
-        let first = times.partition_point(|&x| x < a);
-        for (i, ci) in c.iter_mut().enumerate().skip(first) {
-            if times[i] > b {
-                break;
+/// Lowers the caps `c` (per gridpoint, at the raw `times`) to 1/r where a factor r > 1 of the
+/// law filtered over `w` at time t mixes that gridpoint in (t − w − dt ≤ time ≤ t + dt).
+/// `samples` are sorted by time: a sliding maximum over them, O(gridpoints + samples).
+fn lower_caps(times: &[f64], samples: &[(f64, f64)], w: f64, dt: f64, c: &mut [f64]) {
+    // Indices of samples in the current range, their factors decreasing.
+    let mut window = std::collections::VecDeque::new();
+    let mut next = 0;
+    for (&ti, ci) in times.iter().zip(c.iter_mut()) {
+        while next < samples.len() && samples[next].0 - w - dt <= ti {
+            while window
+                .back()
+                .is_some_and(|&b: &usize| samples[b].1 <= samples[next].1)
+            {
+                window.pop_back();
             }
-            *ci = ci.min(TARGET / rk);
+            window.push_back(next);
+            next += 1;
+        }
+        while window.front().is_some_and(|&f| samples[f].0 + dt < ti) {
+            window.pop_front();
+        }
+        if let Some(&f) = window.front() {
+            if samples[f].1 > TARGET {
+                *ci = ci.min(TARGET / samples[f].1);
+            }
         }
     }
-    if !any {
+}
+
+/// Lowers the path velocities of `profile` where the sampled factors `r` (pairs of a time of
+/// the law filtered over `w` and the factor there, sorted by time; `dt` their spacing) or the
+/// certified one `worst` exceed 1, then restores consistency; `None` when nothing exceeds.
+fn lowered(
+    profile: &Profile,
+    rows: &Rows,
+    r: &[(f64, f64)],
+    worst: Option<(f64, f64)>,
+    w: f64,
+    dt: f64,
+) -> Option<Vec<f64>> {
+    let (s, times) = (profile.gridpoints(), profile.times());
+    if r.iter().chain(&worst).all(|&(_, rk)| rk <= TARGET) {
         return None;
+    }
+    let mut c = vec![1.0_f64; s.len()];
+    lower_caps(times, r, w, dt, &mut c);
+    if let Some(extra) = worst {
+        lower_caps(times, &[extra], w, dt, &mut c);
     }
     let mut x: Vec<f64> = profile
         .velocities()
@@ -359,6 +387,90 @@ fn lowered(profile: &Profile, rows: &Rows, r: &[f64], w: f64) -> Option<Vec<f64>
         .collect();
     rows.make_consistent(s, &mut x);
     Some(x.iter().map(|x| x.max(0.0).sqrt()).collect())
+}
+
+/// The best certified result found by [`limit_jerk_local`] so far, with its report.
+struct Best<P: Path> {
+    traj: JerkLimited<P>,
+    report: LocalReport,
+}
+
+/// What one window multiple needs: the path, its rows and sampler, the limits and settings.
+struct Context<'a, P: Path> {
+    path: &'a P,
+    limits: &'a Limits,
+    rows: &'a Rows,
+    sampler: Sampler<'a, P>,
+    /// Samples per scoring.
+    m: usize,
+    /// Fallback window (the filter's).
+    w0: f64,
+    rounds: usize,
+    rate: f64,
+}
+
+impl<P: Path + Clone> Context<'_, P> {
+    /// Rounds of local slow-down with the window `f` times the budget-1 window of the current
+    /// law, starting from `profile`; certified results shorter than `best` replace it.
+    fn iterate(&mut self, profile: &Profile, f: f64, best: &mut Best<P>) -> Result<()> {
+        let mut current = profile.clone();
+        let mut own_best = f64::INFINITY;
+        // Rounds since this window's best last improved.
+        let mut stale = 0;
+        for round in 0..=self.rounds {
+            let w = f * filter_window(&current, self.path, self.limits, 1.0)?.unwrap_or(self.w0);
+            let law = FastLaw::new(&current, w);
+            let factors = self.sampler.profile(&law, self.m);
+            let big_t = law.duration();
+            let dt = big_t / self.m as f64;
+            let r: Vec<(f64, f64)> = factors
+                .iter()
+                .enumerate()
+                .map(|(k, &rk)| (big_t * k as f64 / self.m as f64, rk))
+                .collect();
+            let mut worst = None;
+            stale += 1;
+            // The sampled duration is a lower bound of the certified one: certify only a
+            // law that can win.
+            let sampled = factors.iter().fold(0.0_f64, |a, &b| a.max(b)) * big_t;
+            if sampled < own_best.min(best.traj.duration()) {
+                let certified = filter_with_window(
+                    self.path.clone(),
+                    current.clone(),
+                    self.limits,
+                    w,
+                    self.rate,
+                );
+                if let Ok((traj, b)) = certified {
+                    best.report.certified += 1;
+                    if traj.duration() < own_best {
+                        own_best = traj.duration();
+                        stale = 0;
+                    }
+                    if traj.duration() < best.traj.duration() {
+                        best.report.round = Some(round);
+                        best.report.window = w;
+                        best.report.factor = b.factor;
+                        best.report.duration = traj.duration();
+                        best.traj = traj;
+                    }
+                    // The certified bound's worst instant, which samples may miss.
+                    worst = Some((b.at.0, b.factor));
+                }
+            }
+            if round == self.rounds || stale > 2 {
+                break;
+            }
+            let Some(sd) = lowered(&current, self.rows, &r, worst, w, dt) else {
+                break;
+            };
+            match Profile::new(current.gridpoints(), &sd) {
+                Ok(p) => current = p,
+                Err(_) => break,
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Bounds the jerk of a rest-to-rest TOPP-RA result (`path` timed by `profile`) like
@@ -382,59 +494,39 @@ pub fn limit_jerk_local<P: Path + Clone>(
         }
     })?;
     let raw_duration = profile.duration();
-    let (mut best, bound) = filter_with_window(path.clone(), profile.clone(), limits, w0, rate)?;
-    let mut report = LocalReport {
-        filter_duration: best.duration(),
-        duration: best.duration(),
-        raw_duration,
-        round: None,
-        window: w0,
-        factor: bound.factor,
-        certified: 1,
+    let (traj, bound) = filter_with_window(path.clone(), profile.clone(), limits, w0, rate)?;
+    let mut best = Best {
+        report: LocalReport {
+            filter_duration: traj.duration(),
+            duration: traj.duration(),
+            raw_duration,
+            round: None,
+            window: w0,
+            factor: bound.factor,
+            certified: 1,
+        },
+        traj,
     };
     let rows = Rows::new(&path, profile.gridpoints(), limits);
-    let mut sampler = Sampler::new(&path, limits);
-    // Samples per scoring: per TOPP-RA interval, within the per-round budget.
+    // Samples per scoring: per TOPP-RA interval, within the per-round budget shared by the
+    // window multiples.
     let m = (options.samples_per_interval.max(1) * profile.gridpoints().len() + 16)
         .min(options.samples_per_round / options.windows.len().max(1))
         .max(16);
-    let mut current = profile;
-    // Rounds since the best result last improved.
-    let mut stale = 0;
-    for round in 0..=options.rounds {
-        let w1 = filter_window(&current, &path, limits, 1.0)?.unwrap_or(w0);
-        let mut pick: Option<(f64, f64, Vec<f64>)> = None;
-        for &f in &options.windows {
-            let (d, r) = score(&mut sampler, &current, w1 * f, m)?;
-            if pick.as_ref().is_none_or(|p| d < p.0) {
-                pick = Some((d, w1 * f, r));
-            }
-        }
-        let Some((_, w, r)) = pick else { break };
-        if let Ok((traj, b)) = filter_with_window(path.clone(), current.clone(), limits, w, rate) {
-            report.certified += 1;
-            if traj.duration() < best.duration() {
-                stale = 0;
-                best = traj;
-                report.round = Some(round);
-                report.window = w;
-                report.factor = b.factor;
-                report.duration = best.duration();
-            }
-        }
-        stale += 1;
-        if round == options.rounds || stale > 2 {
-            break;
-        }
-        let Some(sd) = lowered(&current, &rows, &r, w) else {
-            break;
-        };
-        match Profile::new(current.gridpoints(), &sd) {
-            Ok(p) => current = p,
-            Err(_) => break,
-        }
+    let mut context = Context {
+        path: &path,
+        limits,
+        rows: &rows,
+        sampler: Sampler::new(&path, limits),
+        m,
+        w0,
+        rounds: options.rounds,
+        rate,
+    };
+    for &f in &options.windows {
+        context.iterate(&profile, f, &mut best)?;
     }
-    Ok((best, report))
+    Ok((best.traj, best.report))
 }
 
 #[cfg(test)]
@@ -480,6 +572,31 @@ mod tests {
                     assert!(a.abs() <= 2.0 * (1.0 + 1e-9), "interval {i}: {a}");
                 }
             }
+        }
+    }
+
+    #[test]
+    fn sliding_caps_equal_the_direct_definition() {
+        let mut rng = crate::rng::SplitMix64::new(5);
+        let mut times = vec![0.0];
+        for _ in 0..300 {
+            let last = *times.last().unwrap();
+            times.push(last + rng.uniform(1e-4, 0.02));
+        }
+        let (w, m) = (0.07, 500);
+        let big_t = times[300] + w;
+        let dt = big_t / m as f64;
+        let samples: Vec<(f64, f64)> = (0..=m)
+            .map(|k| (big_t * k as f64 / m as f64, rng.uniform(0.5, 1.5)))
+            .collect();
+        let mut c = vec![1.0; times.len()];
+        lower_caps(&times, &samples, w, dt, &mut c);
+        for (i, &ti) in times.iter().enumerate() {
+            let direct = samples
+                .iter()
+                .filter(|&&(t, r)| r > TARGET && t - w - dt <= ti && ti <= t + dt)
+                .fold(1.0_f64, |ci, &(_, r)| ci.min(TARGET / r));
+            assert_eq!(c[i], direct, "gridpoint {i}");
         }
     }
 }
