@@ -743,8 +743,9 @@ fn jerk_stage(
 /// The filter's overhead over raw TOPP-RA (relative duration) above which [`JerkStage::Auto`]
 /// runs the local slow-down ([`crate::topp::jerk_local`]) on a curved piece. Below it the
 /// local stage gains at most this much (measured: +0.04–0.12 % → +0.02–0.08 % on random Panda
-/// paths at the Panda's limits) for 2–100× the filter's cost; above it (low jerk limits,
-/// short segments: +10 % to +100 %) it halves the overhead or better.
+/// paths at the Panda's limits) for 10–80× the filter's cost (measured on std7 and the seeded
+/// curved paths); above it (low jerk limits, short segments: +10 % to +100 %) it halves the
+/// overhead or better.
 pub const LOCAL_ABOVE: f64 = 0.005;
 
 /// One rest-to-rest piece through the jerk stage `stage` (not [`JerkStage::Off`]): the exact
@@ -775,7 +776,7 @@ fn jerk_piece(
     let options = crate::topp::jerk::JerkOptions::default();
     let filtered = crate::topp::jerk::limit_jerk(path.clone(), law.clone(), limits, &options)?;
     // Not `Filter`, no torque rows, and the filter costs noticeably more than raw TOPP-RA: the
-    // filter with a local slow-down (never longer than the filter, but 2–100× its cost).
+    // filter with a local slow-down (never longer than the filter, but 10–80× its cost).
     let filtered = if lines_allowed && filtered.duration() > raw_duration * (1.0 + LOCAL_ABOVE) {
         crate::topp::jerk_local::limit_jerk_local(
             path,
