@@ -28,7 +28,7 @@
 //! attempt (step 2 for every synchronized DOF), and step 1 (before the search) and the
 //! single-DOF shortcut run to the end.
 //!
-//! Bounded mode (`calculate_bounded`, crate-private; the waypoint planner's search uses it to
+//! Bounded mode (`calculate` with `Search::Bounded`, crate-private; the waypoint planner's search uses it to
 //! rate candidate waypoint velocities): the same search, but it gives up instead of walking
 //! durations past the last candidate (an error), and it keeps the first success after a
 //! failure instead of bisecting below it. Its duration is therefore at least the full
@@ -151,39 +151,43 @@ fn solve(sc: &mut Scratch, spare: &mut Spare, out: &mut Profile, full: bool) -> 
 /// durations join the search (t lies in one of its blocked intervals).
 ///
 /// The generators call [`calculate_status`] (which also reports whether the calculation budget
-/// cut the search short); this is the entry point the other online-generation modules use.
-#[allow(dead_code)]
+/// cut the search short); this is the entry point the other online-generation modules use,
+/// in either [`Search`] mode.
 pub(crate) fn calculate(
     view: &InputView<'_>,
     delta_time: f64,
     out: &mut [DofTrajectory],
     scratch: &mut [Scratch],
     spare: &mut [Spare],
+    search: Search,
 ) -> Result<f64, OtgError> {
-    calculate_status(view, delta_time, out, scratch, spare).map(|c| c.duration)
+    match search {
+        Search::Full => calculate_status(view, delta_time, out, scratch, spare).map(|c| c.duration),
+        Search::Bounded => {
+            let mut interrupted = false;
+            calculate_profiles(
+                view,
+                delta_time,
+                out,
+                scratch,
+                spare,
+                &mut interrupted,
+                true,
+            )
+        }
+    }
 }
 
-/// [`calculate`] in bounded mode (see the module docs): no bisection and no durations past the
-/// last candidate. The duration is at least [`calculate`]'s (equal when that search needs
-/// neither); `Err` where [`calculate`] would have walked past the candidates. A cheap, never
-/// optimistic rating of an input, for searches that call the generator many times.
-pub(crate) fn calculate_bounded(
-    view: &InputView<'_>,
-    delta_time: f64,
-    out: &mut [DofTrajectory],
-    scratch: &mut [Scratch],
-    spare: &mut [Spare],
-) -> Result<f64, OtgError> {
-    let mut interrupted = false;
-    calculate_profiles(
-        view,
-        delta_time,
-        out,
-        scratch,
-        spare,
-        &mut interrupted,
-        true,
-    )
+/// How [`calculate`] searches for the common duration.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Search {
+    /// The full search, as the generators run it ([`calculate_status`]).
+    Full,
+    /// Bounded mode (see the module docs): no bisection and no durations past the last
+    /// candidate. The duration is at least the full search's (equal when that search needs
+    /// neither); `Err` where the full search would have walked past the candidates. A cheap,
+    /// never optimistic rating of an input, for searches that call the generator many times.
+    Bounded,
 }
 
 /// What a calculation reports besides its profiles.
@@ -196,7 +200,8 @@ pub(crate) struct Calculated {
     pub(crate) interrupted: bool,
 }
 
-/// [`calculate`], also reporting whether the calculation budget cut the search short.
+/// [`calculate`] in full mode, also reporting whether the calculation budget cut the search
+/// short.
 pub(crate) fn calculate_status(
     view: &InputView<'_>,
     delta_time: f64,
