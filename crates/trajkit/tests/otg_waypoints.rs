@@ -4,7 +4,8 @@
 //! velocity consistent with finite differences, every waypoint passed), never longer than
 //! stopping at every waypoint, and at most 0.8× that along bent joint-space paths (no joint
 //! reverses at a waypoint). Also per-section limits and minimum durations, bad input, and
-//! the JSON reader.
+//! the JSON reader; and (ignored, long) the bent paths next to `trajkit::plan`'s jerk-limited
+//! path parameterization through the same points.
 
 use trajkit::otg::{plan_waypoints, DynInputParameter, OtgError, WaypointTrajectory, Waypoints};
 use trajkit::rng::SplitMix64;
