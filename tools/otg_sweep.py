@@ -2,6 +2,7 @@
 
     python3 tools/otg_sweep.py --count 1000000 --seed 1 --out /tmp/sweep
     python3 tools/otg_sweep.py --count 20000 --seed 7 --categories general,phase
+    python3 tools/otg_sweep.py --count 20000 --seed 16 --around /tmp/sweep/failures.jsonl
 
 For every problem of every category (seeded, fresh seeds give fresh problems) it
   1. solves it with trajkit (`trajkit otg --batch --profiles`, the release binary, built
@@ -99,6 +100,36 @@ def general_states(r, p, big=False):
             vmax, vmin = min(vmax, cap), max(vmin, -cap)
         p["current_velocity"][i], p["current_acceleration"][i] = inside(r, vmax, vmin, amax, amin, j)
         p["target_velocity"][i], p["target_acceleration"][i] = inside(r, vmax, vmin, amax, amin, j)
+
+
+def perturbed(base, r):
+    """A copy of problem `base` with every number of its lists scaled: by 1 ± 1 % (70 %) or
+    by [0.5, 2] (30 %); signs, structure and options are kept."""
+    p = json.loads(json.dumps(base))
+    wide = r.random() < 0.3
+    for k, v in p.items():
+        if isinstance(v, list) and v and all(isinstance(x, (int, float)) for x in v):
+            p[k] = [x * (r.uniform(0.5, 2.0) if wide else 1 + r.uniform(-0.01, 0.01)) for x in v]
+    return p
+
+
+def use_around(args):
+    """`--around FILE`: the categories are those of FILE's problems, and each category's
+    problems are perturbed copies of FILE's problems of that category (round robin)."""
+    global gen
+    bases = {}
+    for line in open(args.around):
+        d = json.loads(line)
+        bases.setdefault(d["category"], []).append(d["problem"])
+    args.categories = ",".join(bases)
+    counter = {}
+
+    def around(cat, r, n):
+        k = counter.get(cat, 0)
+        counter[cat] = k + 1
+        b = bases[cat]
+        return perturbed(b[k % len(b)], r)
+    gen = around
 
 
 def gen(cat, r, n):
@@ -554,5 +585,11 @@ if __name__ == "__main__":
     ap.add_argument("--out", default="/tmp/otg-sweep")
     ap.add_argument("--fixture", default="", help="append regression problems to this JSONL file")
     ap.add_argument("--exe", default="", help="a trajkit binary to use instead of building one")
+    ap.add_argument("--around", default="",
+                    help="perturbed copies of the problems of this JSONL file (lines with 'category' and "
+                         "'problem', e.g. a failures.jsonl) instead of generated ones")
     ap.add_argument("--no-venv", action="store_true")
-    run(ap.parse_args())
+    args = ap.parse_args()
+    if args.around:
+        use_around(args)
+    run(args)

@@ -128,6 +128,20 @@ fn strict_fields() {
         let err = String::from_utf8_lossy(&o.stderr);
         assert!(err.contains(needle), "{problem}: {err}");
     }
+    // Every Ruckig field trajkit does not support is refused by name, never ignored.
+    for field in trajkit::otg::json::NOT_SUPPORTED_YET {
+        let problem = format!(
+            r#"{{"current_position":[0],"target_position":[1],"max_velocity":[1],"max_acceleration":[1],"max_jerk":[1],"intermediate_positions":[[0.5]],"{field}":[[0],[0]]}}"#
+        );
+        let o = trajkit_stdin(&["otg", "-"], &d, Some(problem.as_str()));
+        assert_eq!(o.status.code(), Some(2), "{problem}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(
+            err.contains(&format!("'{field}'")) && err.contains("does not support yet"),
+            "{field}: {err}"
+        );
+        assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    }
 }
 
 #[test]

@@ -309,3 +309,50 @@ fn a_start_that_cannot_stop_inside_is_refused() {
     let (_, _, hi, _) = tr.position_extrema(0).unwrap();
     assert!(hi <= 0.3, "{hi}");
 }
+
+/// Seeded 3-DOF synchronized problems (general states, some moving targets, some minimum
+/// durations): position limits that hold the unconstrained motion (at its extrema exactly,
+/// or a little outside) keep its time-optimal duration (to 1e-12 relative).
+#[test]
+fn limits_that_hold_the_unconstrained_motion_keep_its_duration() {
+    let otg = Otg::<3>::new(0.001);
+    let mut r = SplitMix64::new(16);
+    let mut n = 0;
+    for case in 0..2000 {
+        let mut inp = random3(&mut r);
+        if case % 3 == 0 {
+            inp.options.minimum_duration = Some(r.uniform(0.0, 4.0));
+        }
+        let Ok(free) = otg.calculate(&inp) else {
+            continue;
+        };
+        for i in 0..3 {
+            // (The extrema of the motion, and the target: the motion ends within round-off
+            // of it, on either side.)
+            let (lo, _, hi, _) = free.position_extrema(i).unwrap();
+            let (lo, hi) = (
+                lo.min(inp.target_position[i]),
+                hi.max(inp.target_position[i]),
+            );
+            let gap = if case % 2 == 0 {
+                0.0
+            } else {
+                r.uniform(0.0, 0.05)
+            };
+            inp.max_position[i] = hi + gap;
+            inp.min_position[i] = lo - gap;
+        }
+        let limited = otg
+            .calculate(&inp)
+            .unwrap_or_else(|e| panic!("case {case}: {e} {inp:?}"));
+        // (A DOF with position limits always runs step 1, which may reach the same duration
+        // by another path: equal to round-off.)
+        let (tl, tf) = (limited.duration(), free.duration());
+        assert!(
+            (tl - tf).abs() <= 1e-12 * tf,
+            "case {case}: {tl} vs {tf}; {inp:?}"
+        );
+        n += 1;
+    }
+    assert!(n > 1500, "{n}");
+}

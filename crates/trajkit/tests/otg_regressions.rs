@@ -53,3 +53,73 @@ fn sweep_reproducers_are_never_longer_than_ruckig() {
     }
     assert!(n >= 2);
 }
+
+/// The sweep's `tiny` reproducer (seed 27; Ruckig fails on it): start velocities of 1e-11 and
+/// below. Every profile starts exactly at the current state (a cruise whose velocity change
+/// is empty used to start at the root's cruise velocity, one rounding unit off), and arrives.
+const TINY: &str = r#"{"current_position": [0.6892180205667051, -0.44525440452824583, -2.676609343930745, -0.08190180392575819, -4.6012204929498255, -3.125139276929171, 2.243093580982297], "current_velocity": [-6.868998328512568e-18, -1.516775246529569e-14, -1.2820772635708145e-11, -9.344714826759825e-16, 0.0, -5.577993639330418e-21, 0.0], "current_acceleration": [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0], "target_position": [0.6892260775542052, -0.44525440416280254, -2.6766093439322254, -0.08190212303150793, -4.601220493529175, -3.125238725030447, 2.2430935807189374], "target_velocity": [-3.4154964324872824e-19, 3.1978687999586945e-20, 1.2904347167501373e-20, -2.337098626989166e-17, 0.0, -4.339143363550217e-15, 0.0], "target_acceleration": [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0], "max_velocity": [0.1376374730414331, 0.946196808512746, 2.8996070652786043, 0.14215794302933144, 0.20863207719157573, 1.3909659623597845, 2.38712644582448], "max_acceleration": [1.0590473280130064, 0.18523554751029842, 5.180818625633557, 2.956149519593196, 0.3665969980212782, 0.8167226057748759, 2.1359114954328757], "max_jerk": [0.1654743008746573, 51.74473495462341, 17.281225395440487, 13.09917410772685, 56.99277983273214, 3.092545222314402, 1.8504301051502199]}"#;
+
+#[test]
+fn tiny_start_velocities_start_exactly_at_the_current_state() {
+    let base: serde_json::Value = serde_json::from_str(TINY).unwrap();
+    let mut r = trajkit::rng::SplitMix64::new(27);
+    for case in 0..400 {
+        let mut v = base.clone();
+        if case > 0 {
+            // Perturbed copies: start velocities and displacements rescaled by 10^[-3, 3].
+            let n = v["current_velocity"].as_array().unwrap().len();
+            for i in 0..n {
+                let s = 10f64.powf(otg_common::uni(&mut r, -3.0, 3.0));
+                let v0 = v["current_velocity"][i].as_f64().unwrap();
+                v["current_velocity"][i] = (v0 * s).into();
+                let (p0, pf) = (
+                    v["current_position"][i].as_f64().unwrap(),
+                    v["target_position"][i].as_f64().unwrap(),
+                );
+                v["target_position"][i] = (p0 + (pf - p0) * s).into();
+            }
+        }
+        let p = parse_problem(&v.to_string(), "tiny", case + 1).unwrap();
+        let tr = calculate_dyn(&p.input, p.delta_time).unwrap_or_else(|e| panic!("{case}: {e}"));
+        for (i, d) in tr.dofs().iter().enumerate() {
+            let s = d.profile.start();
+            assert_eq!(s.p, p.input.current_position[i], "case {case} dof {i}");
+            assert_eq!(s.v, p.input.current_velocity[i], "case {case} dof {i}");
+            assert_eq!(s.a, p.input.current_acceleration[i], "case {case} dof {i}");
+            let e = d.profile.end();
+            // The contract for small motions: 1e-5 of the motion's scale (at least its
+            // displacement) plus 16 rounding units of the positions.
+            let (p0, pf) = (p.input.current_position[i], p.input.target_position[i]);
+            let (lo, _, hi, _) = d.profile.position_extrema();
+            let scale = (pf - p0).abs().max(hi - p0).max(p0 - lo);
+            let ulps = 16.0 * f64::EPSILON * p0.abs().max(pf.abs());
+            assert!(
+                (e.p - pf).abs() <= 1e-8f64.min(1e-5 * scale) + ulps,
+                "case {case} dof {i}: {} vs {}",
+                e.p,
+                p.input.target_position[i]
+            );
+        }
+    }
+}
+
+#[test]
+fn velocity_interface_synchronizes_past_a_blocked_interval_to_the_limiting_minimum() {
+    // The sweep's `velocity_interface` reproducer (the fixture's last line): DOF 0 cannot
+    // take any duration in (0.294 s, 2.259 s), DOF 2 none in (3.20 s, 8.28 s); the common
+    // duration is DOF 2's minimum, where Ruckig ends too (the search used to step over
+    // DOF 0's interval without its edge and land in DOF 2's).
+    let line = FIXTURE.lines().last().unwrap();
+    let v: serde_json::Value = serde_json::from_str(line).unwrap();
+    assert_eq!(v["category"], "velocity_interface");
+    let p = parse_problem(&v["problem"].to_string(), "regressions.jsonl", 1).unwrap();
+    let tr = calculate_dyn(&p.input, p.delta_time).unwrap();
+    let mut mins = vec![0.0; tr.dof()];
+    tr.independent_min_durations(&mut mins);
+    assert!(
+        (tr.duration() - mins[2]).abs() <= 1e-12 * mins[2],
+        "{} {mins:?}",
+        tr.duration()
+    );
+    assert!((tr.duration() - 2.403490215082938).abs() <= 1e-9);
+}

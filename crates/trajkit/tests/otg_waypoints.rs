@@ -4,7 +4,8 @@
 //! velocity consistent with finite differences, every waypoint passed), never longer than
 //! stopping at every waypoint, and at most 0.8× that along bent joint-space paths (no joint
 //! reverses at a waypoint). Also per-section limits and minimum durations, bad input, and
-//! the JSON reader.
+//! the JSON reader; and (ignored, long) the bent paths next to `trajkit::plan`'s jerk-limited
+//! path parameterization through the same points.
 
 use trajkit::otg::{plan_waypoints, DynInputParameter, OtgError, WaypointTrajectory, Waypoints};
 use trajkit::rng::SplitMix64;
@@ -361,4 +362,69 @@ fn json_problems_with_waypoints_plan_as_the_library() {
         a["section_durations"].as_array().unwrap().len(),
         wp.sections()
     );
+}
+
+/// The waypoint motion next to the default jerk-limited path parameterization
+/// (`trajkit::plan`: TOPP-RA along a natural cubic spline through the same points, then the
+/// jerk stage) on the seeded bent 7-DOF paths of the test above (same seed, same cases, same
+/// Panda velocity/acceleration/jerk limits, no position ranges). Prints the per-case ratio
+/// (waypoint motion / plan) and their distribution; long (60 plans), so ignored by default:
+/// `cargo test --release -p trajkit --test otg_waypoints -- --ignored --nocapture`.
+#[test]
+#[ignore]
+fn bent_paths_next_to_the_path_parameterization() {
+    let lim = Limits::preset("panda").unwrap();
+    let joints = (0..N)
+        .map(|i| {
+            let mut j = lim.joint(i).clone();
+            (j.position_min, j.position_max) = (f64::NEG_INFINITY, f64::INFINITY);
+            j
+        })
+        .collect();
+    let lim = Limits::new(joints).unwrap();
+    let mut r = SplitMix64::new(0x5eed_0016);
+    let (mut vs_plan, mut vs_stop) = (Vec::new(), Vec::new());
+    for case in 0..60 {
+        let (inp, wp) = bent_case(&mut r);
+        let tr = plan_waypoints(&inp, &wp, 0.001).unwrap();
+        let mut pts = inp.current_position.clone();
+        for w in &wp.intermediate_positions {
+            pts.extend_from_slice(w);
+        }
+        pts.extend_from_slice(&inp.target_position);
+        let path = trajkit::io::Waypoints::new(pts, N, Vec::new()).unwrap();
+        let plan = trajkit::plan(&path, &lim, &trajkit::PlanOptions::default()).unwrap();
+        let (tw, tp) = (tr.duration(), plan.trajectory.duration());
+        let stop = tr.stop_at_every_waypoint_duration();
+        eprintln!(
+            "case {case:2} ({} waypoints): waypoints {tw:.4} s, plan {tp:.4} s, ratio {:.3}; \
+             stop-at-every {stop:.4} s (plan/stop {:.3})",
+            wp.sections() - 1,
+            tw / tp,
+            tp / stop
+        );
+        vs_plan.push(tw / tp);
+        vs_stop.push(tp / stop);
+    }
+    let q = |x: &[f64], f: f64| {
+        let mut y = x.to_vec();
+        y.sort_by(f64::total_cmp);
+        y[((y.len() - 1) as f64 * f).round() as usize]
+    };
+    eprintln!(
+        "waypoints / plan: min {:.3}, quartiles {:.3} {:.3} {:.3}, max {:.3}",
+        q(&vs_plan, 0.0),
+        q(&vs_plan, 0.25),
+        q(&vs_plan, 0.5),
+        q(&vs_plan, 0.75),
+        q(&vs_plan, 1.0)
+    );
+    eprintln!(
+        "plan / stop-at-every: median {:.3}, max {:.3}",
+        q(&vs_stop, 0.5),
+        q(&vs_stop, 1.0)
+    );
+    // Both are valid motions through the same points; the measured distribution is the
+    // result (BENCHMARKS.md). Sanity only: neither is absurdly off the other.
+    assert!(vs_plan.iter().all(|&x| x > 0.2 && x < 5.0));
 }

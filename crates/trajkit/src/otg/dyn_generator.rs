@@ -174,10 +174,10 @@ impl DynOtg {
             out.new_calculation = true;
             out.was_calculation_interrupted = self.traj.interrupted;
         }
-        self.time += self.delta_time;
         out.fit(self.traj.dof());
-        self.traj.at_time_with_jerk(
-            self.time,
+        let r = self.traj.step(
+            &mut self.time,
+            self.delta_time,
             &mut out.new_position,
             &mut out.new_velocity,
             &mut out.new_acceleration,
@@ -186,11 +186,7 @@ impl DynOtg {
         out.time = self.time;
         out.duration = self.traj.duration;
         out.pass_to_input(&mut self.last);
-        Ok(if self.time >= self.traj.duration {
-            OtgResult::Finished
-        } else {
-            OtgResult::Working
-        })
+        Ok(r)
     }
 
     /// The trajectory of the last `update` (empty of motion before the first).

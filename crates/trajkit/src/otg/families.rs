@@ -212,8 +212,7 @@ impl TwoChanges<'_> {
         for s in &segs[..3] {
             pr.push(s.0.max(0.0), s.1);
         }
-        pr.snap(vc, 0.0);
-        pr.push_with(tau, vc, 0.0, 0.0);
+        pr.push_cruise(tau, vc);
         for s in &segs[3..] {
             pr.push(s.0.max(0.0), s.1);
         }

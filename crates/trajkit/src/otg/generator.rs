@@ -199,9 +199,9 @@ impl<const DOF: usize> Otg<DOF> {
             self.time = 0.0;
             out.new_calculation = true;
         }
-        self.time += self.delta_time;
-        self.traj.at_time_with_jerk(
-            self.time,
+        let r = self.traj.step(
+            &mut self.time,
+            self.delta_time,
             &mut out.new_position,
             &mut out.new_velocity,
             &mut out.new_acceleration,
@@ -212,11 +212,7 @@ impl<const DOF: usize> Otg<DOF> {
         if let Some(last) = self.last.as_mut() {
             out.pass_to_input(last);
         }
-        Ok(if self.time >= self.traj.duration {
-            OtgResult::Finished
-        } else {
-            OtgResult::Working
-        })
+        Ok(r)
     }
 
     /// The trajectory of the last `update`.

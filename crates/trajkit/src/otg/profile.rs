@@ -231,6 +231,20 @@ impl Profile {
         self.a[self.n] = a;
     }
 
+    /// Appends a cruise of `tau` seconds at `v` after the velocity change pushed so far (its
+    /// end snapped to (v, 0) first, see [`Profile::snap`]). With no segment yet and the start
+    /// at zero acceleration (the change was empty: `v` is the start velocity up to the
+    /// round-off of the root that gave it), the cruise continues from the start velocity
+    /// itself, so that the profile begins exactly at its start state.
+    pub(crate) fn push_cruise(&mut self, tau: f64, v: f64) -> bool {
+        if self.n == 0 && self.a[0] == 0.0 {
+            let v0 = self.v[0];
+            return self.push_with(tau, v0, 0.0, 0.0);
+        }
+        self.snap(v, 0.0);
+        self.push_with(tau, v, 0.0, 0.0)
+    }
+
     /// Marks the segments pushed so far as the brake pre-profile.
     pub(crate) fn mark_brake(&mut self) {
         self.brake = self.n;

@@ -261,8 +261,7 @@ fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool, pr: &mut Pro
         a: 0.0,
     });
     push_change(pr, order, &c1, 0.0);
-    pr.snap(vc, 0.0);
-    pr.push_with(tau, vc, 0.0, 0.0);
+    pr.push_cruise(tau, vc);
     push_change(pr, order, &c2, vc);
     pr.set_final(0.0, 0.0);
     ok(pr)

@@ -28,7 +28,7 @@
 //! attempt (step 2 for every synchronized DOF), and step 1 (before the search) and the
 //! single-DOF shortcut run to the end.
 //!
-//! Bounded mode (`calculate_bounded`, crate-private; the waypoint planner's search uses it to
+//! Bounded mode (`calculate` with `Search::Bounded`, crate-private; the waypoint planner's search uses it to
 //! rate candidate waypoint velocities): the same search, but it gives up instead of walking
 //! durations past the last candidate (an error), and it keeps the first success after a
 //! failure instead of bisecting below it. Its duration is therefore at least the full
@@ -151,39 +151,34 @@ fn solve(sc: &mut Scratch, spare: &mut Spare, out: &mut Profile, full: bool) -> 
 /// durations join the search (t lies in one of its blocked intervals).
 ///
 /// The generators call [`calculate_status`] (which also reports whether the calculation budget
-/// cut the search short); this is the entry point the other online-generation modules use.
-#[allow(dead_code)]
+/// cut the search short); this is the entry point the other online-generation modules use,
+/// in either [`Search`] mode.
 pub(crate) fn calculate(
     view: &InputView<'_>,
     delta_time: f64,
     out: &mut [DofTrajectory],
     scratch: &mut [Scratch],
     spare: &mut [Spare],
+    search: Search,
 ) -> Result<f64, OtgError> {
-    calculate_status(view, delta_time, out, scratch, spare).map(|c| c.duration)
+    match search {
+        Search::Full => calculate_status(view, delta_time, out, scratch, spare).map(|c| c.duration),
+        Search::Bounded => {
+            calculate_profiles(view, delta_time, out, scratch, spare, search).map(|c| c.duration)
+        }
+    }
 }
 
-/// [`calculate`] in bounded mode (see the module docs): no bisection and no durations past the
-/// last candidate. The duration is at least [`calculate`]'s (equal when that search needs
-/// neither); `Err` where [`calculate`] would have walked past the candidates. A cheap, never
-/// optimistic rating of an input, for searches that call the generator many times.
-pub(crate) fn calculate_bounded(
-    view: &InputView<'_>,
-    delta_time: f64,
-    out: &mut [DofTrajectory],
-    scratch: &mut [Scratch],
-    spare: &mut [Spare],
-) -> Result<f64, OtgError> {
-    let mut interrupted = false;
-    calculate_profiles(
-        view,
-        delta_time,
-        out,
-        scratch,
-        spare,
-        &mut interrupted,
-        true,
-    )
+/// How [`calculate`] searches for the common duration.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Search {
+    /// The full search, as the generators run it ([`calculate_status`]).
+    Full,
+    /// Bounded mode (see the module docs): no bisection and no durations past the last
+    /// candidate. The duration is at least the full search's (equal when that search needs
+    /// neither); `Err` where the full search would have walked past the candidates. A cheap,
+    /// never optimistic rating of an input, for searches that call the generator many times.
+    Bounded,
 }
 
 /// What a calculation reports besides its profiles.
@@ -196,7 +191,8 @@ pub(crate) struct Calculated {
     pub(crate) interrupted: bool,
 }
 
-/// [`calculate`], also reporting whether the calculation budget cut the search short.
+/// [`calculate`] in full mode, also reporting whether the calculation budget cut the search
+/// short.
 pub(crate) fn calculate_status(
     view: &InputView<'_>,
     delta_time: f64,
@@ -205,17 +201,9 @@ pub(crate) fn calculate_status(
     spare: &mut [Spare],
 ) -> Result<Calculated, OtgError> {
     let n = view.dof();
-    let mut interrupted = false;
-    let d = calculate_profiles(
-        view,
-        delta_time,
-        out,
-        scratch,
-        spare,
-        &mut interrupted,
-        false,
-    )
-    .map_err(|e| limits_error(e, &scratch[..n.min(scratch.len())], view))?;
+    let c = calculate_profiles(view, delta_time, out, scratch, spare, Search::Full)
+        .map_err(|e| limits_error(e, &scratch[..n.min(scratch.len())], view))?;
+    let d = c.duration;
     for i in 0..n {
         if !view.enabled[i] {
             continue;
@@ -231,10 +219,7 @@ pub(crate) fn calculate_status(
         out[i].min_duration = m;
         out[i].problem = p;
     }
-    Ok(Calculated {
-        duration: d,
-        interrupted,
-    })
+    Ok(c)
 }
 
 /// A failure caused by a degree of freedom with a zero limit is reported as such (Ruckig's
@@ -267,18 +252,20 @@ fn limits_error(e: OtgError, scratch: &[Scratch], view: &InputView<'_>) -> OtgEr
 
 /// [`calculate`] without the error translation: validation, the single-DOF shortcut, step 1
 /// where it is needed ([`Planner::prepare`]), the straight-line mode, the DOFs that are not
-/// synchronized, and the search for the common duration ([`Planner::synchronize`]). Sets
-/// `interrupted` when the budget cut the search short; `bounded` selects the bounded mode
-/// (module docs).
+/// synchronized, and the search for the common duration ([`Planner::synchronize`]) in mode
+/// `search`.
 fn calculate_profiles(
     view: &InputView<'_>,
     delta_time: f64,
     out: &mut [DofTrajectory],
     scratch: &mut [Scratch],
     spare: &mut [Spare],
-    interrupted: &mut bool,
-    bounded: bool,
-) -> Result<f64, OtgError> {
+    search: Search,
+) -> Result<Calculated, OtgError> {
+    let done = |duration: f64| Calculated {
+        duration,
+        interrupted: false,
+    };
     view.check_shape(delta_time)?;
     let n = view.dof();
     if out.len() < n || scratch.len() < n || spare.len() < n {
@@ -304,7 +291,7 @@ fn calculate_profiles(
         if !solve(sc, &mut spare[0], &mut out[0].profile, false) {
             return Err(OtgError::CalculationFailed { dof: 0 });
         }
-        return Ok(sc.t_min);
+        return Ok(done(sc.t_min));
     }
     let mut p = Planner {
         view,
@@ -317,21 +304,23 @@ fn calculate_profiles(
         min_dur: opts.minimum_duration.unwrap_or(0.0),
         budget: opts.interrupt_calculation_duration.map(Budget::start),
         interrupted: false,
-        bounded,
+        bounded: search == Search::Bounded,
     };
     let (t_lead, lazy) = p.prepare()?;
     if opts.synchronization == Synchronization::StraightLine
         && straight_line(view, delta_time, p.out, p.scratch)?
     {
-        return Ok(duration_of(&p.out[..n]));
+        return Ok(done(duration_of(&p.out[..n])));
     }
     p.finish_unsynchronized()?;
     if p.scratch[..n].iter().any(|s| s.sync) {
-        let r = p.synchronize(t_lead, lazy);
-        *interrupted = p.interrupted;
-        return r;
+        let duration = p.synchronize(t_lead, lazy)?;
+        return Ok(Calculated {
+            duration,
+            interrupted: p.interrupted,
+        });
     }
-    Ok(duration_of(&p.out[..n]))
+    Ok(done(duration_of(&p.out[..n])))
 }
 
 /// The state of one synchronized calculation.

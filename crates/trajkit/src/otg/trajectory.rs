@@ -11,6 +11,7 @@
 
 use super::problem::Dof1;
 use super::profile::Profile;
+use super::result::OtgResult;
 use super::step1::step1;
 use crate::{Order, Trajectory};
 
@@ -129,12 +130,7 @@ impl<S: AsRef<[DofTrajectory]>> OtgTrajectory<S> {
     /// `dof()` long; extra entries are left alone). After the end: constant-acceleration
     /// extrapolation (see the module documentation).
     pub fn at_time(&self, t: f64, p: &mut [f64], v: &mut [f64], a: &mut [f64]) {
-        for (i, d) in self.dofs.as_ref().iter().enumerate() {
-            let (pi, vi, ai, _) = d.profile.state_at(t);
-            p[i] = pi;
-            v[i] = vi;
-            a[i] = ai;
-        }
+        self.states_at(t, p, v, a, None);
     }
 
     /// Like [`OtgTrajectory::at_time`], also writing the jerk.
@@ -146,12 +142,48 @@ impl<S: AsRef<[DofTrajectory]>> OtgTrajectory<S> {
         a: &mut [f64],
         j: &mut [f64],
     ) {
+        self.states_at(t, p, v, a, Some(j));
+    }
+
+    /// [`OtgTrajectory::at_time`], with the jerk when `j` is given.
+    #[inline]
+    fn states_at(
+        &self,
+        t: f64,
+        p: &mut [f64],
+        v: &mut [f64],
+        a: &mut [f64],
+        mut j: Option<&mut [f64]>,
+    ) {
         for (i, d) in self.dofs.as_ref().iter().enumerate() {
             let (pi, vi, ai, ji) = d.profile.state_at(t);
             p[i] = pi;
             v[i] = vi;
             a[i] = ai;
-            j[i] = ji;
+            if let Some(j) = j.as_deref_mut() {
+                j[i] = ji;
+            }
+        }
+    }
+
+    /// One control cycle along the trajectory (the common step of both generators'
+    /// `update`): advances `time` by `dt`, writes the state there, and says whether the
+    /// motion has finished (the new time is at or past the end).
+    pub(crate) fn step(
+        &self,
+        time: &mut f64,
+        dt: f64,
+        p: &mut [f64],
+        v: &mut [f64],
+        a: &mut [f64],
+        j: &mut [f64],
+    ) -> OtgResult {
+        *time += dt;
+        self.at_time_with_jerk(*time, p, v, a, j);
+        if *time >= self.duration {
+            OtgResult::Finished
+        } else {
+            OtgResult::Working
         }
     }
 

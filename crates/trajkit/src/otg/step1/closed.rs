@@ -83,8 +83,7 @@ pub(super) fn vel_family(q: &Dof1, mirror: bool, col: &mut Collector<'_>) -> Opt
                     a: a0,
                 });
                 push_change(pr, ProfileOrder::Third, &c1, v0);
-                pr.snap(q.vmax, 0.0);
-                pr.push_with(tau, q.vmax, 0.0, 0.0);
+                pr.push_cruise(tau, q.vmax);
                 push_change(pr, ProfileOrder::Third, &c2, q.vmax);
                 if mirror {
                     pr.mirror();

@@ -76,7 +76,7 @@ use super::brake::brake;
 use super::families::two_changes;
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{Profile, State1};
-use super::velocity_change::{fastest, kink, push_change};
+use super::velocity_change::{each_change3, fastest, kink, push_change};
 use super::zero::{coast_into, coasts};
 use closed::{closed_families, vel_family};
 use fallback::{cruise_family, peak_family, third_families};
@@ -305,6 +305,24 @@ fn solve_main(dof: &Dof1, col: &mut Collector<'_>) {
             let mut pr = Profile::new(start);
             pr.set_final(dof.vf, 0.0);
             col.offer(&pr);
+        }
+        (ProfileOrder::Third, ControlInterface::Velocity) => {
+            // Every two-ramp change: the fastest is the minimum, the others bound the
+            // durations this DOF cannot take (blocked intervals), for synchronization.
+            each_change3(
+                dof.v0,
+                dof.a0,
+                dof.vf,
+                dof.af,
+                dof.jmax,
+                dof.amax,
+                dof.amin,
+                |c| {
+                    let mut pr = Profile::new(start);
+                    push_change(&mut pr, ProfileOrder::Third, &c, dof.v0);
+                    col.offer(&pr);
+                },
+            );
         }
         (order, ControlInterface::Velocity) => {
             if let Some(c) = fastest(

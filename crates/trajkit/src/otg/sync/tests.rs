@@ -266,8 +266,22 @@ fn the_bounded_mode_is_never_shorter_and_its_profiles_are_valid() {
         let mut out = [DofTrajectory::default(); 3];
         let mut scratch = [Scratch::default(); 3];
         let mut spare: [Spare; 3] = [None, None, None];
-        let full = calculate(&view, 0.001, &mut out, &mut scratch, &mut spare);
-        let Ok(tb) = calculate_bounded(&view, 0.001, &mut out, &mut scratch, &mut spare) else {
+        let full = calculate(
+            &view,
+            0.001,
+            &mut out,
+            &mut scratch,
+            &mut spare,
+            Search::Full,
+        );
+        let Ok(tb) = calculate(
+            &view,
+            0.001,
+            &mut out,
+            &mut scratch,
+            &mut spare,
+            Search::Bounded,
+        ) else {
             gave_up += 1;
             continue;
         };

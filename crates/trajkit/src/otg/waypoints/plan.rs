@@ -4,9 +4,9 @@
 //!
 //! Every evaluation solves whole sections with the generator into buffers the planner
 //! reuses: the search rates candidate velocities with the synchronization's bounded mode
-//! (`sync::calculate_bounded`: no bisection, no durations past the last candidate, never
-//! shorter than the full solve), the reference (stopping at every waypoint) and the final
-//! trajectory are full solves (`sync::calculate`), each chosen section once more into its
+//! (`sync::calculate` with `Search::Bounded`: no bisection, no durations past the last
+//! candidate, never shorter than the full solve), the reference (stopping at every waypoint)
+//! and the final trajectory are full solves (`Search::Full`), each chosen section once more into its
 //! own storage. A full solve is never longer than the bounded rating the search kept (to
 //! round-off), so the result is never longer than the search believed; the final check
 //! against stopping at every waypoint uses the built durations.
@@ -15,7 +15,7 @@ use super::trajectory::WaypointTrajectory;
 use super::{section_inputs, Waypoints};
 use crate::otg::input::DynInputParameter;
 use crate::otg::result::OtgError;
-use crate::otg::sync::{calculate, calculate_bounded, Scratch, Spare};
+use crate::otg::sync::{calculate, Scratch, Search, Spare};
 use crate::otg::trajectory::{DofTrajectory, OtgTrajectory};
 
 /// Golden-section evaluations per waypoint in the first sweep (whole scale range) and in the
@@ -105,26 +105,25 @@ impl<'a> Planner<'a> {
 
     /// Duration of section `s` with the current waypoint velocities.
     fn solve(&mut self, s: usize) -> Result<f64, OtgError> {
+        self.run(s, Search::Full)
+    }
+
+    /// The search's rating of section `s` with the current waypoint velocities: its duration
+    /// from the bounded synchronization (at least the full solve's), ∞ when that cannot plan it.
+    fn rate(&mut self, s: usize) -> f64 {
+        self.run(s, Search::Bounded).unwrap_or(f64::INFINITY)
+    }
+
+    /// Section `s` through the synchronization in mode `search`.
+    fn run(&mut self, s: usize, search: Search) -> Result<f64, OtgError> {
         calculate(
             &self.secs[s].view(),
             self.dt,
             &mut self.dofs,
             &mut self.scratch,
             &mut self.spare,
+            search,
         )
-    }
-
-    /// The search's rating of section `s` with the current waypoint velocities: its duration
-    /// from the bounded synchronization (at least the full solve's), ∞ when that cannot plan it.
-    fn rate(&mut self, s: usize) -> f64 {
-        calculate_bounded(
-            &self.secs[s].view(),
-            self.dt,
-            &mut self.dofs,
-            &mut self.scratch,
-            &mut self.spare,
-        )
-        .unwrap_or(f64::INFINITY)
     }
 
     /// The two sections around waypoint `w` at scale `s`: their ratings ([`Planner::rate`]).
