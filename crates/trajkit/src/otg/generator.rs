@@ -8,7 +8,7 @@
 
 use super::input::{DynInputParameter, InputParameter};
 use super::result::{OtgError, OtgResult};
-use super::sync::{calculate_status, Scratch, Spare};
+use super::sync::{calculate_single, calculate_status, Scratch, Spare};
 use super::trajectory::{DofTrajectory, DynTrajectory, FixedTrajectory, OtgTrajectory};
 use std::time::Instant;
 
@@ -148,10 +148,18 @@ impl<const DOF: usize> Otg<DOF> {
         input: &InputParameter<DOF>,
         traj: &mut FixedTrajectory<DOF>,
     ) -> Result<(), OtgError> {
+        let view = input.view();
+        if let [one] = &mut traj.dofs[..] {
+            if let Some(r) = calculate_single(&view, self.delta_time, one) {
+                traj.duration = r?;
+                traj.interrupted = false;
+                return Ok(());
+            }
+        }
         let mut scratch = [Scratch::default(); DOF];
         let mut spare: [Spare; DOF] = [None; DOF];
         let c = calculate_status(
-            &input.view(),
+            &view,
             self.delta_time,
             &mut traj.dofs,
             &mut scratch,
@@ -242,4 +250,88 @@ pub fn calculate_dyn(
         duration: c.duration,
         interrupted: c.interrupted,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::input::{ControlInterface, DurationDiscretization};
+    use super::*;
+    use crate::rng::SplitMix64;
+
+    /// The general calculation of `input`, without the single-DOF shortcut of `calculate_into`.
+    fn general(input: &InputParameter<1>) -> Result<FixedTrajectory<1>, OtgError> {
+        let mut traj = FixedTrajectory::<1>::default();
+        let c = calculate_status(
+            &input.view(),
+            0.001,
+            &mut traj.dofs,
+            &mut [Scratch::default()],
+            &mut [None],
+        )?;
+        traj.duration = c.duration;
+        traj.interrupted = c.interrupted;
+        Ok(traj)
+    }
+
+    #[test]
+    fn single_dof_shortcut_matches_the_general_calculation() {
+        // Seeded random one-DOF inputs (rest to rest, general states, position limits, zero
+        // and asymmetric limits, the velocity interface, invalid values, a disabled DOF, a
+        // minimum duration, discrete durations, a budget): the same trajectory bit for bit,
+        // or the same error.
+        let otg = Otg::<1>::new(0.001);
+        let mut r = SplitMix64::new(16);
+        let mut traj = FixedTrajectory::<1>::default();
+        let (mut ok, mut err) = (0, 0);
+        for k in 0..4000 {
+            let mut p = InputParameter::<1>::new();
+            p.current_position = [r.uniform(-2.0, 2.0)];
+            p.target_position = [r.uniform(-2.0, 2.0)];
+            p.max_velocity = [r.uniform(0.1, 3.0)];
+            p.max_acceleration = [r.uniform(0.5, 15.0)];
+            p.max_jerk = [r.uniform(1.0, 8000.0)];
+            if k % 2 == 1 {
+                p.current_velocity = [r.uniform(-0.5, 0.5) * p.max_velocity[0]];
+                p.current_acceleration = [r.uniform(-0.5, 0.5) * p.max_acceleration[0]];
+                p.target_velocity = [r.uniform(-0.5, 0.5) * p.max_velocity[0]];
+            }
+            match r.below(12) {
+                0 => {
+                    p.max_position = [p.current_position[0].max(p.target_position[0]) + 0.01];
+                    p.min_position = [p.current_position[0].min(p.target_position[0]) - 0.01];
+                }
+                1 => p.max_jerk = [0.0],
+                2 => {
+                    p.min_velocity = Some([-r.uniform(0.1, 3.0)]);
+                    p.min_acceleration = Some([-r.uniform(0.5, 15.0)]);
+                }
+                3 => p.options.control_interface = ControlInterface::Velocity,
+                4 => p.max_velocity = [[-1.0, f64::NAN, f64::INFINITY][k % 3]],
+                5 => p.enabled = [false],
+                6 => p.options.minimum_duration = Some(r.uniform(0.0, 4.0)),
+                7 => p.options.duration_discretization = DurationDiscretization::Discrete,
+                8 => p.options.interrupt_calculation_duration = Some([1e6, -1.0][k % 2]),
+                9 => p.target_position = p.current_position,
+                _ => {}
+            }
+            let fast = otg.calculate_into(&p, &mut traj).map(|()| traj.clone());
+            match (fast, general(&p)) {
+                (Ok(a), Ok(b)) => {
+                    ok += 1;
+                    assert_eq!(a.duration.to_bits(), b.duration.to_bits(), "{p:?}");
+                    assert_eq!(a.interrupted, b.interrupted);
+                    let (a, b) = (&a.dofs[0], &b.dofs[0]);
+                    assert_eq!(a.profile, b.profile, "{p:?}");
+                    assert_eq!(a.min_duration.to_bits(), b.min_duration.to_bits());
+                    assert_eq!(a.problem, b.problem);
+                }
+                (Err(a), Err(b)) => {
+                    err += 1;
+                    assert_eq!(format!("{a:?}"), format!("{b:?}"), "{p:?}");
+                }
+                (a, b) => panic!("{p:?}: {a:?} vs {b:?}"),
+            }
+        }
+        assert!(ok > 3000 && err > 100, "{ok} {err}");
+    }
 }
