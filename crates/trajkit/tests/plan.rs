@@ -15,16 +15,7 @@ mod topp_common;
 
 /// The 7-waypoint standard problem (`toppra_panda.json`, `standard_7wp_natural_N1000`).
 fn std7() -> Waypoints {
-    let prob = topp_common::fixtures()
-        .into_iter()
-        .find(|p| p["name"] == "standard_7wp_natural_N1000")
-        .unwrap();
-    let rows: Vec<f64> = prob["waypoints"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .flat_map(topp_common::floats)
-        .collect();
+    let rows = topp_common::fixture_waypoints("standard_7wp_natural_N1000");
     Waypoints::new(rows, 7, vec![]).unwrap()
 }
 

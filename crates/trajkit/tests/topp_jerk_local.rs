@@ -220,16 +220,7 @@ fn median_costs<P: Path + Clone>(
 fn report_costs() {
     println!("| path | jerk ×Panda | filter ms | local ms | ratio |");
     println!("|---|---|---|---|---|");
-    let prob = topp_common::fixtures()
-        .into_iter()
-        .find(|p| p["name"] == "standard_7wp_natural_N1000")
-        .unwrap();
-    let w: Vec<f64> = prob["waypoints"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .flat_map(topp_common::floats)
-        .collect();
+    let w = topp_common::fixture_waypoints("standard_7wp_natural_N1000");
     let mo = trajkit::topp::messy::PlanOptions::default();
     let panda = Limits::preset("panda").unwrap();
     let paths = trajkit::topp::messy::piece_paths(&w, 7, &panda, &mo).unwrap();

@@ -299,16 +299,7 @@ fn report_random_paths() {
 #[test]
 #[ignore]
 fn report_speed_and_standard_problem() {
-    let p = topp_common::fixtures()
-        .into_iter()
-        .find(|p| p["name"] == "standard_7wp_natural_N1000")
-        .unwrap();
-    let wp: Vec<f64> = p["waypoints"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .flat_map(topp_common::floats)
-        .collect();
+    let wp = topp_common::fixture_waypoints("standard_7wp_natural_N1000");
     let n = wp.len() / 7;
     let ss: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
     let standard = CubicSpline::natural(&ss, &wp, 7).unwrap();

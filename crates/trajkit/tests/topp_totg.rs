@@ -243,16 +243,7 @@ fn totg_equals_toppra_on_the_default_path() {
 /// The 7 waypoints of the `standard_7wp_natural_N1000` TOPP-RA fixture problem (the TOTG
 /// bench input): segments of 4–7 rad, short blends.
 fn standard_7wp() -> Vec<f64> {
-    let p = topp_common::fixtures()
-        .into_iter()
-        .find(|p| p["name"] == "standard_7wp_natural_N1000")
-        .unwrap();
-    p["waypoints"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .flat_map(topp_common::floats)
-        .collect()
+    topp_common::fixture_waypoints("standard_7wp_natural_N1000")
 }
 
 /// TOTG's duration with default options, the discretization loss against a converged
