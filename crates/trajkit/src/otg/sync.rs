@@ -642,7 +642,10 @@ impl Planner<'_, '_> {
 
     /// A missing candidate could hide a shorter feasible duration between the last failure
     /// `lo` and the success `hi`: bisects for the edge of the feasible range and leaves the
-    /// profiles of the shortest success in `out`.
+    /// profiles of the shortest success in `out`. Each attempt tries DOF `failed` (the one
+    /// that failed at `lo`) first ([`try_all_from`]): only whether an attempt succeeds steers
+    /// the bisection, and inside a blocked interval of that DOF a failed attempt then costs
+    /// one step 2.
     #[cold]
     fn bisect(&mut self, mut lo: f64, mut hi: f64, failed: usize) -> Result<f64, OtgError> {
         let mut last_ok = true;
@@ -656,7 +659,7 @@ impl Planner<'_, '_> {
             if mid <= lo || mid >= hi {
                 break;
             }
-            last_ok = try_all(self.scratch, self.spare, self.out, self.n, mid).is_ok();
+            last_ok = try_all_from(self.scratch, self.spare, self.out, self.n, mid, failed).is_ok();
             if last_ok {
                 hi = mid;
             } else {
@@ -798,6 +801,8 @@ enum Miss {
 /// Step 2 for every synchronized DOF at duration `t`, written into `out`; why it failed
 /// otherwise (then the synchronized entries of `out` are partly overwritten). A DOF whose
 /// step 1 has not run goes straight to step 2; only if that fails does step 1 run for it.
+/// The DOFs are tried in index order (the search's candidates depend on which DOF it
+/// reports).
 fn try_all(
     scratch: &mut [Scratch],
     spare: &mut [Spare],
@@ -805,7 +810,37 @@ fn try_all(
     n: usize,
     t: f64,
 ) -> Result<(), Miss> {
-    for i in 0..n {
+    try_each(scratch, spare, out, t, 0..n)
+}
+
+/// [`try_all`] with DOF `first` tried before the others: whether it succeeds is the same
+/// (every synchronized DOF must succeed; which DOF a failure names may differ). The
+/// bisection uses it with the DOF that failed at its lower end, which usually fails again,
+/// so a failed attempt costs one step 2 instead of one per DOF before it.
+fn try_all_from(
+    scratch: &mut [Scratch],
+    spare: &mut [Spare],
+    out: &mut [DofTrajectory],
+    n: usize,
+    t: f64,
+    first: usize,
+) -> Result<(), Miss> {
+    let order = std::iter::once(first)
+        .filter(|&f| f < n)
+        .chain((0..n).filter(|&i| i != first));
+    try_each(scratch, spare, out, t, order)
+}
+
+/// [`try_all`] over the DOFs in the order `order` gives (each synchronized DOF once).
+#[inline]
+fn try_each(
+    scratch: &mut [Scratch],
+    spare: &mut [Spare],
+    out: &mut [DofTrajectory],
+    t: f64,
+    order: impl Iterator<Item = usize>,
+) -> Result<(), Miss> {
+    for i in order {
         let sc = &mut scratch[i];
         if !sc.sync {
             continue;

@@ -70,6 +70,9 @@ fn bound_third(d: &Dof1) -> f64 {
         if va == vb && aa == ab {
             return Some((0.0, 0.0));
         }
+        if aa == 0.0 && ab == 0.0 {
+            return Some(flat_change(va, vb, j, d.amax, d.amin));
+        }
         let c = fastest3(va, aa, vb, ab, j, d.amax, d.amin)?;
         let (mut v, mut acc) = (va, aa);
         for k in 0..3 {
@@ -121,6 +124,24 @@ fn bound_third(d: &Dof1) -> f64 {
         2.0 * t1(vp)
     };
     ts + tm + te
+}
+
+/// Duration and displacement of the fastest change from velocity `va` to `vb ≠ va`, both at
+/// zero acceleration (the common case of the stop and start changes): [`fastest3`]'s change
+/// in closed form without building its segments. The acceleration ramps to a peak of
+/// √(J·|Δv|) (or holds the limit in between) and back, so the velocity is monotone (no
+/// interior extreme to check) and point-symmetric about the middle: the displacement is
+/// the mean velocity times the duration.
+pub(super) fn flat_change(va: f64, vb: f64, j: f64, amax: f64, amin: f64) -> (f64, f64) {
+    let dv = (vb - va).abs();
+    let a = if vb > va { amax } else { -amin };
+    let peak = (j * dv).sqrt();
+    let t = if peak <= a {
+        2.0 * peak / j
+    } else {
+        dv / a + a / j
+    };
+    (t, 0.5 * (va + vb) * t)
 }
 
 /// Whether the start state needs no brake pre-profile: acceleration and velocity within their

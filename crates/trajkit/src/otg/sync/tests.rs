@@ -309,3 +309,28 @@ fn the_bounded_mode_is_never_shorter_and_its_profiles_are_valid() {
         "{equal} {longer} {gave_up}"
     );
 }
+
+/// The closed form of the bound's stop and start changes between zero accelerations is
+/// the fastest change itself (duration and displacement to round-off), on both sides of
+/// the acceleration limit and with direction-dependent limits.
+#[test]
+fn the_bounds_flat_change_is_the_fastest_change() {
+    let mut r = crate::rng::SplitMix64::new(43);
+    for k in 0..4000 {
+        let (j, amax, amin) = (
+            r.uniform(2.0, 5000.0),
+            r.uniform(0.5, 20.0),
+            -r.uniform(0.5, 20.0),
+        );
+        let (va, vb) = (r.uniform(-3.0, 3.0), r.uniform(-3.0, 3.0));
+        let c = crate::otg::velocity_change::fastest3(va, 0.0, vb, 0.0, j, amax, amin).unwrap();
+        let (t, dist) = super::bound::flat_change(va, vb, j, amax, amin);
+        assert!((t - c.t).abs() <= 1e-12 * c.t, "case {k}: {t} vs {}", c.t);
+        let scale = c.t * va.abs().max(vb.abs());
+        assert!(
+            (dist - c.dist).abs() <= 1e-12 * scale,
+            "case {k}: {dist} vs {}",
+            c.dist
+        );
+    }
+}
