@@ -629,32 +629,27 @@ impl<'a, P: Path> Sweep<'a, P> {
         self.bound_spans();
     }
 
-    /// Bounds the segment `[0, h]` of `cub` (the law from time `a` on), cut where s crosses
+    /// Records the segment `[0, h]` of `cub` (the law from time `a` on), cut where s crosses
     /// the path breakpoints from index `bp` on (advanced past them) up to `s_end`.
     fn cut_at_breakpoints(&mut self, cub: &Cubic, h: f64, s_end: f64, a: f64, bp: &mut usize) {
         let mut t_prev = 0.0;
         let last_piece = self.breaks.len().saturating_sub(2);
+        let span = |t0: f64, t1: f64, bp: usize| Span {
+            cub: *cub,
+            t0,
+            t1,
+            time: a,
+            piece: bp.saturating_sub(1).min(last_piece),
+        };
         while *bp < self.breaks.len() && self.breaks[*bp] < s_end {
             let tc = cub.time_at(self.breaks[*bp], t_prev, h);
             if tc > t_prev {
-                self.spans.push(Span {
-                    cub: *cub,
-                    t0: t_prev,
-                    t1: tc,
-                    time: a,
-                    piece: bp.saturating_sub(1).min(last_piece),
-                });
+                self.spans.push(span(t_prev, tc, *bp));
                 t_prev = tc;
             }
             *bp += 1;
         }
-        self.spans.push(Span {
-            cub: *cub,
-            t0: t_prev,
-            t1: h,
-            time: a,
-            piece: bp.saturating_sub(1).min(last_piece),
-        });
+        self.spans.push(span(t_prev, h, *bp));
     }
 
     /// Bounds the segments found by [`Sweep::sweep`]. With the shortcuts on a piecewise
