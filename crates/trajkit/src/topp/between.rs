@@ -37,6 +37,10 @@ pub(crate) const EXACT_TOL: f64 = 1e-8;
 /// above minus this) at the worst point: the others cannot bind after a small change.
 const NEAR_ACTIVE: f64 = 1e-3;
 
+/// The most intervals of one path piece screened together ([`Constraint::screen_block`]):
+/// short enough that the block's largest velocity bound stays close to each interval's.
+const BLOCK: usize = 16;
+
 /// What a check round found.
 pub(super) enum Check {
     /// Every interval within the limits.
@@ -76,7 +80,15 @@ pub(super) struct Pieces {
     /// Per interval: whether an end is a breakpoint of the path (where σ″ may jump, so the
     /// gridpoint's rows may belong to the neighbouring piece).
     at_break: Vec<bool>,
+    /// Per interval: whether it starts a new piece of the path (the first interval, one that
+    /// starts at a breakpoint or follows an interval with a breakpoint inside).
+    new_piece: Vec<bool>,
     data: Vec<f64>,
+    /// Scratch for [`Constraint::screen_block`]: the joints screened out, per constraint
+    /// (`dim` entries each).
+    skip: Vec<bool>,
+    /// Scratch: per constraint, whether [`Pieces::skip`] applies on the current block.
+    screened: Vec<bool>,
     /// Scratch: Taylor data at the midpoint of one path piece.
     anchor: PieceAnchor,
     dim: usize,
@@ -86,7 +98,10 @@ pub(super) struct Pieces {
 impl Pieces {
     /// Bytes held (roughly).
     pub(super) fn bytes(&self) -> usize {
-        8 * self.data.capacity() + self.exact.capacity() + self.at_break.capacity()
+        8 * self.data.capacity()
+            + self.exact.capacity()
+            + self.at_break.capacity()
+            + self.new_piece.capacity()
     }
 
     fn build<P: Path>(&mut self, path: &P, grid: &[f64], need_q: bool, at_points: &[f64]) {
@@ -95,11 +110,13 @@ impl Pieces {
         self.dim = dim;
         self.exact.clear();
         self.at_break.clear();
+        self.new_piece.clear();
         self.built = true;
         let degree = path.piecewise_degree();
         if degree.is_none_or(|d| d > 5) {
             self.exact.resize(n, false);
             self.at_break.resize(n, true);
+            self.new_piece.resize(n, true);
             return;
         }
         self.quintic = degree.is_some_and(|d| d > 3);
@@ -124,6 +141,8 @@ impl Pieces {
             }
             let inside = b < breaks.len() && breaks[b] < s1;
             let ends_at_break = b < breaks.len() && breaks[b] == s1;
+            self.new_piece
+                .push(i == 0 || starts_at_break || !self.exact[i - 1]);
             self.exact.push(!inside);
             self.at_break.push(starts_at_break || ends_at_break);
             if inside {
@@ -170,6 +189,21 @@ impl Pieces {
             d4: &d[4 * dim..5 * dim],
             d5: &d[5 * dim..],
         })
+    }
+
+    /// The intervals `i..end` that form a block for [`Constraint::screen_block`] (at most
+    /// [`BLOCK`] exact intervals of one path piece), the path over the block's span as one
+    /// piece (interval i's Taylor data, the same polynomial) and the block's longest interval.
+    fn block(&self, grid: &[f64], i: usize) -> Option<(usize, CubicPiece<'_>, f64)> {
+        let mut piece = self.piece(grid, i)?;
+        let mut end = i + 1;
+        let mut h_max = grid[i + 1] - grid[i];
+        while end < self.exact.len() && end < i + BLOCK && self.exact[end] && !self.new_piece[end] {
+            h_max = h_max.max(grid[end + 1] - grid[end]);
+            end += 1;
+        }
+        piece.s1 = grid[end];
+        Some((end, piece, h_max))
     }
 
     /// The piece of interval i for constraint `c`: none where the path is not a polynomial
@@ -386,7 +420,9 @@ impl Workspace {
     /// Builds the Taylor data of the intervals and, where the path is a polynomial of degree
     /// ≤ 3 on an interval, writes every constraint's sufficient rows
     /// ([`Constraint::hold_on_cubic`], which leaves out rows that cannot bind within the
-    /// velocity bounds `xhi` at both ends) into the interval's stage.
+    /// velocity bounds `xhi` at both ends) into the interval's stage. Intervals are taken in
+    /// blocks of up to [`BLOCK`] of one path piece: [`Constraint::screen_block`] first drops
+    /// the joints that need no row anywhere in the block (the same rows, less work).
     pub(super) fn prepare_between<P: Path>(
         &mut self,
         path: &P,
@@ -405,25 +441,56 @@ impl Workspace {
         self.mid_off.push(0);
         self.proved.clear();
         self.proved.resize(cons.len(), false);
-        for i in 0..n {
-            let Some(piece) = pieces.piece(grid, i) else {
+        let dim = path.dim();
+        let mut skip = std::mem::take(&mut pieces.skip);
+        skip.clear();
+        skip.resize(cons.len() * dim, false);
+        let mut screened = std::mem::take(&mut pieces.screened);
+        screened.clear();
+        screened.resize(cons.len(), false);
+        let mut i = 0;
+        while i < n {
+            let Some((end, block, h_max)) = pieces.block(grid, i) else {
                 self.mid_off.push(self.mid.len());
+                i += 1;
                 continue;
             };
-            let x_max = [xhi[i], xhi[i + 1]];
+            let x_block = xhi[i..=end].iter().fold(0.0f64, |m, &v| m.max(v));
             for (k, c) in cons.iter().enumerate() {
-                self.cr.clear();
-                if pieces.quintic && !c.handles_quintic() {
-                    continue;
-                }
-                if !c.hold_on_cubic(&piece, x_max, &mut self.cr) {
-                    continue;
-                }
-                self.proved[k] = true;
-                self.mid.extend_from_slice(self.cr.half_planes());
+                let mask = &mut skip[k * dim..(k + 1) * dim];
+                screened[k] = (!pieces.quintic || c.handles_quintic())
+                    && c.dof() == dim
+                    && c.screen_block(&block, h_max, x_block, mask);
             }
-            self.mid_off.push(self.mid.len());
+            for i in i..end {
+                let Some(piece) = pieces.piece(grid, i) else {
+                    self.mid_off.push(self.mid.len());
+                    continue;
+                };
+                let x_max = [xhi[i], xhi[i + 1]];
+                for (k, c) in cons.iter().enumerate() {
+                    self.cr.clear();
+                    if pieces.quintic && !c.handles_quintic() {
+                        continue;
+                    }
+                    let held = if screened[k] {
+                        let mask = &skip[k * dim..(k + 1) * dim];
+                        c.hold_on_screened(&piece, x_max, mask, &mut self.cr)
+                    } else {
+                        c.hold_on_cubic(&piece, x_max, &mut self.cr)
+                    };
+                    if !held {
+                        continue;
+                    }
+                    self.proved[k] = true;
+                    self.mid.extend_from_slice(self.cr.half_planes());
+                }
+                self.mid_off.push(self.mid.len());
+            }
+            i = end;
         }
+        pieces.skip = skip;
+        pieces.screened = screened;
         self.pieces = pieces;
     }
 
