@@ -276,13 +276,13 @@ impl PieceAnchor {
         let t = s - sm;
         let [q, dq, ddq] = out;
         for j in 0..dim {
+            // Only the orders asked for (the same arithmetic as `shift_one`).
             let v: [f64; 6] = std::array::from_fn(|k| a[k * dim + j]);
-            let m = shift_one(v, t);
             if need_q {
-                q[j] = m[0];
+                q[j] = shift_order(&v, t, 0);
             }
-            dq[j] = m[1];
-            ddq[j] = m[2];
+            dq[j] = shift_order(&v, t, 1);
+            ddq[j] = shift_order(&v, t, 2);
         }
         true
     }
@@ -355,16 +355,20 @@ fn shift_taylor(src: &[f64], t: f64, dst: &mut [f64]) {
 /// One joint's derivatives `v` (orders 0..5) of a quintic moved by `t`.
 #[inline]
 fn shift_one(v: [f64; 6], t: f64) -> [f64; 6] {
+    std::array::from_fn(|m| shift_order(&v, t, m))
+}
+
+/// Derivative of order `m` of one joint's quintic (derivatives `v` at a point) at `t` from
+/// that point: Σ_{k ≥ m} v_k t^{k−m}/(k−m)!, by Horner from the top.
+#[inline]
+fn shift_order(v: &[f64; 6], t: f64, m: usize) -> f64 {
     // 1/1 … 1/6: multiplications instead of divisions in the inner loop.
     const INV: [f64; 7] = [0.0, 1.0, 0.5, 1.0 / 3.0, 0.25, 0.2, 1.0 / 6.0];
-    std::array::from_fn(|m| {
-        // Σ_{k ≥ m} v_k t^{k−m}/(k−m)!, by Horner from the top.
-        let mut acc = 0.0;
-        for k in (m..6).rev() {
-            acc = v[k] + acc * t * INV[k - m + 1];
-        }
-        acc
-    })
+    let mut acc = 0.0;
+    for k in (m..6).rev() {
+        acc = v[k] + acc * t * INV[k - m + 1];
+    }
+    acc
 }
 
 /// The Taylor data σ, σ′, …, σ⁽⁵⁾ at `s0` (into `d`, `6·dim` numbers) of a path that is a

@@ -27,6 +27,9 @@
 //! and σ′²x has degree 9: the same two constraints bound them from Bernstein coefficients
 //! (degree 4 and 9 in θ = (s − s0)/Δ, linear in (u, x0)) and from the roots of a quartic or
 //! cubic isolated by [`crate::roots::roots_in`] ([`Constraint::handles_quintic`]).
+//! Over a block of intervals of one path piece, [`Constraint::screen_block`] marks the joints
+//! that need no interior row anywhere in it (from the Bernstein range of σ′ and σ″ over the
+//! whole block), so the per-interval rows are built for the others only: the same rows.
 //!
 //! # Precision contract
 //! Rows are written exactly as the formulas above (no linearisation or padding); a limit of

@@ -28,7 +28,9 @@ struct Hull {
     sign: f64,
 }
 
-fn hull(block: &CubicPiece<'_>, j: usize) -> Option<Hull> {
+/// `cubic`: whether the block is a cubic piece ([`CubicPiece::is_cubic`], asked once per
+/// block).
+fn hull(block: &CubicPiece<'_>, cubic: bool, j: usize) -> Option<Hull> {
     let l = block.s1 - block.s0;
     let (d1, d2, d3) = (block.d1[j], block.d2[j], block.d3[j]);
     let (d4, d5) = (block.d4[j], block.d5[j]);
@@ -43,7 +45,7 @@ fn hull(block: &CubicPiece<'_>, j: usize) -> Option<Hull> {
     let q = [d2, d3 * l, 0.5 * d4 * l * l, d5 / 6.0 * l * l * l];
     let (b1, b2): (&[f64], &[f64]);
     let (c1, c2);
-    if block.is_cubic() {
+    if cubic {
         c1 = [d1, d1 + 0.5 * p[1], d1 + p[1] + p[2], 0.0, 0.0];
         c2 = [q[0], q[0] + q[1], 0.0, 0.0];
         (b1, b2) = (&c1[..3], &c2[..2]);
@@ -81,10 +83,14 @@ impl JointVelocity {
     /// [`JointVelocity`]'s `hold_on_cubic`) passes on every interval of the block. Returns
     /// whether any was marked.
     pub(super) fn screen(&self, block: &CubicPiece<'_>, x_max: f64, skip: &mut [bool]) -> bool {
+        if skip.len() < self.hi.len() {
+            return false;
+        }
+        let cubic = block.is_cubic();
         let mut any = false;
         for j in 0..self.hi.len() {
             skip[j] = false;
-            let Some(h) = hull(block, j) else {
+            let Some(h) = hull(block, cubic, j) else {
                 continue;
             };
             // The per-interval limit is at least this one (the larger side only when σ′ keeps
@@ -120,14 +126,18 @@ impl JointAcceleration {
         skip: &mut [bool],
     ) -> bool {
         let n = self.hi.len();
+        if skip.len() < n {
+            return false;
+        }
         skip[..n].iter_mut().for_each(|v| *v = false);
         let mut u_max = f64::INFINITY;
         let mut hulls: [Option<Hull>; 16] = [None; 16];
         if n > hulls.len() {
             return false;
         }
+        let cubic = block.is_cubic();
         for k in 0..n {
-            hulls[k] = hull(block, k);
+            hulls[k] = hull(block, cubic, k);
             let Some(h) = hulls[k] else {
                 return false;
             };
