@@ -37,10 +37,6 @@ pub(crate) const EXACT_TOL: f64 = 1e-8;
 /// above minus this) at the worst point: the others cannot bind after a small change.
 const NEAR_ACTIVE: f64 = 1e-3;
 
-/// The most intervals of one path piece screened together ([`Constraint::screen_block`]):
-/// short enough that the block's largest velocity bound stays close to each interval's.
-const BLOCK: usize = 16;
-
 /// What a check round found.
 pub(super) enum Check {
     /// Every interval within the limits.
@@ -80,15 +76,7 @@ pub(super) struct Pieces {
     /// Per interval: whether an end is a breakpoint of the path (where σ″ may jump, so the
     /// gridpoint's rows may belong to the neighbouring piece).
     at_break: Vec<bool>,
-    /// Per interval: whether it starts a new piece of the path (the first interval, one that
-    /// starts at a breakpoint or follows an interval with a breakpoint inside).
-    new_piece: Vec<bool>,
     data: Vec<f64>,
-    /// Scratch for [`Constraint::screen_block`]: the joints screened out, per constraint
-    /// (`dim` entries each).
-    skip: Vec<bool>,
-    /// Scratch: per constraint, whether [`Pieces::skip`] applies on the current block.
-    screened: Vec<bool>,
     /// Scratch: Taylor data at the midpoint of one path piece.
     anchor: PieceAnchor,
     dim: usize,
@@ -98,10 +86,7 @@ pub(super) struct Pieces {
 impl Pieces {
     /// Bytes held (roughly).
     pub(super) fn bytes(&self) -> usize {
-        8 * self.data.capacity()
-            + self.exact.capacity()
-            + self.at_break.capacity()
-            + self.new_piece.capacity()
+        8 * self.data.capacity() + self.exact.capacity() + self.at_break.capacity()
     }
 
     fn build<P: Path>(&mut self, path: &P, grid: &[f64], need_q: bool, at_points: &[f64]) {
@@ -110,13 +95,11 @@ impl Pieces {
         self.dim = dim;
         self.exact.clear();
         self.at_break.clear();
-        self.new_piece.clear();
         self.built = true;
         let degree = path.piecewise_degree();
         if degree.is_none_or(|d| d > 5) {
             self.exact.resize(n, false);
             self.at_break.resize(n, true);
-            self.new_piece.resize(n, true);
             return;
         }
         self.quintic = degree.is_some_and(|d| d > 3);
@@ -141,8 +124,6 @@ impl Pieces {
             }
             let inside = b < breaks.len() && breaks[b] < s1;
             let ends_at_break = b < breaks.len() && breaks[b] == s1;
-            self.new_piece
-                .push(i == 0 || starts_at_break || !self.exact[i - 1]);
             self.exact.push(!inside);
             self.at_break.push(starts_at_break || ends_at_break);
             if inside {
@@ -189,21 +170,6 @@ impl Pieces {
             d4: &d[4 * dim..5 * dim],
             d5: &d[5 * dim..],
         })
-    }
-
-    /// The intervals `i..end` that form a block for [`Constraint::screen_block`] (at most
-    /// [`BLOCK`] exact intervals of one path piece), the path over the block's span as one
-    /// piece (interval i's Taylor data, the same polynomial) and the block's longest interval.
-    fn block(&self, grid: &[f64], i: usize) -> Option<(usize, CubicPiece<'_>, f64)> {
-        let mut piece = self.piece(grid, i)?;
-        let mut end = i + 1;
-        let mut h_max = grid[i + 1] - grid[i];
-        while end < self.exact.len() && end < i + BLOCK && self.exact[end] && !self.new_piece[end] {
-            h_max = h_max.max(grid[end + 1] - grid[end]);
-            end += 1;
-        }
-        piece.s1 = grid[end];
-        Some((end, piece, h_max))
     }
 
     /// The piece of interval i for constraint `c`: none where the path is not a polynomial
@@ -276,13 +242,13 @@ impl PieceAnchor {
         let t = s - sm;
         let [q, dq, ddq] = out;
         for j in 0..dim {
-            // Only the orders asked for (the same arithmetic as `shift_one`).
             let v: [f64; 6] = std::array::from_fn(|k| a[k * dim + j]);
+            let m = shift_one(v, t);
             if need_q {
-                q[j] = shift_order(&v, t, 0);
+                q[j] = m[0];
             }
-            dq[j] = shift_order(&v, t, 1);
-            ddq[j] = shift_order(&v, t, 2);
+            dq[j] = m[1];
+            ddq[j] = m[2];
         }
         true
     }
@@ -355,20 +321,16 @@ fn shift_taylor(src: &[f64], t: f64, dst: &mut [f64]) {
 /// One joint's derivatives `v` (orders 0..5) of a quintic moved by `t`.
 #[inline]
 fn shift_one(v: [f64; 6], t: f64) -> [f64; 6] {
-    std::array::from_fn(|m| shift_order(&v, t, m))
-}
-
-/// Derivative of order `m` of one joint's quintic (derivatives `v` at a point) at `t` from
-/// that point: Σ_{k ≥ m} v_k t^{k−m}/(k−m)!, by Horner from the top.
-#[inline]
-fn shift_order(v: &[f64; 6], t: f64, m: usize) -> f64 {
     // 1/1 … 1/6: multiplications instead of divisions in the inner loop.
     const INV: [f64; 7] = [0.0, 1.0, 0.5, 1.0 / 3.0, 0.25, 0.2, 1.0 / 6.0];
-    let mut acc = 0.0;
-    for k in (m..6).rev() {
-        acc = v[k] + acc * t * INV[k - m + 1];
-    }
-    acc
+    std::array::from_fn(|m| {
+        // Σ_{k ≥ m} v_k t^{k−m}/(k−m)!, by Horner from the top.
+        let mut acc = 0.0;
+        for k in (m..6).rev() {
+            acc = v[k] + acc * t * INV[k - m + 1];
+        }
+        acc
+    })
 }
 
 /// The Taylor data σ, σ′, …, σ⁽⁵⁾ at `s0` (into `d`, `6·dim` numbers) of a path that is a
@@ -424,9 +386,7 @@ impl Workspace {
     /// Builds the Taylor data of the intervals and, where the path is a polynomial of degree
     /// ≤ 3 on an interval, writes every constraint's sufficient rows
     /// ([`Constraint::hold_on_cubic`], which leaves out rows that cannot bind within the
-    /// velocity bounds `xhi` at both ends) into the interval's stage. Intervals are taken in
-    /// blocks of up to [`BLOCK`] of one path piece: [`Constraint::screen_block`] first drops
-    /// the joints that need no row anywhere in the block (the same rows, less work).
+    /// velocity bounds `xhi` at both ends) into the interval's stage.
     pub(super) fn prepare_between<P: Path>(
         &mut self,
         path: &P,
@@ -445,56 +405,25 @@ impl Workspace {
         self.mid_off.push(0);
         self.proved.clear();
         self.proved.resize(cons.len(), false);
-        let dim = path.dim();
-        let mut skip = std::mem::take(&mut pieces.skip);
-        skip.clear();
-        skip.resize(cons.len() * dim, false);
-        let mut screened = std::mem::take(&mut pieces.screened);
-        screened.clear();
-        screened.resize(cons.len(), false);
-        let mut i = 0;
-        while i < n {
-            let Some((end, block, h_max)) = pieces.block(grid, i) else {
+        for i in 0..n {
+            let Some(piece) = pieces.piece(grid, i) else {
                 self.mid_off.push(self.mid.len());
-                i += 1;
                 continue;
             };
-            let x_block = xhi[i..=end].iter().fold(0.0f64, |m, &v| m.max(v));
+            let x_max = [xhi[i], xhi[i + 1]];
             for (k, c) in cons.iter().enumerate() {
-                let mask = &mut skip[k * dim..(k + 1) * dim];
-                screened[k] = (!pieces.quintic || c.handles_quintic())
-                    && c.dof() == dim
-                    && c.screen_block(&block, h_max, x_block, mask);
-            }
-            for i in i..end {
-                let Some(piece) = pieces.piece(grid, i) else {
-                    self.mid_off.push(self.mid.len());
+                self.cr.clear();
+                if pieces.quintic && !c.handles_quintic() {
                     continue;
-                };
-                let x_max = [xhi[i], xhi[i + 1]];
-                for (k, c) in cons.iter().enumerate() {
-                    self.cr.clear();
-                    if pieces.quintic && !c.handles_quintic() {
-                        continue;
-                    }
-                    let held = if screened[k] {
-                        let mask = &skip[k * dim..(k + 1) * dim];
-                        c.hold_on_screened(&piece, x_max, mask, &mut self.cr)
-                    } else {
-                        c.hold_on_cubic(&piece, x_max, &mut self.cr)
-                    };
-                    if !held {
-                        continue;
-                    }
-                    self.proved[k] = true;
-                    self.mid.extend_from_slice(self.cr.half_planes());
                 }
-                self.mid_off.push(self.mid.len());
+                if !c.hold_on_cubic(&piece, x_max, &mut self.cr) {
+                    continue;
+                }
+                self.proved[k] = true;
+                self.mid.extend_from_slice(self.cr.half_planes());
             }
-            i = end;
+            self.mid_off.push(self.mid.len());
         }
-        pieces.skip = skip;
-        pieces.screened = screened;
         self.pieces = pieces;
     }
 

@@ -27,9 +27,6 @@
 //! and σ′²x has degree 9: the same two constraints bound them from Bernstein coefficients
 //! (degree 4 and 9 in θ = (s − s0)/Δ, linear in (u, x0)) and from the roots of a quartic or
 //! cubic isolated by [`crate::roots::roots_in`] ([`Constraint::handles_quintic`]).
-//! Over a block of intervals of one path piece, [`Constraint::screen_block`] marks the joints
-//! that need no interior row anywhere in it (from the Bernstein range of σ′ and σ″ over the
-//! whole block), so the per-interval rows are built for the others only: the same rows.
 //!
 //! # Precision contract
 //! Rows are written exactly as the formulas above (no linearisation or padding); a limit of
@@ -47,10 +44,9 @@ use crate::Order;
 
 mod dynamics;
 mod quintic;
-mod screen;
 mod worst;
 
-use worst::{enclosed_excess, quadratic_roots_in, worst_over};
+use worst::{enclosed_excess, worst_over};
 
 pub use dynamics::{EndEffectorSpeed, Jacobian, JointTorque};
 
@@ -188,6 +184,41 @@ impl CubicPiece<'_> {
             (dq[j], ddq[j]) = self.derivatives(j, s);
         }
     }
+}
+
+/// The real roots of c0 + c1·t + c2·t² inside the open interval (lo, hi), stable form; at most
+/// two (none when the polynomial is identically zero).
+fn quadratic_roots_in(c: [f64; 3], lo: f64, hi: f64) -> ([f64; 2], usize) {
+    let [c0, c1, c2] = c;
+    let mut out = [0.0; 2];
+    let mut n = 0;
+    let mut push = |t: f64| {
+        if t > lo && t < hi {
+            out[n] = t;
+            n += 1;
+        }
+    };
+    let scale = c0
+        .abs()
+        .max(c1.abs() * (hi - lo))
+        .max(c2.abs() * (hi - lo) * (hi - lo));
+    if c2.abs() * (hi - lo) * (hi - lo) <= 1e-14 * scale {
+        if c1 != 0.0 {
+            push(-c0 / c1);
+        }
+    } else {
+        let disc = c1 * c1 - 4.0 * c2 * c0;
+        if disc >= 0.0 {
+            let q = -0.5 * (c1 + c1.signum() * disc.sqrt());
+            if q != 0.0 {
+                push(q / c2);
+                push(c0 / q);
+            } else {
+                push(0.0);
+            }
+        }
+    }
+    (out, n)
 }
 
 /// Collects one constraint's rows at one path point: half-planes `α·u + β·x ≤ γ` and bounds on
@@ -429,36 +460,6 @@ pub trait Constraint {
         false
     }
 
-    /// A screen for [`Constraint::hold_on_cubic`] over a block of consecutive intervals of one
-    /// path piece: `block` is the piece over the block's whole span, `h_max` its longest
-    /// interval and `x_max` the largest velocity bound (x = ṡ²) at its gridpoints. Sets
-    /// `skip[j]` (one entry per joint) for the joints that cannot need a row on any interval
-    /// of the block, and returns whether any was set; the solver then calls
-    /// [`Constraint::hold_on_screened`] with `skip`. Default: `false`, nothing screened.
-    fn screen_block(
-        &self,
-        block: &CubicPiece<'_>,
-        h_max: f64,
-        x_max: f64,
-        skip: &mut [bool],
-    ) -> bool {
-        let _ = (block, h_max, x_max, skip);
-        false
-    }
-
-    /// [`Constraint::hold_on_cubic`] leaving out the joints marked in `skip` by
-    /// [`Constraint::screen_block`]: the same rows, with less work. Default: `hold_on_cubic`.
-    fn hold_on_screened(
-        &self,
-        piece: &CubicPiece<'_>,
-        x_max: [f64; 2],
-        skip: &[bool],
-        out: &mut ConstraintRows,
-    ) -> bool {
-        let _ = skip;
-        self.hold_on_cubic(piece, x_max, out)
-    }
-
     /// Whether [`Constraint::excess_on_cubic`] and [`Constraint::hold_on_cubic`] handle pieces
     /// of degree 4 and 5 (`d4`, `d5` of [`CubicPiece`] nonzero). Default `false`: the solver
     /// then hands such a constraint cubic pieces only and checks it at sample points elsewhere.
@@ -493,24 +494,6 @@ impl<C: Constraint + ?Sized> Constraint for Box<C> {
         out: &mut ConstraintRows,
     ) -> bool {
         (**self).hold_on_cubic(piece, x_max, out)
-    }
-    fn screen_block(
-        &self,
-        block: &CubicPiece<'_>,
-        h_max: f64,
-        x_max: f64,
-        skip: &mut [bool],
-    ) -> bool {
-        (**self).screen_block(block, h_max, x_max, skip)
-    }
-    fn hold_on_screened(
-        &self,
-        piece: &CubicPiece<'_>,
-        x_max: [f64; 2],
-        skip: &[bool],
-        out: &mut ConstraintRows,
-    ) -> bool {
-        (**self).hold_on_screened(piece, x_max, skip, out)
     }
     fn handles_quintic(&self) -> bool {
         (**self).handles_quintic()
@@ -575,11 +558,6 @@ fn zero_limit_joints(what: &str, lo: &[f64], hi: &[f64], p: &PathPoint<'_>) -> O
 
 fn ranges_from(limits: &Limits, order: Order) -> (Vec<f64>, Vec<f64>) {
     limits.joints().iter().map(|j| j.range(order)).unzip()
-}
-
-/// Whether `skip` marks all `n` joints.
-fn all_skipped(skip: &[bool], n: usize) -> bool {
-    skip.len() >= n && skip[..n].iter().all(|&v| v)
 }
 
 /// The velocity limit that applies on a piece where σ′_j has Bernstein coefficients `c`: the
@@ -731,30 +709,12 @@ impl Constraint for JointVelocity {
         x_max: [f64; 2],
         out: &mut ConstraintRows,
     ) -> bool {
-        self.hold_on_screened(piece, x_max, &[], out)
-    }
-    fn screen_block(&self, block: &CubicPiece<'_>, _: f64, x_max: f64, skip: &mut [bool]) -> bool {
-        self.screen(block, x_max, skip)
-    }
-    fn hold_on_screened(
-        &self,
-        piece: &CubicPiece<'_>,
-        x_max: [f64; 2],
-        skip: &[bool],
-        out: &mut ConstraintRows,
-    ) -> bool {
-        if all_skipped(skip, self.hi.len()) {
-            return true;
-        }
         if !piece.is_cubic() {
-            self.hold_quintic(piece, x_max, skip, out);
+            self.hold_quintic(piece, x_max, out);
             return true;
         }
         let h = piece.s1 - piece.s0;
         for j in 0..self.hi.len() {
-            if skip.get(j) == Some(&true) {
-                continue;
-            }
             let c = piece.first_bernstein(j);
             let limit = velocity_bound(c, self.lo[j], self.hi[j]);
             if limit.is_infinite() {
@@ -911,27 +871,6 @@ impl Constraint for JointAcceleration {
         x_max: [f64; 2],
         out: &mut ConstraintRows,
     ) -> bool {
-        self.hold_on_screened(piece, x_max, &[], out)
-    }
-    fn screen_block(
-        &self,
-        block: &CubicPiece<'_>,
-        h_max: f64,
-        x_max: f64,
-        skip: &mut [bool],
-    ) -> bool {
-        self.screen(block, h_max, x_max, skip)
-    }
-    fn hold_on_screened(
-        &self,
-        piece: &CubicPiece<'_>,
-        x_max: [f64; 2],
-        skip: &[bool],
-        out: &mut ConstraintRows,
-    ) -> bool {
-        if all_skipped(skip, self.hi.len()) {
-            return true;
-        }
         let h = piece.s1 - piece.s0;
         let x0_max = x_max[0];
         let mut u_max = f64::INFINITY;
@@ -942,13 +881,10 @@ impl Constraint for JointAcceleration {
             }
         }
         if !piece.is_cubic() {
-            self.hold_quintic(piece, u_max, x0_max, skip, out);
+            self.hold_quintic(piece, u_max, x0_max, out);
             return true;
         }
         for j in 0..self.hi.len() {
-            if skip.get(j) == Some(&true) {
-                continue;
-            }
             let (d1, d2, d3) = (piece.d1[j], piece.d2[j], piece.d3[j]);
             let (a, b) = (d1 + 1.5 * h * d2, d2 + 0.5 * h * d3);
             let reach_hi = a.abs() * u_max + b.max(0.0) * x0_max;
@@ -966,4 +902,68 @@ impl Constraint for JointAcceleration {
 }
 
 #[cfg(test)]
-mod tests;
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bulk_intervals_equal_single_intervals() {
+        let a = [1.0, 0.0, -2.0, 0.0, 0.5];
+        let b = [0.5, 0.0, 0.0, 3.0, -1.0];
+        let lo = [-1.0, -2.0, f64::NEG_INFINITY, -4.0, 0.0];
+        let hi = [2.0, 1.0, 3.0, f64::INFINITY, 0.0];
+        let mut bulk = ConstraintRows::new();
+        bulk.intervals(&a, &b, &lo, &hi);
+        let mut one = ConstraintRows::new();
+        for j in 0..a.len() {
+            one.interval(a[j], b[j], 0.0, lo[j], hi[j]);
+        }
+        assert_eq!(bulk.half_planes(), one.half_planes());
+        assert!(bulk.broken.is_none());
+        // A static joint whose range excludes zero cannot hold; a NaN is reported.
+        let mut r = ConstraintRows::new();
+        r.intervals(&[0.0], &[0.0], &[0.5], &[1.0]);
+        assert!(r.broken.is_some());
+        let mut r = ConstraintRows::new();
+        r.intervals(&[f64::NAN], &[0.0], &[-1.0], &[1.0]);
+        assert!(r.broken.is_some());
+    }
+
+    #[test]
+    fn rows_from_acceleration_and_velocity() {
+        let p = PathPoint {
+            s: 0.0,
+            q: &[0.0, 0.0],
+            dq: &[2.0, -1.0],
+            ddq: &[0.5, 0.0],
+        };
+        let mut r = ConstraintRows::new();
+        JointVelocity::new(&[-1.0, -3.0], &[4.0, 1.0])
+            .unwrap()
+            .write(&p, &mut r);
+        // joint 1: ṡ ≤ 4/2 = 2; joint 2 moves negatively: ṡ ≤ -3/-1 = 3 → x ≤ 4.
+        assert_eq!(r.x_bounds(), (0.0, 4.0));
+        let mut r = ConstraintRows::new();
+        JointAcceleration::new(&[-1.0, -2.0], &[3.0, f64::INFINITY])
+            .unwrap()
+            .write(&p, &mut r);
+        assert_eq!(
+            r.half_planes(),
+            &[[2.0, 0.5, 3.0], [-2.0, -0.5, 1.0], [1.0, -0.0, 2.0]]
+        );
+        assert!(JointVelocity::new(&[0.5], &[1.0]).is_err());
+        let e = JointAcceleration::new(&[-1.0], &[f64::NAN]).unwrap_err();
+        assert!(e
+            .to_string()
+            .contains("joint 1 acceleration upper limit = NaN"));
+    }
+
+    #[test]
+    fn polytope_and_broken_rows() {
+        let mut r = ConstraintRows::new();
+        // v = (u, x) itself, F = [1 1], g = [2]: u + x ≤ 2.
+        r.polytope(&[1.0, 0.0], &[0.0, 1.0], &[0.0, 0.0], &[1.0, 1.0], &[2.0]);
+        assert_eq!(r.half_planes(), &[[1.0, 1.0, 2.0]]);
+        r.interval(0.0, 0.0, 1.0, -1.0, 0.5);
+        assert!(r.broken.is_some());
+    }
+}

@@ -106,19 +106,15 @@ impl JointVelocity {
 
     /// [`super::Constraint::hold_on_cubic`] on a piece of degree 4 or 5: the interior Bernstein
     /// coefficients b_1..b_8 of σ′_j²·x (degree 9, see [`JointVelocity::excess_quintic`]),
-    /// linear in (u, x0) with x1 = x0 + 2uΔ. Joints marked in `skip` are left out.
+    /// linear in (u, x0) with x1 = x0 + 2uΔ.
     pub(super) fn hold_quintic(
         &self,
         piece: &CubicPiece<'_>,
         x_max: [f64; 2],
-        skip: &[bool],
         out: &mut ConstraintRows,
     ) {
         let h = piece.s1 - piece.s0;
         for j in 0..self.hi.len() {
-            if skip.get(j) == Some(&true) {
-                continue;
-            }
             let c = piece.first_bernstein4(j);
             let limit = velocity_bound4(&c, self.lo[j], self.hi[j]);
             if limit.is_infinite() {
@@ -201,19 +197,15 @@ impl JointAcceleration {
 
     /// [`super::Constraint::hold_on_cubic`] on a piece of degree 4 or 5: the interior Bernstein
     /// coefficients b_1..b_3 of the acceleration quartic, linear in (u, x0), pruned as on a
-    /// cubic piece. Joints marked in `skip` are left out.
+    /// cubic piece.
     pub(super) fn hold_quintic(
         &self,
         piece: &CubicPiece<'_>,
         u_max: f64,
         x0_max: f64,
-        skip: &[bool],
         out: &mut ConstraintRows,
     ) {
         for j in 0..self.hi.len() {
-            if skip.get(j) == Some(&true) {
-                continue;
-            }
             let (ra, rb) = Self::bernstein_rows(piece, j);
             for k in 1..4 {
                 let (a, b) = (ra[k], rb[k]);

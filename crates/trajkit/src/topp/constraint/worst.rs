@@ -45,38 +45,3 @@ pub(super) fn worst_over(
         }
     }
 }
-
-/// The real roots of c0 + c1·t + c2·t² inside the open interval (lo, hi), stable form; at most
-/// two (none when the polynomial is identically zero).
-pub(super) fn quadratic_roots_in(c: [f64; 3], lo: f64, hi: f64) -> ([f64; 2], usize) {
-    let [c0, c1, c2] = c;
-    let mut out = [0.0; 2];
-    let mut n = 0;
-    let mut push = |t: f64| {
-        if t > lo && t < hi {
-            out[n] = t;
-            n += 1;
-        }
-    };
-    let scale = c0
-        .abs()
-        .max(c1.abs() * (hi - lo))
-        .max(c2.abs() * (hi - lo) * (hi - lo));
-    if c2.abs() * (hi - lo) * (hi - lo) <= 1e-14 * scale {
-        if c1 != 0.0 {
-            push(-c0 / c1);
-        }
-    } else {
-        let disc = c1 * c1 - 4.0 * c2 * c0;
-        if disc >= 0.0 {
-            let q = -0.5 * (c1 + c1.signum() * disc.sqrt());
-            if q != 0.0 {
-                push(q / c2);
-                push(c0 / q);
-            } else {
-                push(0.0);
-            }
-        }
-    }
-    (out, n)
-}
