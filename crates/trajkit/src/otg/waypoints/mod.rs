@@ -97,7 +97,7 @@
 //! time of the whole planning, validation included. The method is an anytime algorithm:
 //! stopping at every waypoint (step 1) is a valid motion as soon as it is solved and is
 //! kept, steps 2–3 only improve on it. With a budget the search stops when what is left
-//! would not pay for its next step (four section ratings, timed by the longest solve so far)
+//! would not pay for its next step (two section ratings, timed by the longest solve so far)
 //! and the final build (timed by step 1); the result is the best valid motion found, marked
 //! [`WaypointTrajectory::was_interrupted`] when the budget cut anything short. A final build
 //! that runs out of time gives way to the kept stop-at-every-waypoint motion. When even step 1

@@ -176,11 +176,11 @@ impl<'a> Planner<'a> {
         Ok(c.duration)
     }
 
-    /// Whether the budget leaves too little for the search's next step (at most four
-    /// section ratings: a golden-section search's first two evaluations) and the final build
-    /// (then the search stops and the result is marked interrupted).
+    /// Whether the budget leaves too little for the search's next step (at most two section
+    /// ratings) and the final build (then the search stops and the result is marked
+    /// interrupted).
     fn out_of_time(&mut self) -> bool {
-        let need = self.reserve_us + 4.0 * self.step_us;
+        let need = self.reserve_us + 2.0 * self.step_us;
         let late = self
             .clock
             .is_some_and(|c| c.left_us().map_or(true, |left| left < need));
@@ -189,7 +189,11 @@ impl<'a> Planner<'a> {
     }
 
     /// The two sections around waypoint `w` at scale `s`: their ratings ([`Planner::rate`]).
+    /// Out of time (with a budget): both ∞, nothing solved.
     fn around(&mut self, w: usize, s: f64) -> (f64, f64) {
+        if self.out_of_time() {
+            return (f64::INFINITY, f64::INFINITY);
+        }
         self.set_scale(w, s);
         let a = self.rate(w);
         if a.is_infinite() {
@@ -360,9 +364,6 @@ impl<'a> Planner<'a> {
             consider(x1, f1, &mut best);
             consider(x2, f2, &mut best);
             for _ in 2..evals {
-                if self.out_of_time() {
-                    break;
-                }
                 if f1.0 + f1.1 <= f2.0 + f2.1 {
                     (b, x2, f2) = (x2, x1, f1);
                     x1 = b - INV_PHI * (b - a);
