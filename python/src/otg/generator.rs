@@ -11,8 +11,8 @@
 //! With a calculation budget (`interrupt_calculation_duration`), as in Ruckig Pro, a motion
 //! whose calculation the budget cut short is refined in the following cycles: each `update`
 //! plans again from the current state through the waypoints still ahead (with the same
-//! budget) and follows the new motion when it ends sooner than the one being followed
-//! (`new_calculation` is then true and the time restarts at 0). Refinement ends when a
+//! budget) and follows the new motion when it ends at least one control period sooner than
+//! the one being followed (`new_calculation` is then true and the time restarts at 0). Refinement ends when a
 //! calculation completes within the budget.
 
 use std::time::Instant;
@@ -215,7 +215,9 @@ impl PyRuckig {
         let Ok(solved) = super::solve(&last.inner, last.waypoints(), self.otg.delta_time) else {
             return;
         };
-        if solved.duration() < left {
+        // A switch must gain at least one control period (smaller gains would not arrive a
+        // cycle sooner, only restart the motion's time every cycle).
+        if solved.duration() <= left - self.otg.delta_time {
             let input = last.clone();
             self.follow(py, input, solved, out);
         } else if !solved.was_interrupted() {
