@@ -204,6 +204,7 @@ def test_bad_fields_raise_the_library_message():
         "outside": outside,
     }
     exe = cli()
+    assert tk.Ruckig(2, 0.01).validate_input(base, True, True)
     for name, spoil in cases.items():
         inp = pickle.loads(pickle.dumps(base))
         spoil(inp)
@@ -212,6 +213,11 @@ def test_bad_fields_raise_the_library_message():
         msg = str(e.value)
         field = {"duplicate": "intermediate_positions", "outside": "intermediate_positions"}
         assert field.get(name, name) in msg, msg
+        # Ruckig's validate_input checks the waypoints too, with calculate's message.
+        for flags in [(False, True), (True, True)]:
+            with pytest.raises(trajkit.TrajkitError) as v:
+                tk.Ruckig(2, 0.01).validate_input(inp, *flags)
+            assert str(v.value) == msg and v.value.kind == e.value.kind
         assert e.value.result in (tk.Result.ErrorInvalidInput, tk.Result.Error)
         with pytest.raises(trajkit.TrajkitError):
             tk.Ruckig(2, 0.01).update(inp, tk.OutputParameter(2))
