@@ -14,6 +14,8 @@ import json
 import pathlib
 import pickle
 import subprocess
+import sys
+import copy
 
 import numpy as np
 import pytest
@@ -202,6 +204,7 @@ def test_bad_fields_raise_the_library_message():
         "outside": outside,
     }
     exe = cli()
+    assert tk.Ruckig(2, 0.01).validate_input(base, True, True)
     for name, spoil in cases.items():
         inp = pickle.loads(pickle.dumps(base))
         spoil(inp)
@@ -210,6 +213,11 @@ def test_bad_fields_raise_the_library_message():
         msg = str(e.value)
         field = {"duplicate": "intermediate_positions", "outside": "intermediate_positions"}
         assert field.get(name, name) in msg, msg
+        # Ruckig's validate_input checks the waypoints too, with calculate's message.
+        for flags in [(False, True), (True, True)]:
+            with pytest.raises(trajkit.TrajkitError) as v:
+                tk.Ruckig(2, 0.01).validate_input(inp, *flags)
+            assert str(v.value) == msg and v.value.kind == e.value.kind
         assert e.value.result in (tk.Result.ErrorInvalidInput, tk.Result.Error)
         with pytest.raises(trajkit.TrajkitError):
             tk.Ruckig(2, 0.01).update(inp, tk.OutputParameter(2))
@@ -341,3 +349,81 @@ def test_sections_without_waypoints_as_in_ruckig():
         d = tr.duration
         sections = [tr.at_time(t, return_section=True)[3] for t in [0.0, d / 2, d, d + 1.0]]
         assert sections == [0, 0, 1, 1], (mod.__name__, sections)
+
+
+def follow_with_budget(inp, dt):
+    """Ruckig Pro's online loop on `inp` (it has a budget): returns the inputs of the
+    calculations with their trajectories, every output state, and the sections passed."""
+    otg, out = tk.Ruckig(inp.degrees_of_freedom, dt), tk.OutputParameter(inp.degrees_of_freedom)
+    plans, states, passed, res = [], [], 0, tk.Result.Working
+    while res == tk.Result.Working:
+        res = otg.update(inp, out)
+        if out.new_calculation:
+            plans.append((pickle.loads(pickle.dumps(inp)), copy.copy(out)))
+        passed += out.did_section_change
+        states.append(out.new_position)
+        out.pass_to_input(inp)
+        assert len(states) < 100_000
+    return plans, np.array(states), passed, out
+
+
+def test_ruckig_online_waypoint_example_with_a_budget_reaches_the_target():
+    """A port of Ruckig's example 04 (budget 500 µs, four waypoints, the update loop): the
+    loop reaches the target through every waypoint; each motion it follows is valid."""
+    script = pathlib.Path(__file__).resolve().parents[1] / "examples" / "ruckig_waypoints_online.py"
+    r = subprocess.run([sys.executable, str(script)], capture_output=True, text=True,
+                       timeout=120, check=True)
+    assert "Updated the trajectory:" in r.stdout
+    rows = [line.split("\t") for line in r.stdout.splitlines() if "\t" in line][1:]
+    assert np.allclose([float(x) for x in rows[-1][1:]], [0.5, 1.0, 0.0], atol=0.01)
+    # The same loop here, checked.
+    inp = tk.InputParameter(3)
+    inp.current_position = [0.2, 0, -0.3]
+    inp.current_velocity = [0, 0.2, 0]
+    inp.current_acceleration = [0, 0.6, 0]
+    wps = [[1.4, -1.6, 1.0], [-0.6, -0.5, 0.4], [-0.4, -0.35, 0.0], [0.8, 1.8, -0.1]]
+    inp.intermediate_positions = wps
+    inp.target_position = [0.5, 1, 0]
+    inp.target_velocity = [0.2, 0, 0.3]
+    inp.target_acceleration = [0, 0.1, -0.1]
+    inp.max_velocity, inp.max_acceleration, inp.max_jerk = [1, 2, 1], [3, 2, 2], [6, 10, 20]
+    inp.interrupt_calculation_duration = 500
+    plans, states, passed, out = follow_with_budget(inp, 0.01)
+    assert passed == len(wps) + 1
+    for plan_inp, plan_out in plans:
+        assert_valid(plan_inp, plan_out.trajectory)
+    # Each waypoint is passed: the followed states come within one cycle's travel of it.
+    for w in wps:
+        assert np.min(np.linalg.norm(states - w, axis=1)) < 0.05, w
+    assert np.allclose(out.new_position, inp.target_position, atol=0.01)
+
+
+def test_a_short_budget_gives_a_valid_motion_then_refines_it():
+    """30 waypoints on 7 DOF: the planning takes longer than 300 µs, so the first calculation
+    is interrupted with a valid motion (never longer than stopping at every waypoint); the
+    following updates refine it (each switch shortens the rest of the motion) and the loop
+    ends at the target having passed every waypoint. The budget holds (least calculation
+    ≤ 1.1× the budget; a thread preempted past its deadline overruns by the preemption)."""
+    inp = waypoint_problem(np.random.default_rng(77), dofs=7, waypoints=30, rest=True)
+    free = calculate(inp, 0.004)
+    budget = 300.0
+    inp.interrupt_calculation_duration = budget
+    first = calculate(inp, 0.004)
+    assert first.was_interrupted and not free.was_interrupted
+    assert_valid(inp, first)
+    assert first.duration <= stop_at_every_waypoint(inp) * (1 + 1e-9)
+    wps = np.array(inp.intermediate_positions)
+    plans, states, passed, out = follow_with_budget(inp, 0.004)
+    assert passed == len(wps) + 1
+    assert plans[0][1].was_calculation_interrupted
+    for plan_inp, plan_out in plans:
+        assert_valid(plan_inp, plan_out.trajectory)
+    # Switching only to motions that end sooner: the loop ends no later than the first motion.
+    assert len(states) * 0.004 <= plans[0][1].trajectory.duration + 0.004 + 1e-9
+    assert np.allclose(out.new_position, inp.target_position, atol=1e-6)
+    least = min(o.calculation_duration for _, o in plans)
+    print(f"{len(plans)} calculations; first motion {first.duration:.3f} s, arrival after "
+          f"{len(states) * 0.004:.3f} s (without a budget {free.duration:.3f} s); "
+          f"calculation least {least:.0f} µs, most "
+          f"{max(o.calculation_duration for _, o in plans):.0f} µs")
+    assert least <= 1.1 * budget

@@ -31,7 +31,10 @@ Ruckig Pro's position limits (``InputParameter.min_position`` / ``max_position``
 ``-inf`` / ``inf`` by default: positions stay inside along the whole motion) and calculation
 budget (``InputParameter.interrupt_calculation_duration``, microseconds, ``None`` by default:
 the shortest valid trajectory found within it, ``OutputParameter.was_calculation_interrupted``
-when ``update`` used all of it) are supported. Failures raise ``RuckigError`` with the
+and ``Trajectory.was_interrupted`` when it cut the calculation short; with intermediate
+waypoints the best motion found in time, which the following ``update`` calls refine) are
+supported. ``Ruckig.validate_input`` checks intermediate waypoints and per-section fields
+too. Failures raise ``RuckigError`` with the
 library's message and ``result`` (the ``Result`` member: ``ErrorInvalidInput``,
 ``ErrorPositionalLimits``, ``ErrorZeroLimits``, ``ErrorExecutionTimeCalculation``,
 ``ErrorSynchronizationCalculation``), ``kind`` (``'invalid_input'``, ``'position_limits'``,

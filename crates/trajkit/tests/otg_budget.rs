@@ -1,9 +1,14 @@
 //! The calculation budget (`interrupt_calculation_duration`): an ample budget changes
 //! nothing; one that runs out before the synchronization search finds a duration gives
-//! `OtgError::Interrupted` without overrunning the budget by more than 10 %.
+//! `OtgError::Interrupted` without overrunning the budget by more than 10 %. The same for
+//! motions through waypoints (`plan_waypoints`, an anytime search): an ample budget changes
+//! nothing, a short one gives the best valid motion found in time (marked interrupted, never
+//! longer than stopping at every waypoint), one shorter than the reference an error.
 
 use std::time::Instant;
-use trajkit::otg::{InputParameter, Otg, OtgError};
+use trajkit::otg::{
+    check_waypoints, plan_waypoints, DynInputParameter, InputParameter, Otg, OtgError, Waypoints,
+};
 
 /// A 3-DOF problem whose synchronization search is long: DOF 0 cannot be stretched to the
 /// minimum duration inside its position limit (it cannot stop before the limit), so the
@@ -152,4 +157,120 @@ fn the_trajectory_says_when_the_budget_cut_the_search() {
     }
     eprintln!("{marked} marked as interrupted, {exact} complete");
     assert!(exact > 0);
+}
+
+/// A 7-DOF bent path (Franka Panda limits) through `m` waypoints, at rest at both ends: every
+/// joint keeps its direction, so the search has a velocity to choose at every waypoint.
+fn bent_path(r: &mut trajkit::rng::SplitMix64, m: usize) -> (DynInputParameter, Waypoints) {
+    let lim = trajkit::Limits::preset("panda").unwrap();
+    let mut p = DynInputParameter::new(7);
+    for i in 0..7 {
+        let j = lim.joint(i);
+        p.max_velocity[i] = j.velocity;
+        p.max_acceleration[i] = j.acceleration;
+        p.max_jerk[i] = j.jerk;
+    }
+    let sign: Vec<f64> = (0..7).map(|_| r.uniform(-1.0, 1.0).signum()).collect();
+    let mut x: Vec<f64> = (0..7).map(|_| r.uniform(-1.0, 1.0)).collect();
+    p.current_position.clone_from(&x);
+    let mut wps = Vec::new();
+    for _ in 0..=m {
+        for i in 0..7 {
+            x[i] += sign[i] * r.uniform(0.05, 0.6);
+        }
+        wps.push(x.clone());
+    }
+    p.target_position = wps.pop().unwrap();
+    (p, Waypoints::new(wps))
+}
+
+/// The least wall-clock time of `runs` calls of `f`, in microseconds, with the last result.
+fn least_us<T>(runs: usize, mut f: impl FnMut() -> T) -> (f64, T) {
+    let mut least = f64::INFINITY;
+    let mut last = None;
+    for _ in 0..runs {
+        let t0 = Instant::now();
+        let r = f();
+        least = least.min(t0.elapsed().as_secs_f64() * 1e6);
+        last = Some(r);
+    }
+    (least, last.unwrap())
+}
+
+#[test]
+fn waypoints_with_an_ample_budget_change_nothing() {
+    let mut r = trajkit::rng::SplitMix64::new(41);
+    for k in 0..20 {
+        let (mut inp, wp) = bent_path(&mut r, 1 + k % 8);
+        let free = plan_waypoints(&inp, &wp, 0.001).unwrap();
+        inp.options.interrupt_calculation_duration = Some(1e7);
+        let budgeted = plan_waypoints(&inp, &wp, 0.001).unwrap();
+        assert!(!free.was_interrupted() && !budgeted.was_interrupted());
+        assert_eq!(free.duration(), budgeted.duration(), "case {k}");
+        assert_eq!(free.waypoint_velocities(), budgeted.waypoint_velocities());
+    }
+}
+
+#[test]
+fn waypoints_under_a_short_budget_give_the_best_motion_found_in_time() {
+    // 30 waypoints: the search takes milliseconds, stopping at every waypoint far less.
+    let mut r = trajkit::rng::SplitMix64::new(7);
+    let (mut inp, wp) = bent_path(&mut r, 30);
+    let (full_us, free) = least_us(3, || plan_waypoints(&inp, &wp, 0.001).unwrap());
+    assert!(!free.was_interrupted());
+    let stop = free.stop_at_every_waypoint_duration();
+    let mut cut = 0;
+    for fraction in [0.1, 0.3, 0.6] {
+        let budget = full_us * fraction;
+        inp.options.interrupt_calculation_duration = Some(budget);
+        // Wall-clock budget: a preempted thread overruns by the preemption, so the least of
+        // up to 20 runs measures the planner's own overrun (as for the generator above).
+        let (mut least, mut worst) = (f64::INFINITY, 0.0f64);
+        for _ in 0..20 {
+            let t0 = Instant::now();
+            let res = plan_waypoints(&inp, &wp, 0.001);
+            let us = t0.elapsed().as_secs_f64() * 1e6;
+            (least, worst) = (least.min(us), worst.max(us));
+            match res {
+                Ok(t) => {
+                    cut += usize::from(t.was_interrupted());
+                    assert!(t.was_interrupted() || t.duration() == free.duration());
+                    assert!(t.duration() <= stop * (1.0 + 1e-12));
+                    let c = check_waypoints(&inp, &wp, &t).unwrap();
+                    assert!(c.waypoint_error <= 1e-8, "{c:?}");
+                    assert!(c.solution.worst_limit_ratio <= 1.0 + 1e-9, "{c:?}");
+                    assert!(c.solution.final_error.iter().all(|&e| e <= 1e-8), "{c:?}");
+                }
+                Err(OtgError::Interrupted { budget_us }) => assert_eq!(budget_us, budget),
+                Err(e) => panic!("{e:?}"),
+            }
+            if least <= 1.1 * budget {
+                break;
+            }
+        }
+        eprintln!(
+            "full {full_us:.0} µs, budget {budget:.0} µs: least {least:.0} µs, most {worst:.0} µs"
+        );
+        assert!(least <= 1.1 * budget, "{least} µs for {budget} µs");
+    }
+    assert!(cut > 0, "no budget cut the search");
+}
+
+#[test]
+fn waypoints_with_a_budget_shorter_than_the_reference_are_interrupted() {
+    let mut r = trajkit::rng::SplitMix64::new(9);
+    let (mut inp, wp) = bent_path(&mut r, 30);
+    inp.options.interrupt_calculation_duration = Some(1.0);
+    match plan_waypoints(&inp, &wp, 0.001) {
+        Err(OtgError::Interrupted { budget_us }) => assert_eq!(budget_us, 1.0),
+        other => panic!("{other:?}"),
+    }
+    inp.options.interrupt_calculation_duration = Some(-1.0);
+    assert!(matches!(
+        plan_waypoints(&inp, &wp, 0.001),
+        Err(OtgError::InvalidInput {
+            field: "interrupt_calculation_duration",
+            ..
+        })
+    ));
 }

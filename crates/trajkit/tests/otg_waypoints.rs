@@ -242,8 +242,58 @@ fn same_motion(a: &trajkit::otg::DynTrajectory, b: &trajkit::otg::DynTrajectory)
             .all(|(x, y)| x.profile == y.profile)
 }
 
+/// The error of planning, which `Waypoints::validate` (Ruckig's `validate_input`) must give
+/// the same, message included.
 fn err(inp: &DynInputParameter, wp: &Waypoints) -> OtgError {
-    plan_waypoints(inp, wp, 0.001).unwrap_err()
+    let e = plan_waypoints(inp, wp, 0.001).unwrap_err();
+    for (cur, tgt) in [(false, false), (true, true)] {
+        let v = wp.validate(inp, 0.001, cur, tgt).unwrap_err();
+        // Debug strings: NaN values compare unequal.
+        assert_eq!(format!("{v:?} {v}"), format!("{e:?} {e}"));
+    }
+    e
+}
+
+#[test]
+fn validate_input_checks_the_states_against_the_first_and_last_section() {
+    let mut r = SplitMix64::new(13);
+    let (mut inp, mut wp) = bent_case(&mut r);
+    assert_eq!(wp.validate(&inp, 0.001, true, true), Ok(()));
+    // A current velocity above the global limit but within the first section's.
+    inp.current_velocity[2] = 1.5 * inp.max_velocity[2];
+    let mut rows = vec![inp.max_velocity.clone(); wp.sections()];
+    rows[0][2] *= 2.0;
+    wp.per_section_max_velocity = Some(rows.clone());
+    assert_eq!(wp.validate(&inp, 0.001, true, true), Ok(()));
+    rows[0][2] = inp.max_velocity[2];
+    wp.per_section_max_velocity = Some(rows.clone());
+    assert!(matches!(
+        wp.validate(&inp, 0.001, true, true),
+        Err(OtgError::InvalidInput {
+            field: "current_velocity",
+            dof: Some(2),
+            ..
+        })
+    ));
+    assert_eq!(wp.validate(&inp, 0.001, false, true), Ok(()));
+    // The target state against the last section's limits.
+    inp.current_velocity[2] = 0.0;
+    inp.target_velocity[5] = 0.9 * inp.max_velocity[5];
+    assert_eq!(wp.validate(&inp, 0.001, true, true), Ok(()));
+    rows.last_mut().unwrap()[5] = 0.5 * inp.max_velocity[5];
+    wp.per_section_max_velocity = Some(rows);
+    // A target velocity outside its limits is refused whatever the flags, as planning does.
+    let e = plan_waypoints(&inp, &wp, 0.001).unwrap_err();
+    assert!(matches!(
+        e,
+        OtgError::InvalidInput {
+            field: "target_velocity",
+            dof: Some(5),
+            ..
+        }
+    ));
+    assert_eq!(wp.validate(&inp, 0.001, false, true), Err(e));
+    assert_eq!(wp.validate(&inp, 0.001, false, false), Err(e));
 }
 
 #[test]

@@ -7,6 +7,13 @@
 //! 0), advances `delta_time`, writes the state and section there, and applies
 //! `pass_to_input` to its own copy of the input, so that feeding the output back (which
 //! removes a passed waypoint) does not cause a new calculation.
+//!
+//! With a calculation budget (`interrupt_calculation_duration`), as in Ruckig Pro, a motion
+//! whose calculation the budget cut short is refined in the following cycles: each `update`
+//! plans again from the current state through the waypoints still ahead (with the same
+//! budget) and follows the new motion when it ends at least one control period sooner than
+//! the one being followed (`new_calculation` is then true and the time restarts at 0). Refinement ends when a
+//! calculation completes within the budget.
 
 use std::time::Instant;
 
@@ -162,6 +169,9 @@ pub struct PyRuckig {
     max_number_of_waypoints: usize,
     /// The motion through waypoints `update` follows, with its copy of the input.
     run: Option<(PyInput, Solved)>,
+    /// Whether that motion is still to be refined (its calculation was interrupted and no
+    /// complete calculation has been made since).
+    refine: bool,
 }
 
 impl PyRuckig {
@@ -177,6 +187,44 @@ impl PyRuckig {
 }
 
 impl PyRuckig {
+    /// Starts following `solved`, calculated for `input` (a new calculation of `update`).
+    fn follow(&mut self, py: Python<'_>, input: PyInput, solved: Solved, out: &mut PyOutput) {
+        // The library's generator must calculate anew when an input without waypoints
+        // follows.
+        self.otg.reset();
+        let mut ot = out.trajectory.borrow_mut(py);
+        ot.traj = Some(solved.clone());
+        ot.dofs = self.degrees_of_freedom;
+        set_source(&mut ot.source, &input, self.otg.delta_time);
+        self.refine = solved.was_interrupted();
+        out.inner.time = 0.0;
+        out.inner.new_calculation = true;
+        out.inner.was_calculation_interrupted = self.refine;
+        out.new_section = 0;
+        self.run = Some((input, solved));
+    }
+
+    /// Plans the followed motion again from the current state (its copy of the input) and
+    /// follows the new motion when it ends sooner (see the module documentation).
+    fn refine_run(&mut self, py: Python<'_>, out: &mut PyOutput) {
+        let Some((last, current)) = self.run.as_ref() else {
+            return;
+        };
+        let left = current.duration() - out.inner.time;
+        // A failed calculation (out of budget, say) keeps the motion being followed.
+        let Ok(solved) = super::solve(&last.inner, last.waypoints(), self.otg.delta_time) else {
+            return;
+        };
+        // A switch must gain at least one control period (smaller gains would not arrive a
+        // cycle sooner, only restart the motion's time every cycle).
+        if solved.duration() <= left - self.otg.delta_time {
+            let input = last.clone();
+            self.follow(py, input, solved, out);
+        } else if !solved.was_interrupted() {
+            self.refine = false;
+        }
+    }
+
     /// `update` on a motion through waypoints (see the module documentation).
     fn update_waypoints(
         &mut self,
@@ -187,21 +235,17 @@ impl PyRuckig {
         let start = Instant::now();
         let dt = self.otg.delta_time;
         out.inner.new_calculation = false;
+        out.inner.was_calculation_interrupted = false;
         let same = matches!(&self.run, Some((last, _)) if last.inner == input.inner && last.wp == input.wp);
         if !same {
-            let solved = super::solve(&input.inner, input.waypoints(), dt).map_err(otg_err)?;
-            // The library's generator must calculate anew when an input without waypoints
-            // follows.
-            self.otg.reset();
-            let mut ot = out.trajectory.borrow_mut(py);
-            ot.traj = Some(solved.clone());
-            ot.dofs = self.degrees_of_freedom;
-            set_source(&mut ot.source, input, dt);
-            self.run = Some((input.clone(), solved));
-            out.inner.time = 0.0;
-            out.inner.new_calculation = true;
-            out.inner.was_calculation_interrupted = false;
-            out.new_section = 0;
+            let solved = super::solve(&input.inner, input.waypoints(), dt).map_err(|e| {
+                // No valid motion within the budget: the budget cut the calculation.
+                out.inner.was_calculation_interrupted = matches!(e, OtgError::Interrupted { .. });
+                otg_err(e)
+            })?;
+            self.follow(py, input.clone(), solved, out);
+        } else if self.refine {
+            self.refine_run(py, out);
         }
         let Some((last, traj)) = self.run.as_mut() else {
             return Err(bad("no motion through waypoints to follow"));
@@ -246,6 +290,7 @@ impl PyRuckig {
             spare_traj: None,
             max_number_of_waypoints,
             run: None,
+            refine: false,
         })
     }
 
@@ -341,10 +386,12 @@ impl PyRuckig {
     }
 
     /// Ruckig's `validate_input`: True when `input` can be calculated (lengths, options,
-    /// finite values, signs of the limits) and, as asked, the current / target velocity and
-    /// acceleration are within the limits; else raises `RuckigError` naming the field, the
-    /// DOF and the value. Intermediate waypoints and per-section fields are checked by
-    /// `calculate` / `update` (the library validates them as it plans).
+    /// finite values, signs of the limits; with intermediate waypoints also the waypoints and
+    /// per-section fields: sizes, finite values, signs, duplicates, position limits, and the
+    /// options waypoints do not support) and, as asked, the current / target velocity and
+    /// acceleration are within the limits (with per-section limits, those of the first / last
+    /// section); else raises `RuckigError` naming the field, the DOF (and waypoint or
+    /// section) and the value, with the message `calculate` would give.
     #[pyo3(signature = (input, check_current_state_within_limits = false, check_target_state_within_limits = true))]
     fn validate_input(
         &self,
@@ -353,14 +400,16 @@ impl PyRuckig {
         check_target_state_within_limits: bool,
     ) -> PyResult<bool> {
         self.check_dofs(input.inner.dof(), "the input")?;
-        input
-            .inner
-            .validate(
-                self.otg.delta_time,
-                check_current_state_within_limits,
-                check_target_state_within_limits,
-            )
-            .map_err(otg_err)?;
+        let (dt, cur, tgt) = (
+            self.otg.delta_time,
+            check_current_state_within_limits,
+            check_target_state_within_limits,
+        );
+        match input.waypoints() {
+            Some(w) => w.validate(&input.inner, dt, cur, tgt),
+            None => input.inner.validate(dt, cur, tgt),
+        }
+        .map_err(otg_err)?;
         Ok(true)
     }
 
@@ -368,5 +417,6 @@ impl PyRuckig {
     fn reset(&mut self) {
         self.otg.reset();
         self.run = None;
+        self.refine = false;
     }
 }

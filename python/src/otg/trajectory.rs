@@ -40,8 +40,17 @@ impl Solved {
         }
     }
 
-    fn duration(&self) -> f64 {
+    pub fn duration(&self) -> f64 {
         self.as_traj().duration()
+    }
+
+    /// Whether the calculation budget cut the calculation short (the library's
+    /// `was_interrupted` of either kind of motion).
+    pub fn was_interrupted(&self) -> bool {
+        match self {
+            Solved::Plain(t) => t.was_interrupted(),
+            Solved::Waypoints(w) => w.was_interrupted(),
+        }
     }
 
     fn dof(&self) -> usize {
@@ -161,12 +170,14 @@ impl PyOtgTrajectory {
         self.traj.as_ref().map_or(0.0, |t| t.duration())
     }
 
-    /// True when the calculation budget (`interrupt_calculation_duration`) cut the search
-    /// for the common duration short: the trajectory is valid but may be longer than the
-    /// shortest (False before a calculation, without a budget and with waypoints).
+    /// True when the calculation budget (`interrupt_calculation_duration`) cut the
+    /// calculation short: the trajectory is valid but may be longer than the one calculated
+    /// without a budget (the search for the common duration; with waypoints, the search over
+    /// the waypoint velocities, never longer than stopping at every waypoint). False before a
+    /// calculation and without a budget.
     #[getter]
     fn was_interrupted(&self) -> bool {
-        matches!(&self.traj, Some(Solved::Plain(t)) if t.was_interrupted())
+        self.traj.as_ref().is_some_and(Solved::was_interrupted)
     }
 
     /// Number of degrees of freedom.

@@ -9,10 +9,13 @@
 //! jerk or acceleration limit (or a second-order one with zero velocity limits) cannot change
 //! its acceleration and coasts ([`super::zero`]).
 //!
-//! The input types are `#[non_exhaustive]` (build them with `new` and set the fields): Ruckig
-//! Pro's fields (position limits, intermediate waypoints, per-section limits, a calculation
-//! budget) are not supported yet and will be added as new fields; the JSON reader
-//! ([`super::json`]) refuses them by name.
+//! The input types are `#[non_exhaustive]` (build them with `new` and set the fields, so
+//! that fields can be added). Ruckig Pro's fields are supported: position limits
+//! (`min_position`/`max_position`) and the calculation budget
+//! (`options.interrupt_calculation_duration`) are fields of the input; intermediate waypoints
+//! with per-section limits and minimum durations are a [`super::Waypoints`] next to it
+//! ([`super::plan_waypoints`], which also honours the budget; [`super::Waypoints::validate`]
+//! is `validate_input` for them). The JSON reader ([`super::json`]) reads all of them.
 
 pub use super::problem::ControlInterface;
 use super::problem::Dof1;
@@ -319,7 +322,9 @@ impl DynInputParameter {
     /// current (`current_within_limits`) and target (`target_within_limits`) velocity and
     /// acceleration of every enabled DOF lie within `[min, max]` of their limits (a
     /// calculation accepts a current state outside them and brakes first). The first
-    /// violation is the error, with the field, the DOF and the value.
+    /// violation is the error, with the field, the DOF and the value. For a motion through
+    /// intermediate waypoints use [`super::Waypoints::validate`], which also checks the
+    /// waypoints and per-section fields.
     ///
     /// ```
     /// use trajkit::otg::{DynInputParameter, OtgError};

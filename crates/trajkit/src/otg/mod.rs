@@ -46,8 +46,10 @@
 //! [`OtgTrajectory::was_interrupted`] (and `was_calculation_interrupted` of the update outputs)
 //! when the budget cut the search short. Intermediate waypoints
 //! (`intermediate_positions`) with per-section limits and minimum durations:
-//! [`plan_waypoints`] (method, what is optimal about it and precision: `waypoints/`);
-//! Ruckig Pro's per-section minimum velocity and acceleration and per-section position
+//! [`plan_waypoints`] (method, what is optimal about it and precision: `waypoints/`), with the
+//! calculation budget too (an anytime search: the best valid motion found in time, stopping
+//! at every waypoint at worst; [`OtgError::Interrupted`] when even that does not fit) and
+//! [`Waypoints::validate`] as their `validate_input`; Ruckig Pro's per-section minimum velocity and acceleration and per-section position
 //! limits are refused by the JSON reader.
 //!
 //! # Files (one per step)

@@ -10,13 +10,19 @@
 //! own storage. A full solve is never longer than the bounded rating the search kept (to
 //! round-off), so the result is never longer than the search believed; the final check
 //! against stopping at every waypoint uses the built durations.
+//!
+//! With a calculation budget (`budget.rs`) the reference sections are kept as built, the
+//! search checks the clock before every rating and stops when what is left would not pay for
+//! the final build, and a build that runs out of time (or comes out longer) gives way to the
+//! kept reference: the result is the best valid motion found in time.
 
+use super::budget::Clock;
 use super::trajectory::WaypointTrajectory;
 use super::{section_inputs, Waypoints};
 use crate::otg::input::DynInputParameter;
 use crate::otg::result::OtgError;
-use crate::otg::sync::{calculate, Scratch, Search, Spare};
-use crate::otg::trajectory::{DofTrajectory, OtgTrajectory};
+use crate::otg::sync::{calculate, calculate_status, Scratch, Search, Spare};
+use crate::otg::trajectory::{DofTrajectory, DynTrajectory, OtgTrajectory};
 
 /// Golden-section evaluations per waypoint in the first sweep (whole scale range) and in the
 /// second (a window around the first sweep's choice).
@@ -68,11 +74,26 @@ pub(super) struct Planner<'a> {
     cap: Vec<f64>,
     scale: Vec<f64>,
     dur: Vec<f64>,
+    /// The calculation budget, when one is given.
+    clock: Option<Clock>,
+    /// Microseconds the reference took: what the search leaves for the final build.
+    reserve_us: f64,
+    /// The longest section solve so far in microseconds (with a budget): what the search
+    /// expects its next step to cost.
+    step_us: f64,
+    /// Whether the budget cut the planning (or a section's own search) short.
+    interrupted: bool,
 }
 
 impl<'a> Planner<'a> {
-    /// A planner for a validated problem, every waypoint velocity zero.
-    pub(super) fn new(input: &DynInputParameter, waypoints: &'a Waypoints, dt: f64) -> Self {
+    /// A planner for a validated problem, every waypoint velocity zero, with the
+    /// calculation budget `clock` when one is given.
+    pub(super) fn new(
+        input: &DynInputParameter,
+        waypoints: &'a Waypoints,
+        dt: f64,
+        clock: Option<Clock>,
+    ) -> Self {
         let n = input.dof();
         let m = waypoints.intermediate_positions.len();
         Planner {
@@ -88,6 +109,10 @@ impl<'a> Planner<'a> {
             cap: vec![0.0; m],
             scale: vec![0.0; m],
             dur: vec![0.0; m + 1],
+            clock,
+            reserve_us: 0.0,
+            step_us: 0.0,
+            interrupted: false,
         }
     }
 
@@ -114,20 +139,61 @@ impl<'a> Planner<'a> {
         self.run(s, Search::Bounded).unwrap_or(f64::INFINITY)
     }
 
-    /// Section `s` through the synchronization in mode `search`.
+    /// Section `s` through the synchronization in mode `search` (with what is left of the
+    /// budget as its own budget).
     fn run(&mut self, s: usize, search: Search) -> Result<f64, OtgError> {
-        calculate(
-            &self.secs[s].view(),
+        let Some(clock) = self.clock else {
+            return self.run_in(s, search);
+        };
+        self.secs[s].options.interrupt_calculation_duration = Some(clock.left_us()?);
+        let t0 = clock.elapsed_us();
+        let r = self.run_in(s, search);
+        self.step_us = self.step_us.max(clock.elapsed_us() - t0);
+        r
+    }
+
+    /// [`Planner::run`] without the clock.
+    fn run_in(&mut self, s: usize, search: Search) -> Result<f64, OtgError> {
+        let view = self.secs[s].view();
+        if search == Search::Bounded {
+            return calculate(
+                &view,
+                self.dt,
+                &mut self.dofs,
+                &mut self.scratch,
+                &mut self.spare,
+                search,
+            );
+        }
+        let c = calculate_status(
+            &view,
             self.dt,
             &mut self.dofs,
             &mut self.scratch,
             &mut self.spare,
-            search,
-        )
+        )?;
+        self.interrupted |= c.interrupted;
+        Ok(c.duration)
+    }
+
+    /// Whether the budget leaves too little for the search's next step (at most two section
+    /// ratings) and the final build (then the search stops and the result is marked
+    /// interrupted).
+    fn out_of_time(&mut self) -> bool {
+        let need = self.reserve_us + 2.0 * self.step_us;
+        let late = self
+            .clock
+            .is_some_and(|c| c.left_us().map_or(true, |left| left < need));
+        self.interrupted |= late;
+        late
     }
 
     /// The two sections around waypoint `w` at scale `s`: their ratings ([`Planner::rate`]).
+    /// Out of time (with a budget): both ∞, nothing solved.
     fn around(&mut self, w: usize, s: f64) -> (f64, f64) {
+        if self.out_of_time() {
+            return (f64::INFINITY, f64::INFINITY);
+        }
         self.set_scale(w, s);
         let a = self.rate(w);
         if a.is_infinite() {
@@ -138,16 +204,24 @@ impl<'a> Planner<'a> {
 
     /// Plans the motion (see the module docs).
     pub(super) fn plan(&mut self) -> Result<WaypointTrajectory, OtgError> {
+        let mut reference = Vec::new();
         for s in 0..=self.m {
             self.dur[s] = self.solve(s).map_err(|e| self.section_error(s, e))?;
+            if self.clock.is_some() {
+                reference.push(self.section(self.dur[s]));
+            }
         }
+        self.reserve_us = self.clock.map_or(0.0, |c| c.elapsed_us());
         let stop: Vec<f64> = self.dur.clone();
         let stop_total: f64 = stop.iter().sum();
-        if self.m > 0 {
+        if self.m > 0 && !self.out_of_time() {
             self.directions(&stop);
             self.start_from_tangent();
-            for (sweep, &evals) in EVALS.iter().enumerate() {
+            'search: for (sweep, &evals) in EVALS.iter().enumerate() {
                 for w in 0..self.m {
+                    if self.out_of_time() {
+                        break 'search;
+                    }
                     let (lo, hi) = if sweep == 0 {
                         (0.0, self.cap[w])
                     } else {
@@ -165,19 +239,35 @@ impl<'a> Planner<'a> {
         for w in 0..self.m {
             self.set_scale(w, self.scale[w]);
         }
+        let moving = self.scale.iter().any(|&s| s != 0.0);
+        if !moving && !reference.is_empty() {
+            return Ok(self.assemble(reference, stop_total));
+        }
         match self.build(stop_total) {
             // The full solve plans whatever the bounded rating planned, at most as long (to
-            // round-off); should it ever not, stopping at every waypoint is the answer.
-            r if self.scale.iter().any(|&s| s != 0.0)
-                && !r.as_ref().is_ok_and(|t| t.duration <= stop_total) =>
-            {
+            // round-off); should it ever not (or should the budget run out while building),
+            // stopping at every waypoint is the answer: with a budget, the kept reference.
+            r if moving && !r.as_ref().is_ok_and(|t| t.duration <= stop_total) => {
                 for w in 0..self.m {
                     self.scale[w] = 0.0;
                     self.set_scale(w, 0.0);
                 }
-                self.build(stop_total)
+                if reference.is_empty() {
+                    return self.build(stop_total);
+                }
+                self.interrupted |= matches!(r, Err(OtgError::Interrupted { .. }));
+                Ok(self.assemble(reference, stop_total))
             }
             r => r,
+        }
+    }
+
+    /// The section just solved into the planner's buffers, `d` long.
+    fn section(&self, d: f64) -> DynTrajectory {
+        OtgTrajectory {
+            dofs: self.dofs.clone(),
+            duration: d,
+            interrupted: false,
         }
     }
 
@@ -235,6 +325,10 @@ impl<'a> Planner<'a> {
         let mut dur = vec![0.0; self.m + 1];
         let mut ok = true;
         for s in 0..=self.m {
+            if self.out_of_time() {
+                ok = false;
+                break;
+            }
             dur[s] = self.rate(s);
             if dur[s].is_infinite() {
                 ok = false;
@@ -292,34 +386,38 @@ impl<'a> Planner<'a> {
     /// Solves every section once more into its own trajectory.
     fn build(&mut self, stop_total: f64) -> Result<WaypointTrajectory, OtgError> {
         let mut sections = Vec::with_capacity(self.m + 1);
-        let mut starts = Vec::with_capacity(self.m + 1);
-        let mut t = 0.0;
         for s in 0..=self.m {
             let d = self.solve(s).map_err(|e| self.section_error(s, e))?;
-            sections.push(OtgTrajectory {
-                dofs: self.dofs.clone(),
-                duration: d,
-                interrupted: false,
-            });
+            sections.push(self.section(d));
+        }
+        Ok(self.assemble(sections, stop_total))
+    }
+
+    /// The motion of `sections` (solved for the current waypoint velocities).
+    fn assemble(&self, sections: Vec<DynTrajectory>, stop_total: f64) -> WaypointTrajectory {
+        let mut starts = Vec::with_capacity(sections.len());
+        let mut t = 0.0;
+        for sec in &sections {
             starts.push(t);
-            t += d;
+            t += sec.duration;
         }
         let mut velocities = vec![0.0; self.m * self.n];
         for w in 0..self.m {
             velocities[w * self.n..(w + 1) * self.n].copy_from_slice(&self.secs[w].target_velocity);
         }
-        Ok(WaypointTrajectory {
+        WaypointTrajectory {
             sections,
             starts,
             duration: t,
             stop_duration: stop_total,
             velocities,
-        })
+            interrupted: self.interrupted,
+        }
     }
 
     /// The error of a section that cannot be planned (input errors pass through).
     fn section_error(&self, s: usize, e: OtgError) -> OtgError {
-        if let OtgError::InvalidInput { .. } = e {
+        if let OtgError::InvalidInput { .. } | OtgError::Interrupted { .. } = e {
             return e;
         }
         let min = self

@@ -21,6 +21,7 @@ pub struct WaypointTrajectory {
     pub(crate) duration: f64,
     pub(crate) stop_duration: f64,
     pub(crate) velocities: Vec<f64>,
+    pub(crate) interrupted: bool,
 }
 
 impl WaypointTrajectory {
@@ -48,6 +49,14 @@ impl WaypointTrajectory {
     /// never longer).
     pub fn stop_at_every_waypoint_duration(&self) -> f64 {
         self.stop_duration
+    }
+
+    /// Whether the calculation budget (`interrupt_calculation_duration`) cut the planning
+    /// short: the motion is valid (it passes every waypoint within the limits) and never
+    /// longer than stopping at every waypoint, but may be longer than the motion planned
+    /// without a budget.
+    pub fn was_interrupted(&self) -> bool {
+        self.interrupted
     }
 
     /// The velocity chosen at each waypoint, one value per DOF per waypoint, flattened

@@ -163,13 +163,6 @@ fn options(input: &DynInputParameter) -> Result<(), OtgError> {
             "is not supported with intermediate_positions (use per_section_minimum_duration)",
         ));
     }
-    if let Some(b) = o.interrupt_calculation_duration {
-        return Err(unsupported(
-            "interrupt_calculation_duration",
-            b,
-            "is not supported with intermediate_positions",
-        ));
-    }
     Ok(())
 }
 
