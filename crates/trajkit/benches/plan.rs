@@ -47,17 +47,7 @@ fn random_waypoints(n: usize) -> Waypoints {
 /// The Panda preset with the `standard_7wp_natural_N1000` fixture's velocity and acceleration
 /// limits, positions and jerk unbounded: the limits of `tools/bench_python.py`'s plan row.
 fn fixture_limits() -> Limits {
-    let p = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/tests/fixtures/topp/toppra_panda.json"
-    );
-    let v: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
-    let prob = v["problems"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|p| p["name"] == "standard_7wp_natural_N1000")
-        .unwrap();
+    let prob = common::standard_7wp_problem();
     let row = |k: &str| -> Vec<f64> {
         let a = prob[k].as_array().unwrap();
         a.iter().map(|x| x.as_f64().unwrap()).collect()
