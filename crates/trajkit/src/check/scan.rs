@@ -8,8 +8,9 @@
 //! joint over the rows (any missing column: the finite difference of the order below stands
 //! in for it); [`full_table_scan`] runs a table with every column block by block with the
 //! joints side by side ([`RowScan`]: summaries without division, then the definition's
-//! arithmetic on the few blocks that can hold each peak). Every path gives the definition's result exactly (same series, same
-//! arithmetic, same tie rules), which the tests of [`super`] check against it.
+//! arithmetic on the few blocks that can hold each peak). Every path gives the definition's
+//! result exactly (same series, same arithmetic, same tie rules), which the tests of
+//! [`super`] check against it.
 
 use super::{DerivativeCheck, Peak, PositionCheck};
 use crate::limits::{ratio_in, JointLimits, Limits};
