@@ -6,6 +6,10 @@
 //!   on the 7 waypoints of the `standard_7wp_natural_N1000` fixture problem;
 //! - `plan_default/random_W`: the same through W seeded random Panda waypoints (W = 10, 100);
 //! - `plan_default/line`: a 2-waypoint straight line (the exact 1-D optimum);
+//! - `plan_raw/std7_n1000`: what `trajkit.plan(wp, limits, jerk_limit=False, gridpoints=1000)`
+//!   runs from Python on the standard problem (`tools/bench_python.py`'s plan row): the
+//!   fixture's velocity and acceleration limits, unbounded positions and jerk, no jerk stage,
+//!   TOPP-RA on 1000 uniform intervals, 1 kHz samples and their check;
 //! - `jerk_scale/analytic` and `jerk_scale/sampled_20khz`: the filter's time-scale factor
 //!   on the standard problem's TOPP-RA result, by the per-segment bound
 //!   ([`trajkit::topp::jerk::scale_bound`]) and by sampling the filtered trajectory at 20 kHz
@@ -21,11 +25,11 @@ mod common;
 use criterion::{criterion_group, BenchmarkId, Criterion};
 use std::hint::black_box;
 use trajkit::io::Waypoints;
-use trajkit::plan::{plan, PlanOptions};
+use trajkit::plan::{plan, JerkStage, PlanOptions};
 use trajkit::rng::SplitMix64;
 use trajkit::topp::jerk::{filter_window, scale_bound, FilteredProfile};
 use trajkit::topp::messy;
-use trajkit::topp::{min_time_scale, Retimed};
+use trajkit::topp::{min_time_scale, Gridpoints, Retimed};
 use trajkit::{Limits, Trajectory};
 
 fn random_waypoints(n: usize) -> Waypoints {
@@ -40,9 +44,42 @@ fn random_waypoints(n: usize) -> Waypoints {
     Waypoints::new(wp, 7, vec![]).unwrap()
 }
 
+/// The Panda preset with the `standard_7wp_natural_N1000` fixture's velocity and acceleration
+/// limits, positions and jerk unbounded: the limits of `tools/bench_python.py`'s plan row.
+fn fixture_limits() -> Limits {
+    let prob = common::standard_7wp_problem();
+    let row = |k: &str| -> Vec<f64> {
+        let a = prob[k].as_array().unwrap();
+        a.iter().map(|x| x.as_f64().unwrap()).collect()
+    };
+    let (vmax, amax) = (row("vmax"), row("amax"));
+    let mut joints = Limits::preset("panda").unwrap().joints().to_vec();
+    for (j, jl) in joints.iter_mut().enumerate() {
+        jl.velocity = vmax[j];
+        jl.acceleration = amax[j];
+        jl.min_velocity = None;
+        jl.min_acceleration = None;
+        jl.jerk = f64::INFINITY;
+        jl.position_min = f64::NEG_INFINITY;
+        jl.position_max = f64::INFINITY;
+    }
+    Limits::new(joints).unwrap()
+}
+
 fn bench(c: &mut Criterion) {
     let limits = Limits::preset("panda").unwrap();
     let std7 = Waypoints::new(common::standard_7wp_waypoints(), 7, vec![]).unwrap();
+    let raw_limits = fixture_limits();
+    let raw_options = PlanOptions {
+        gridpoints: Gridpoints::Uniform(1000),
+        jerk: JerkStage::Off,
+        ..PlanOptions::default()
+    };
+    let mut g = c.benchmark_group("plan_raw");
+    g.bench_function("std7_n1000", |b| {
+        b.iter(|| black_box(plan(&std7, &raw_limits, &raw_options).unwrap().duration()))
+    });
+    g.finish();
     let q0 = [0.0, -0.785, 0.0, -2.356, 0.0, 1.571, 0.785];
     let line: Vec<f64> = q0
         .iter()

@@ -464,6 +464,10 @@ pub(crate) fn sample_and_check<T: Trajectory + ?Sized>(
         && scan.as_ref().is_some_and(RowScan::all_finite)
         && times.iter().all(|t| t.is_finite())
         && times.windows(2).all(|w| w[1] > w[0]);
+    let full = scan.and_then(|s| {
+        let n = rows * dof;
+        s.finish(&times, [0, 1, 2, 3].map(|k| &values[k * n..(k + 1) * n]))
+    });
     let table = if valid {
         // Joints, every value finite, times finite and strictly increasing: what
         // `SampleTable::new` checks.
@@ -474,7 +478,6 @@ pub(crate) fn sample_and_check<T: Trajectory + ?Sized>(
         SampleTable::new(dof, times, cols)?
     };
     let table = table.with_names(names)?;
-    let full = scan.and_then(RowScan::finish);
     let limits = col_limits?;
     let report = assemble(&table, &limits, full);
     Ok((table, report))
@@ -903,19 +906,26 @@ mod tests {
     }
 
     /// The one-pass check equals the definition exactly on seeded random tables: missing
-    /// columns, directional and unlimited limits, repeated extremes (ties), overflowing
-    /// differences.
+    /// columns, directional and unlimited limits, repeated extremes (ties, within and across
+    /// the scan's blocks), overflowing differences, uniform and random time steps.
     #[test]
     fn one_pass_check_equals_the_definition() {
         let mut rng = crate::rng::SplitMix64::new(14);
         for case in 0..300 {
-            let dof = 1 + case % 3;
-            let rows = 1 + (rng.next_u64() % 40) as usize;
+            // Nine joints: the scan's general path (fixed-size arrays up to eight).
+            let dof = if case % 10 == 9 { 9 } else { 1 + case % 3 };
+            // Longer tables span several of the one-pass scan's blocks.
+            let rows = 1 + (rng.next_u64() % if case % 2 == 0 { 40 } else { 400 }) as usize;
             let mut t = 0.0;
             let times: Vec<f64> = (0..rows)
-                .map(|_| {
+                .map(|i| {
                     t += rng.uniform(1e-3, 0.1);
-                    t
+                    // A uniform grid (equal time steps up to rounding) or random steps.
+                    if case % 4 == 3 {
+                        i as f64 / 1000.0
+                    } else {
+                        t
+                    }
                 })
                 .collect();
             // Few distinct values: ties between samples and between signs.

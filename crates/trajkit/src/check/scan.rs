@@ -6,9 +6,11 @@
 //! finite and no limit is 0 (a correctly rounded division by a constant is monotone); when
 //! that does not hold the caller scans again with [`PeakTracker`]. [`JointScan`] runs one
 //! joint over the rows (any missing column: the finite difference of the order below stands
-//! in for it); [`full_table_scan`] runs a table with every column row by row with the joints
-//! side by side. Every path gives the definition's result exactly (same series, same
-//! arithmetic, same tie rules), which the tests of [`super`] check against it.
+//! in for it); [`full_table_scan`] runs a table with every column block by block with the
+//! joints side by side ([`RowScan`]: summaries without division, then the definition's
+//! arithmetic on the few blocks that can hold each peak). Every path gives the definition's
+//! result exactly (same series, same arithmetic, same tie rules), which the tests of
+//! [`super`] check against it.
 
 use super::{DerivativeCheck, Peak, PositionCheck};
 use crate::limits::{ratio_in, JointLimits, Limits};
@@ -85,6 +87,20 @@ pub(super) struct Extremes {
     max: Option<(f64, f64)>,
     min: (f64, f64),
     finite: bool,
+}
+
+impl Extremes {
+    /// The series' first largest and first smallest (value, time), found by the caller, for
+    /// limits `(lo, hi)`.
+    fn found(lo: f64, hi: f64, max: (f64, f64), min: (f64, f64)) -> Self {
+        Extremes {
+            lo,
+            hi,
+            max: Some(max),
+            min,
+            finite: lo != 0.0 && hi != 0.0,
+        }
+    }
 }
 
 impl PeakScan for Extremes {
@@ -271,56 +287,10 @@ impl<S: PeakScan> JointScan<S> {
     }
 }
 
-/// Running first-largest and first-smallest values (with their times) of one series per
-/// joint, joints side by side (index j), for [`full_table_scan`].
-pub(super) struct ExtremesRow {
-    max: Vec<f64>,
-    t_max: Vec<f64>,
-    min: Vec<f64>,
-    t_min: Vec<f64>,
-}
-
-impl ExtremesRow {
-    /// Starts every joint's series with its first element (`values` at `time`).
-    fn first(time: f64, values: &[f64]) -> Self {
-        ExtremesRow {
-            max: values.to_vec(),
-            t_max: vec![time; values.len()],
-            min: values.to_vec(),
-            t_min: vec![time; values.len()],
-        }
-    }
-
-    /// The next element of every joint's series (the caller checks that they are finite).
-    #[inline]
-    fn push(&mut self, time: f64, values: &[f64]) {
-        let it = self.max.iter_mut().zip(&mut self.t_max);
-        let it = it.zip(self.min.iter_mut().zip(&mut self.t_min));
-        for (((mx, tmx), (mn, tmn)), &v) in it.zip(values) {
-            let (up, down) = (v > *mx, v < *mn);
-            *mx = if up { v } else { *mx };
-            *tmx = if up { time } else { *tmx };
-            *mn = if down { v } else { *mn };
-            *tmn = if down { time } else { *tmn };
-        }
-    }
-
-    /// Joint `j`'s series as [`Extremes`] for limits `(lo, hi)`.
-    fn joint(&self, j: usize, (lo, hi): (f64, f64)) -> Extremes {
-        Extremes {
-            lo,
-            hi,
-            max: Some((self.max[j], self.t_max[j])),
-            min: (self.min[j], self.t_min[j]),
-            finite: lo != 0.0 && hi != 0.0,
-        }
-    }
-}
-
-/// [`check_samples`] on a table with every column, row by row with the joints side by side
-/// (the divided differences of a row share its time step, so they vectorize): the same
-/// series, definitions and arithmetic as [`JointScan`]. `None` when a value is not finite or
-/// a limit is 0 (then [`JointScan`] decides, value by value where needed).
+/// [`check_samples`] on a table with every column, block by block with the joints side by side
+/// ([`RowScan`]): the same series, definitions and arithmetic as [`JointScan`]. `None` when a
+/// value or a divided difference is not finite or a limit is 0 (then [`JointScan`] decides,
+/// value by value where needed).
 pub(super) fn full_table_scan(table: &SampleTable, limits: &Limits) -> Option<Vec<ScanResult>> {
     let (dof, times) = (table.dof(), table.times());
     let m = Order::ALL.map(|o| table.matrix(o));
@@ -329,17 +299,32 @@ pub(super) fn full_table_scan(table: &SampleTable, limits: &Limits) -> Option<Ve
     };
     let mut scan = RowScan::new(limits, dof);
     scan.push_rows(times, [q, v, a, j]);
-    scan.finish()
+    scan.finish(times, [q, v, a, j])
 }
 
 /// One joint's position check and velocity, acceleration and jerk checks.
 pub(crate) type ScanResult = (PositionCheck, [DerivativeCheck; 3]);
 
+/// Rows per block of [`RowScan`]'s summaries.
+const SUMMARY_ROWS: usize = 64;
+
+/// Series per block summary: the divided-difference numerators of position, velocity and
+/// acceleration, then the pointwise velocity, acceleration and jerk.
+const SERIES: usize = 6;
+
 /// [`full_table_scan`] fed block by block while the rows are made (the sampling of
-/// [`super::sample_and_check`]), so that each block is checked while it is in cache: every
-/// column present, the rows of a block as consecutive row-major slices. The state between
-/// blocks is the previous row, so that the result does not depend on the block sizes and is
-/// [`full_table_scan`]'s exactly.
+/// [`super::sample_and_check`]), then finished on the whole table.
+///
+/// Pushing a block only summarizes it, with comparisons and subtractions (no division): per
+/// joint the largest and smallest pointwise value of each order, of each divided-difference
+/// numerator `x₁ − x₀` and of the position excursion, and the smallest and largest time step.
+/// [`RowScan::finish`] then finds each peak exactly: a pointwise peak in the first block whose
+/// extreme equals the series' extreme; a divided-difference peak among the blocks whose upper
+/// bound (numerator extreme over the time-step extremes: a correctly rounded division is
+/// monotone in each operand) reaches the largest of the blocks' lower bounds, which the other
+/// blocks cannot hold. Those blocks are scanned with the definition's arithmetic and tie rule
+/// (first largest, first smallest), so the result is [`JointScan`]'s exactly and does not
+/// depend on the block sizes; about one block per series is divided instead of every row.
 pub(crate) struct RowScan<'a> {
     limits: &'a Limits,
     dof: usize,
@@ -348,15 +333,20 @@ pub(crate) struct RowScan<'a> {
     /// The previous row's time and its position, velocity and acceleration (3·dof values).
     prev_t: f64,
     prev: Vec<f64>,
-    /// Pointwise series of velocity, acceleration, jerk; finite-difference series of
-    /// position, velocity, acceleration (from the second row on).
-    pointwise: Option<[ExtremesRow; 3]>,
-    fd: Option<[ExtremesRow; 3]>,
-    /// Per joint: the position part of [`JointScan`].
-    position: Vec<JointScan<Extremes>>,
-    diff: Vec<f64>,
-    /// Every divided difference seen is finite.
-    finite: bool,
+    /// Per block: its rows (from, to).
+    blocks: Vec<(usize, usize)>,
+    /// Per block: smallest and largest time step of its divided differences (∞, −∞ when it
+    /// has none: the first row alone).
+    steps: Vec<(f64, f64)>,
+    /// Per block, per series ([`SERIES`]): largest values (dof), then smallest (dof).
+    extremes: Vec<f64>,
+    /// Per block and joint: the largest position excursion `max(lo − q, q − hi)`.
+    beyond: Vec<f64>,
+    /// Per joint: the running position minimum and maximum, row by row as [`JointScan`].
+    q_min: Vec<f64>,
+    q_max: Vec<f64>,
+    /// Every time step seen is positive and finite.
+    steps_ok: bool,
     /// Every value seen (the first row and positions included) is finite.
     all_finite: bool,
 }
@@ -370,11 +360,13 @@ impl<'a> RowScan<'a> {
             rows: 0,
             prev_t: f64::NAN,
             prev: vec![0.0; 3 * dof],
-            pointwise: None,
-            fd: None,
-            position: Vec::with_capacity(dof),
-            diff: vec![0.0; 3 * dof],
-            finite: true,
+            blocks: Vec::new(),
+            steps: Vec::new(),
+            extremes: Vec::new(),
+            beyond: Vec::new(),
+            q_min: vec![f64::INFINITY; dof],
+            q_max: vec![f64::NEG_INFINITY; dof],
+            steps_ok: true,
             all_finite: true,
         }
     }
@@ -388,85 +380,311 @@ impl<'a> RowScan<'a> {
     /// row-major.
     pub(crate) fn push_rows(&mut self, times: &[f64], cols: [&[f64]; 4]) {
         let (dof, n) = (self.dof, times.len());
-        if n == 0 {
-            return;
-        }
         for c in cols {
             self.all_finite &= c[..n * dof].iter().fold(true, |f, v| f & v.is_finite());
         }
-        let row = |k: usize, i: usize| &cols[k][i * dof..(i + 1) * dof];
         let mut from = 0;
-        if self.rows == 0 {
-            let t = times[0];
-            self.pointwise = Some([1, 2, 3].map(|k| ExtremesRow::first(t, row(k, 0))));
-            self.position = (0..dof)
-                .map(|j| JointScan::new(self.limits.joint(j), t))
-                .collect();
-            from = 1;
+        while from < n {
+            let to = (from + SUMMARY_ROWS).min(n);
+            let block = cols.map(|c| &c[from * dof..to * dof]);
+            self.push_block(&times[from..to], block);
+            from = to;
         }
-        let pointwise = self.pointwise.as_mut().expect("set on the first row");
-        for i in from..n {
-            let (t0, prev) = if i == 0 {
-                let p = &self.prev;
-                (self.prev_t, [0, 1, 2].map(|k| &p[k * dof..(k + 1) * dof]))
-            } else {
-                (times[i - 1], [0, 1, 2].map(|k| row(k, i - 1)))
-            };
-            let t1 = times[i];
-            let (dt, mid) = (t1 - t0, 0.5 * (t0 + t1));
-            for (k, d) in self.diff.chunks_exact_mut(dof).enumerate() {
-                for ((d, &x1), &x0) in d.iter_mut().zip(row(k, i)).zip(prev[k]) {
-                    *d = (x1 - x0) / dt;
-                }
-                pointwise[k].push(t1, row(k + 1, i));
-            }
-            let diff = &self.diff;
-            self.finite &= diff.iter().fold(true, |f, d| f & d.is_finite());
-            let diffs = |k: usize| &diff[k * dof..(k + 1) * dof];
-            match &mut self.fd {
-                Some(f) => {
-                    for (k, f) in f.iter_mut().enumerate() {
-                        f.push(mid, diffs(k));
-                    }
-                }
-                None => {
-                    self.fd = Some([0, 1, 2].map(|k| ExtremesRow::first(mid, diffs(k))));
-                }
-            }
-        }
-        for (j, scan) in self.position.iter_mut().enumerate() {
-            for (i, &t) in times.iter().enumerate() {
-                scan.position(t, cols[0][i * dof + j]);
-            }
-        }
-        for (k, p) in self.prev.chunks_exact_mut(dof).enumerate() {
-            p.copy_from_slice(row(k, n - 1));
-        }
-        self.prev_t = times[n - 1];
-        self.rows += n;
     }
 
-    /// Per joint, its checks; `None` when no row was pushed, a value or a difference is not
-    /// finite or a limit is 0 (see [`full_table_scan`]).
-    pub(crate) fn finish(self) -> Option<Vec<ScanResult>> {
-        if !(self.finite && self.all_finite) {
-            return None;
+    /// One block's summary (see [`RowScan`]).
+    fn push_block(&mut self, times: &[f64], cols: [&[f64]; 4]) {
+        match self.dof {
+            1 => self.summarize::<1>(times, cols),
+            2 => self.summarize::<2>(times, cols),
+            3 => self.summarize::<3>(times, cols),
+            4 => self.summarize::<4>(times, cols),
+            5 => self.summarize::<5>(times, cols),
+            6 => self.summarize::<6>(times, cols),
+            7 => self.summarize::<7>(times, cols),
+            8 => self.summarize::<8>(times, cols),
+            _ => self.summarize_any(times, cols),
         }
-        let pointwise = self.pointwise?;
-        let out = self.position.into_iter().enumerate().map(|(j, mut scan)| {
-            let jl = self.limits.joint(j);
-            for k in 0..3 {
-                let range = jl.range(DERIVATIVES[k]);
-                scan.pointwise[k] = pointwise[k].joint(j, range);
-                if let Some(f) = &self.fd {
-                    scan.finite_difference[k] = f[k].joint(j, range);
+    }
+
+    /// [`RowScan::push_block`] for exactly `D` joints: one pass per series over the block with
+    /// its running extremes in fixed-size arrays (registers), the same values as
+    /// [`RowScan::summarize_any`].
+    fn summarize<const D: usize>(&mut self, times: &[f64], cols: [&[f64]; 4]) {
+        let m = times.len();
+        let rows = |k: usize| cols[k][..m * D].chunks_exact(D).map(fixed::<D>);
+        let first = usize::from(self.rows == 0);
+        let mut ext = [[f64::NEG_INFINITY; D]; 2 * SERIES];
+        for k in 0..3 {
+            let (mut mx, mut mn) = (ext[2 * k], ext[2 * k + 1]);
+            let mut prev = if first == 1 {
+                *fixed::<D>(&cols[k][..D])
+            } else {
+                *fixed::<D>(&self.prev[k * D..(k + 1) * D])
+            };
+            mn = mn.map(|_| f64::INFINITY);
+            for x in rows(k).skip(first) {
+                for j in 0..D {
+                    let n = x[j] - prev[j];
+                    mx[j] = if n > mx[j] { n } else { mx[j] };
+                    mn[j] = if n < mn[j] { n } else { mn[j] };
+                }
+                prev = *x;
+            }
+            (ext[2 * k], ext[2 * k + 1]) = (mx, mn);
+        }
+        for k in 1..4 {
+            let (mut mx, mut mn) = (ext[4 + 2 * k], [f64::INFINITY; D]);
+            for x in rows(k) {
+                for j in 0..D {
+                    mx[j] = if x[j] > mx[j] { x[j] } else { mx[j] };
+                    mn[j] = if x[j] < mn[j] { x[j] } else { mn[j] };
                 }
             }
-            scan.report()
-        });
-        let out: Vec<_> = out.collect();
-        out.iter()
-            .all(|r| r.2)
-            .then(|| out.into_iter().map(|r| (r.0, r.1)).collect())
+            (ext[4 + 2 * k], ext[5 + 2 * k]) = (mx, mn);
+        }
+        let joints = self.limits.joints();
+        let lo: [f64; D] = std::array::from_fn(|j| joints[j].position_min);
+        let hi: [f64; D] = std::array::from_fn(|j| joints[j].position_max);
+        let mut q_min = *fixed::<D>(&self.q_min);
+        let mut q_max = *fixed::<D>(&self.q_max);
+        let mut beyond = [f64::NEG_INFINITY; D];
+        for q in rows(0) {
+            for j in 0..D {
+                q_min[j] = q_min[j].min(q[j]);
+                q_max[j] = q_max[j].max(q[j]);
+                let d = (lo[j] - q[j]).max(q[j] - hi[j]);
+                beyond[j] = if d > beyond[j] { d } else { beyond[j] };
+            }
+        }
+        self.q_min.copy_from_slice(&q_min);
+        self.q_max.copy_from_slice(&q_max);
+        self.beyond.extend_from_slice(&beyond);
+        self.extremes.extend(ext.iter().flatten());
+        self.finish_block(times, cols);
     }
+
+    /// [`RowScan::push_block`] for any number of joints.
+    fn summarize_any(&mut self, times: &[f64], cols: [&[f64]; 4]) {
+        let (dof, m) = (self.dof, times.len());
+        let base = self.extremes.len();
+        for _ in 0..SERIES {
+            let grow = [f64::NEG_INFINITY, f64::INFINITY].into_iter();
+            self.extremes
+                .extend(grow.flat_map(|v| std::iter::repeat_n(v, dof)));
+        }
+        let ext = &mut self.extremes[base..];
+        let beyond_at = self.beyond.len();
+        self.beyond.resize(beyond_at + dof, f64::NEG_INFINITY);
+        let beyond = &mut self.beyond[beyond_at..];
+        let joints = self.limits.joints();
+        let row = |k: usize, i: usize| &cols[k][i * dof..(i + 1) * dof];
+        for i in 0..m {
+            if self.rows + i > 0 {
+                for k in 0..3 {
+                    let x0 = if i == 0 {
+                        &self.prev[k * dof..(k + 1) * dof]
+                    } else {
+                        row(k, i - 1)
+                    };
+                    let (mx, mn) = ext[2 * k * dof..2 * (k + 1) * dof].split_at_mut(dof);
+                    track(mx, mn, row(k, i).iter().zip(x0).map(|(&x1, &x0)| x1 - x0));
+                }
+            }
+            for k in 1..4 {
+                let s = 2 + k;
+                let (mx, mn) = ext[2 * s * dof..2 * (s + 1) * dof].split_at_mut(dof);
+                track(mx, mn, row(k, i).iter().copied());
+            }
+            let q = row(0, i);
+            for (j, (&q, jl)) in q.iter().zip(joints).enumerate() {
+                self.q_min[j] = self.q_min[j].min(q);
+                self.q_max[j] = self.q_max[j].max(q);
+                let d = (jl.position_min - q).max(q - jl.position_max);
+                beyond[j] = if d > beyond[j] { d } else { beyond[j] };
+            }
+        }
+        self.finish_block(times, cols);
+    }
+
+    /// The end of a block's summary (its extremes pushed): its time steps, the previous row
+    /// for the next block, its rows.
+    fn finish_block(&mut self, times: &[f64], cols: [&[f64]; 4]) {
+        let (dof, m) = (self.dof, times.len());
+        let (mut step_min, mut step_max) = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut t0 = if self.rows == 0 {
+            times[0]
+        } else {
+            self.prev_t
+        };
+        for &t in &times[usize::from(self.rows == 0)..] {
+            let dt = t - t0;
+            self.steps_ok &= dt > 0.0 && dt.is_finite();
+            step_min = if dt < step_min { dt } else { step_min };
+            step_max = if dt > step_max { dt } else { step_max };
+            t0 = t;
+        }
+        for (k, p) in self.prev.chunks_exact_mut(dof).enumerate() {
+            p.copy_from_slice(&cols[k][(m - 1) * dof..m * dof]);
+        }
+        self.prev_t = times[m - 1];
+        self.blocks.push((self.rows, self.rows + m));
+        self.steps.push((step_min, step_max));
+        self.rows += m;
+    }
+
+    /// Per joint, its checks, from the summaries and the whole table (`times` and the four
+    /// row-major columns that were pushed); `None` when no row was pushed, a value or a
+    /// divided difference is not finite (or may not be) or a limit is 0 (see
+    /// [`full_table_scan`]).
+    pub(crate) fn finish(self, times: &[f64], cols: [&[f64]; 4]) -> Option<Vec<ScanResult>> {
+        if self.rows == 0 || !(self.steps_ok && self.all_finite) {
+            return None;
+        }
+        let mut out = Vec::with_capacity(self.dof);
+        for j in 0..self.dof {
+            let jl = self.limits.joint(j);
+            let mut scan = JointScan::<Extremes>::new(jl, times[0]);
+            scan.min = self.q_min[j];
+            scan.max = self.q_max[j];
+            if let Some(b) = first_block_max(self.beyond.iter().skip(j).step_by(self.dof).copied())
+            {
+                let excursion = |i: usize| {
+                    let q = cols[0][i * self.dof + j];
+                    (jl.position_min - q).max(q - jl.position_max)
+                };
+                let (from, to) = self.blocks[b];
+                let peak = self.beyond[b * self.dof + j];
+                let i = (from..to).find(|&i| excursion(i) == peak)?;
+                (scan.beyond, scan.time) = (excursion(i), times[i]);
+            }
+            for k in 0..3 {
+                let (lo, hi) = jl.range(DERIVATIVES[k]);
+                let (mx, mn) = self.pointwise(k + 1, j, times, cols[k + 1])?;
+                scan.pointwise[k] = Extremes::found(lo, hi, mx, mn);
+                if self.rows > 1 {
+                    let (mx, mn) = self.divided(k, j, times, cols[k])?;
+                    scan.finite_difference[k] = Extremes::found(lo, hi, mx, mn);
+                }
+            }
+            let (p, d, exact) = scan.report();
+            if !exact {
+                return None;
+            }
+            out.push((p, d));
+        }
+        Some(out)
+    }
+
+    /// The block summary's (largest, smallest) of series `s` for joint `j` in block `b`.
+    fn summary(&self, b: usize, s: usize, j: usize) -> (f64, f64) {
+        let at = (b * SERIES + s) * 2 * self.dof + j;
+        (self.extremes[at], self.extremes[at + self.dof])
+    }
+
+    /// The first largest and first smallest (value, time) of order `k`'s pointwise series of
+    /// joint `j` (`col` its column): found in the first block whose extreme is the series'.
+    fn pointwise(
+        &self,
+        k: usize,
+        j: usize,
+        times: &[f64],
+        col: &[f64],
+    ) -> Option<((f64, f64), (f64, f64))> {
+        let s = 2 + k;
+        let blocks = 0..self.blocks.len();
+        let hi = first_block_max(blocks.clone().map(|b| self.summary(b, s, j).0))?;
+        let lo = first_block_max(blocks.map(|b| -self.summary(b, s, j).1))?;
+        let find = |b: usize, peak: f64| {
+            let (from, to) = self.blocks[b];
+            let i = (from..to).find(|&i| col[i * self.dof + j] == peak)?;
+            Some((col[i * self.dof + j], times[i]))
+        };
+        Some((
+            find(hi, self.summary(hi, s, j).0)?,
+            find(lo, self.summary(lo, s, j).1)?,
+        ))
+    }
+
+    /// The first largest and first smallest (value, midpoint time) of the divided differences
+    /// of joint `j` in order `k`'s column `col`, scanning only the blocks whose bounds may hold
+    /// them (see [`RowScan`]); `None` when a bound is not finite.
+    fn divided(
+        &self,
+        k: usize,
+        j: usize,
+        times: &[f64],
+        col: &[f64],
+    ) -> Option<((f64, f64), (f64, f64))> {
+        let dof = self.dof;
+        // Per block with divided differences: (lower, upper) bounds of its largest and of its
+        // smallest element.
+        let mut bounds = Vec::with_capacity(self.blocks.len());
+        let (mut max_floor, mut min_ceiling) = (f64::NEG_INFINITY, f64::INFINITY);
+        for (b, &(dt_min, dt_max)) in self.steps.iter().enumerate() {
+            if dt_min > dt_max {
+                bounds.push(None);
+                continue;
+            }
+            let (n_max, n_min) = self.summary(b, k, j);
+            let (a, c) = (n_max / dt_min, n_max / dt_max);
+            let (e, f) = (n_min / dt_min, n_min / dt_max);
+            if !(a.is_finite() && c.is_finite() && e.is_finite() && f.is_finite()) {
+                return None;
+            }
+            let (hi, lo) = ((a.min(c), a.max(c)), (e.min(f), e.max(f)));
+            max_floor = max_floor.max(hi.0);
+            min_ceiling = min_ceiling.min(lo.1);
+            bounds.push(Some((hi, lo)));
+        }
+        let mut best_max: Option<(f64, f64)> = None;
+        let mut best_min: Option<(f64, f64)> = None;
+        for (b, bound) in bounds.iter().enumerate() {
+            let Some((hi, lo)) = bound else { continue };
+            let (want_max, want_min) = (hi.1 >= max_floor, lo.0 <= min_ceiling);
+            if !(want_max || want_min) {
+                continue;
+            }
+            let (from, to) = self.blocks[b];
+            for i in from.max(1)..to {
+                let (t0, t1) = (times[i - 1], times[i]);
+                let d = (col[i * dof + j] - col[(i - 1) * dof + j]) / (t1 - t0);
+                let mid = 0.5 * (t0 + t1);
+                if want_max && best_max.is_none_or(|m| d > m.0) {
+                    best_max = Some((d, mid));
+                }
+                if want_min && best_min.is_none_or(|m| d < m.0) {
+                    best_min = Some((d, mid));
+                }
+            }
+        }
+        Some((best_max?, best_min?))
+    }
+}
+
+/// Running largest and smallest per joint: `mx[j]` and `mn[j]` replaced by a strictly larger
+/// (smaller) value only, as the definition's first-largest rule.
+#[inline]
+fn track(mx: &mut [f64], mn: &mut [f64], values: impl Iterator<Item = f64>) {
+    for ((mx, mn), v) in mx.iter_mut().zip(mn.iter_mut()).zip(values) {
+        *mx = if v > *mx { v } else { *mx };
+        *mn = if v < *mn { v } else { *mn };
+    }
+}
+
+/// A row of exactly `D` values.
+#[inline]
+fn fixed<const D: usize>(row: &[f64]) -> &[f64; D] {
+    row.try_into().expect("a row of D values")
+}
+
+/// The index of the first strictly largest value; `None` when empty or none exceeds −∞.
+fn first_block_max(values: impl Iterator<Item = f64>) -> Option<usize> {
+    let mut best: Option<(usize, f64)> = None;
+    for (b, v) in values.enumerate() {
+        if v > best.map_or(f64::NEG_INFINITY, |x| x.1) {
+            best = Some((b, v));
+        }
+    }
+    best.map(|x| x.0)
 }

@@ -137,7 +137,40 @@ impl TimeLaw for PhaseProfile {
             // The end state exactly (rest stays rest).
             return [self.s[n], self.sd[n], self.sdd[n - 1], 0.0];
         }
-        let i = find_piece(&self.t, t);
+        self.in_interval(find_piece(&self.t, t), t)
+    }
+
+    /// [`TimeLaw::eval`] at each time, the interval found by walking forward from the previous
+    /// time's (increasing times, as sampling gives) instead of a binary search; the same
+    /// interval as [`find_piece`] (a time before the previous one searches again), so the same
+    /// values.
+    fn eval_many(&self, times: &[f64], out: &mut [[f64; 4]]) {
+        let n = self.sdd.len();
+        let end = PhaseProfile::duration(self);
+        let mut i = 0;
+        for (&t, o) in times.iter().zip(out.iter_mut()) {
+            let t = clamp_time(t, end);
+            if t >= self.t[n] {
+                *o = [self.s[n], self.sd[n], self.sdd[n - 1], 0.0];
+                continue;
+            }
+            if i > 0 && (t.is_nan() || self.t[i] > t) {
+                i = find_piece(&self.t, t);
+            } else {
+                // Every break up to t[i] is ≤ t: count the following ones, as find_piece.
+                while i + 1 < n && self.t[i + 1] <= t {
+                    i += 1;
+                }
+            }
+            *o = self.in_interval(i, t);
+        }
+    }
+}
+
+impl PhaseProfile {
+    /// The state at time `t` (before the end) in interval `i`.
+    #[inline]
+    fn in_interval(&self, i: usize, t: f64) -> [f64; 4] {
         let tau = t - self.t[i];
         let u = self.sdd[i];
         let sd = self.sd[i] + u * tau;
@@ -163,5 +196,35 @@ mod tests {
         assert!(PhaseProfile::new(&[0.0, 1.0, 2.0], &[1.0, 0.0, 0.0]).is_err());
         assert!(PhaseProfile::new(&[0.0, 1.0], &[1.0, -1.0]).is_err());
         assert!(PhaseProfile::new(&[0.0, 0.0], &[1.0, 1.0]).is_err());
+    }
+
+    /// `eval_many` (forward walk) gives `eval`'s values bit for bit: increasing times on and
+    /// between the interval ends, repeats, a time going back, NaN, times outside.
+    #[test]
+    fn eval_many_equals_eval() {
+        let mut rng = crate::rng::SplitMix64::new(3);
+        let s: Vec<f64> = (0..50).map(|i| i as f64 * 0.1).collect();
+        let sd: Vec<f64> = (0..50)
+            .map(|i| if i == 0 { 0.0 } else { rng.uniform(0.2, 2.0) })
+            .collect();
+        let p = PhaseProfile::new(&s, &sd).unwrap();
+        let d = p.duration();
+        let mut times: Vec<f64> = (0..=400).map(|i| d * i as f64 / 400.0).collect();
+        times.extend_from_slice(&p.times()[..10]);
+        times.extend_from_slice(&[
+            0.3 * d,
+            0.3 * d,
+            0.1 * d,
+            f64::NAN,
+            0.5 * d,
+            -1.0,
+            2.0 * d,
+            d,
+        ]);
+        let mut many = vec![[0.0; 4]; times.len()];
+        p.eval_many(&times, &mut many);
+        for (&t, m) in times.iter().zip(&many) {
+            assert_eq!(m.map(f64::to_bits), p.eval(t).map(f64::to_bits), "t = {t}");
+        }
     }
 }
