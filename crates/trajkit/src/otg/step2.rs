@@ -18,7 +18,7 @@
 use super::bracket::{first_at_root, Grid};
 use super::families::two_changes;
 use super::problem::{ControlInterface, Dof1, ProfileOrder};
-use super::profile::{Profile, State1};
+use super::profile::{integrate, Profile, State1};
 use super::step1::{velocity_cap, velocity_window, verify, RestShape};
 use super::velocity_change::{fastest, kink, push_change, via_velocity, VelChange};
 
@@ -390,33 +390,67 @@ fn hold(
             && al2 >= -a2 - tol;
         valid.then_some((al1, al2, h))
     };
-    let build = |x: f64| -> Option<Profile> {
-        let (al1, al2, h) = levels(x)?;
-        let mut pr = Profile::new(State1 {
-            p: q.p0,
-            v: v0,
-            a: a0,
-        });
-        pr.push(((al1 - a0) / j).max(0.0), j);
-        if !at_valley {
-            pr.push(h, 0.0);
-        }
-        pr.push(((al1 - al2) / j).max(0.0), -j);
-        if at_valley {
-            pr.push(h, 0.0);
-        }
-        pr.push(((af - al2) / j).max(0.0), j);
-        if mirror {
-            pr.mirror();
-        }
-        Some(pr)
+    let start = State1 {
+        p: q.p0,
+        v: v0,
+        a: a0,
     };
+    let segs = |x: f64| -> Option<[(f64, f64); 4]> {
+        let (al1, al2, h) = levels(x)?;
+        let up = (((al1 - a0) / j).max(0.0), j);
+        let down = (((al1 - al2) / j).max(0.0), -j);
+        let last = (((af - al2) / j).max(0.0), j);
+        Some(if at_valley {
+            [up, down, (h, 0.0), last]
+        } else {
+            [up, (h, 0.0), down, last]
+        })
+    };
+    let build = |x: f64| segs(x).map(|s| segments_profile(start, &s, mirror));
     let d = dof.pf - dof.p0;
     let sgn = if mirror { -1.0 } else { 1.0 };
-    let f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf) + 0.0 * d);
+    let f = |x: f64| segs(x).map(|s| sgn * (segments_end_p(start, &s, mirror) - dof.pf) + 0.0 * d);
     let (lo, hi) = if at_valley { (-a2, af) } else { (a0, amax) };
     let cuts = [lo, hi, 0.0, if at_valley { a0.min(af) } else { af.max(a0) }];
     first_root(cuts, f, &build, ok)
+}
+
+/// The profile of constant-jerk segments `(duration, jerk)` from `start`, mirrored (every
+/// state and jerk negated) when `mirror`: the shape of a bracketed family at one value of its
+/// free parameter. A segment that [`Profile::push`] refuses (a negative or non-finite
+/// duration) is left out, as are zero durations.
+fn segments_profile(start: State1, segs: &[(f64, f64)], mirror: bool) -> Profile {
+    let mut pr = Profile::new(start);
+    for &(d, j) in segs {
+        pr.push(d, j);
+    }
+    if mirror {
+        pr.mirror();
+    }
+    pr
+}
+
+/// The end position of [`segments_profile`] without building the profile. The bracketed
+/// families evaluate their position residual dozens of times per step-2 call (a call where
+/// no family fits, as inside a blocked interval during the synchronization's bisection, runs
+/// them all), and writing a whole profile per evaluation was most of its cost. The same
+/// segments are integrated by the same [`integrate`] in the same order, and mirroring only
+/// negates, so the value is bit for bit the profile's `end().p`.
+fn segments_end_p(start: State1, segs: &[(f64, f64)], mirror: bool) -> f64 {
+    let (mut p, mut v, mut a) = (start.p, start.v, start.a);
+    for &(d, j) in segs {
+        // What `Profile::push` skips: refused and zero durations (five segments never reach
+        // its segment limit).
+        if !(0.0..=f64::MAX).contains(&d) || d == 0.0 {
+            continue;
+        }
+        (p, v, a) = integrate(p, v, a, j, d);
+    }
+    if mirror {
+        -p
+    } else {
+        p
+    }
 }
 
 /// The first profile, built by `build` at a root of `f` (bracketed on the pieces between
@@ -460,26 +494,25 @@ fn four_ramps(dof: &Dof1, t: f64, mirror: bool, ok: &impl Fn(&Profile) -> bool) 
             && a2 <= q.amax + tol;
         valid.then_some((a1, a3))
     };
-    let build = |a2: f64, first_low: bool| -> Option<Profile> {
+    let start = State1 {
+        p: q.p0,
+        v: q.v0,
+        a: a0,
+    };
+    let segs = |a2: f64, first_low: bool| -> Option<[(f64, f64); 4]> {
         let (a1, a3) = levels(a2, first_low)?;
-        let mut pr = Profile::new(State1 {
-            p: q.p0,
-            v: q.v0,
-            a: a0,
-        });
-        pr.push(((a0 - a1) / j).max(0.0), -j);
-        pr.push(((a2 - a1) / j).max(0.0), j);
-        pr.push(((a2 - a3) / j).max(0.0), -j);
-        pr.push(((af - a3) / j).max(0.0), j);
-        if mirror {
-            pr.mirror();
-        }
-        Some(pr)
+        Some([
+            (((a0 - a1) / j).max(0.0), -j),
+            (((a2 - a1) / j).max(0.0), j),
+            (((a2 - a3) / j).max(0.0), -j),
+            (((af - a3) / j).max(0.0), j),
+        ])
     };
     let sgn = if mirror { -1.0 } else { 1.0 };
     for first_low in [true, false] {
-        let b = |x: f64| build(x, first_low);
-        let f = |x: f64| b(x).map(|pr| sgn * (pr.end().p - dof.pf));
+        let b = |x: f64| segs(x, first_low).map(|s| segments_profile(start, &s, mirror));
+        let f =
+            |x: f64| segs(x, first_low).map(|s| sgn * (segments_end_p(start, &s, mirror) - dof.pf));
         if let r @ Some(_) = first_root([q.amin, q.amax, 0.0, a0, af], f, &b, ok) {
             return r;
         }
@@ -528,25 +561,24 @@ fn split_ramp(
             && al <= q.amax;
         valid.then_some((tau, beta, h))
     };
-    let build = |al: f64| -> Option<Profile> {
-        let (tau, beta, h) = levels(al)?;
-        let mut pr = Profile::new(State1 {
-            p: q.p0,
-            v: q.v0,
-            a: a0,
-        });
-        pr.push(((a0 - al) / j).max(0.0), -j);
-        pr.push(tau, 0.0);
-        pr.push(((al - beta) / j).max(0.0), -j);
-        pr.push(h, 0.0);
-        pr.push(((af - beta) / j).max(0.0), j);
-        if mirror {
-            pr.mirror();
-        }
-        Some(pr)
+    let start = State1 {
+        p: q.p0,
+        v: q.v0,
+        a: a0,
     };
+    let segs = |al: f64| -> Option<[(f64, f64); 5]> {
+        let (tau, beta, h) = levels(al)?;
+        Some([
+            (((a0 - al) / j).max(0.0), -j),
+            (tau, 0.0),
+            (((al - beta) / j).max(0.0), -j),
+            (h, 0.0),
+            (((af - beta) / j).max(0.0), j),
+        ])
+    };
+    let build = |x: f64| segs(x).map(|s| segments_profile(start, &s, mirror));
     let sgn = if mirror { -1.0 } else { 1.0 };
-    let f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf));
+    let f = |x: f64| segs(x).map(|s| sgn * (segments_end_p(start, &s, mirror) - dof.pf));
     first_root(
         [m, a0, 0.0, af.max(m.min(a0)).min(a0.max(m))],
         f,
@@ -590,25 +622,24 @@ fn peak_then_hold(
         let valid = tau >= 0.0 && h >= 0.0 && a1 >= a0 && a1 >= a2 && a2 >= af && a1 <= amax;
         valid.then_some((a1, h, a2, tau))
     };
-    let build = |x: f64| -> Option<Profile> {
-        let (a1, h, a2, tau) = levels(x)?;
-        let mut pr = Profile::new(State1 {
-            p: q.p0,
-            v: q.v0,
-            a: a0,
-        });
-        pr.push(((a1 - a0) / j).max(0.0), j);
-        pr.push(h, 0.0);
-        pr.push(((a1 - a2) / j).max(0.0), -j);
-        pr.push(tau, 0.0);
-        pr.push(((a2 - af) / j).max(0.0), -j);
-        if mirror {
-            pr.mirror();
-        }
-        Some(pr)
+    let start = State1 {
+        p: q.p0,
+        v: q.v0,
+        a: a0,
     };
+    let segs = |x: f64| -> Option<[(f64, f64); 5]> {
+        let (a1, h, a2, tau) = levels(x)?;
+        Some([
+            (((a1 - a0) / j).max(0.0), j),
+            (h, 0.0),
+            (((a1 - a2) / j).max(0.0), -j),
+            (tau, 0.0),
+            (((a2 - af) / j).max(0.0), -j),
+        ])
+    };
+    let build = |x: f64| segs(x).map(|s| segments_profile(start, &s, mirror));
     let sgn = if mirror { -1.0 } else { 1.0 };
-    let f = |x: f64| build(x).map(|pr| sgn * (pr.end().p - dof.pf));
+    let f = |x: f64| segs(x).map(|s| sgn * (segments_end_p(start, &s, mirror) - dof.pf));
     let lo = if plateau { af } else { a0.max(af) };
     let hi = amax.max(lo);
     first_root([lo, hi, 0.0f64.max(lo).min(hi)], f, &build, ok)
@@ -751,6 +782,40 @@ mod tests {
         assert!(found > 2000 && none > 2000, "{found} {none}");
         // Outside the regular case (D = 0) the bisection path answers.
         assert_eq!(rest_cubic_root(1.0, 1.0, 0.0, 0.25), Some(0.0));
+    }
+
+    #[test]
+    fn the_end_position_without_a_profile_is_the_profiles_bit_for_bit() {
+        // Seeded segment lists like the bracketed families' (five at most), with zero,
+        // negative and non-finite durations (which the profile leaves out), both mirrors.
+        let mut r = crate::rng::SplitMix64::new(16);
+        for _ in 0..20000 {
+            let start = State1 {
+                p: r.uniform(-5.0, 5.0),
+                v: r.uniform(-3.0, 3.0),
+                a: r.uniform(-20.0, 20.0),
+            };
+            let n = 1 + (r.next_u64() % 5) as usize;
+            let mut segs = [(0.0, 0.0); 5];
+            for s in &mut segs[..n] {
+                let d = match r.next_u64() % 8 {
+                    0 => 0.0,
+                    1 => -r.uniform(0.0, 0.1),
+                    2 => f64::NAN,
+                    3 => f64::INFINITY,
+                    _ => 10f64.powf(r.uniform(-9.0, 0.0)),
+                };
+                *s = (
+                    d,
+                    r.uniform(-1.0, 1.0).signum() * 10f64.powf(r.uniform(2.0, 4.0)),
+                );
+            }
+            for mirror in [false, true] {
+                let want = segments_profile(start, &segs[..n], mirror).end().p;
+                let got = segments_end_p(start, &segs[..n], mirror);
+                assert_eq!(got.to_bits(), want.to_bits(), "{start:?} {segs:?} {mirror}");
+            }
+        }
     }
 
     #[test]
