@@ -4,7 +4,8 @@
 //! of every spline built on it) finds each parameter's piece from the previous one and writes
 //! into a caller buffer without allocating; its values are bitwise those of one-point `eval`
 //! (same operations, same order), which the tests check for every degree, dimension and
-//! parameter order.
+//! parameter order. [`PiecewisePolynomial::eval_many_orders`] (orders 0..=3 in one sweep, what
+//! sampling a retimed path needs) writes bitwise what `eval_many` writes for each order.
 
 use crate::error::{Error, Result};
 use crate::spline::validate;
@@ -69,6 +70,53 @@ fn falling(j: usize, m: usize) -> f64 {
         f *= k as f64;
     }
     f
+}
+
+/// The derivative factors `j!/(j − order)!` of the `K` coefficients (0 below `order`; all 1,
+/// unused, for order 0).
+fn factors<const K: usize>(order: usize) -> [f64; K] {
+    let mut f = [1.0; K];
+    if order > 0 {
+        for (j, fj) in f.iter_mut().enumerate() {
+            *fj = if j >= order { falling(j, order) } else { 0.0 };
+        }
+    }
+    f
+}
+
+/// Order `order`'s Horner pass at `h` over a derivative block of
+/// `PiecewisePolynomial::eval_many_block` (`block[j][d]`: coefficient `j` of component `d`
+/// times `j!/(j − order)!`), all components at once.
+#[inline(always)]
+fn horner_block<const K: usize, const MD: usize>(
+    block: &[[f64; MD]; K],
+    order: usize,
+    h: f64,
+) -> [f64; MD] {
+    let mut acc = [0.0; MD];
+    let rows = if order == 0 {
+        acc = block[K - 1];
+        &block[..K - 1]
+    } else {
+        &block[order..]
+    };
+    for row in rows.iter().rev() {
+        for d in 0..MD {
+            acc[d] = acc[d] * h + row[d];
+        }
+    }
+    acc
+}
+
+/// Copies the first `o.len()` components of `acc` into `o` (a copy of fixed size when all
+/// `MD` are used: no call per point).
+#[inline(always)]
+fn write_row<const MD: usize>(o: &mut [f64], acc: &[f64; MD]) {
+    if o.len() == MD {
+        o[..MD].copy_from_slice(acc);
+    } else {
+        o.copy_from_slice(&acc[..o.len()]);
+    }
 }
 
 impl PiecewisePolynomial {
@@ -342,54 +390,51 @@ impl PiecewisePolynomial {
         order: usize,
         out: &mut [f64],
     ) {
-        let dim = self.dim;
-        let mut f = [1.0; K];
-        if order > 0 {
-            for (j, fj) in f.iter_mut().enumerate() {
-                *fj = if j >= order { falling(j, order) } else { 0.0 };
-            }
-        }
+        let f = factors::<K>(order);
         let mut block = [[0.0; MD]; K];
         let mut piece = usize::MAX;
         let mut left = 0.0;
-        for (&si, o) in s.iter().zip(out.chunks_exact_mut(dim)) {
+        for (&si, o) in s.iter().zip(out.chunks_exact_mut(self.dim)) {
             if si.is_nan() {
                 o.fill(f64::NAN);
                 continue;
             }
             let x = self.clamp(si);
-            let i = self.piece_index_from(x, if piece == usize::MAX { 0 } else { piece });
-            if i != piece {
-                piece = i;
-                left = self.breaks[i];
-                let c = &self.coeffs[i * dim * K..(i + 1) * dim * K];
-                for (d, cd) in c.chunks_exact(K).enumerate() {
-                    for j in 0..K {
-                        block[j][d] = if order == 0 { cd[j] } else { cd[j] * f[j] };
-                    }
-                }
+            if self.sweep_to(x, &mut piece, &mut left) {
+                self.fill_block(piece, order, &f, &mut block);
             }
-            let h = x - left;
-            let mut acc = [0.0; MD];
-            if order == 0 {
-                acc = block[K - 1];
-                for row in block[..K - 1].iter().rev() {
-                    for d in 0..MD {
-                        acc[d] = acc[d] * h + row[d];
-                    }
-                }
-            } else {
-                for row in block[order..].iter().rev() {
-                    for d in 0..MD {
-                        acc[d] = acc[d] * h + row[d];
-                    }
-                }
-            }
-            if MD == dim {
-                // A copy of fixed size (no call per point).
-                o[..MD].copy_from_slice(&acc);
-            } else {
-                o.copy_from_slice(&acc[..dim]);
+            write_row(o, &horner_block(&block, order, x - left));
+        }
+    }
+
+    /// Moves a sweep's `piece` (`usize::MAX` before the first point) to the piece holding `x`
+    /// (clamped, not NaN), `left` to its left break; true when the piece changed.
+    #[inline(always)]
+    fn sweep_to(&self, x: f64, piece: &mut usize, left: &mut f64) -> bool {
+        let i = self.piece_index_from(x, if *piece == usize::MAX { 0 } else { *piece });
+        if i == *piece {
+            return false;
+        }
+        *piece = i;
+        *left = self.breaks[i];
+        true
+    }
+
+    /// Piece `i`'s derivative block for `order` (see [`PiecewisePolynomial::eval_many_block`];
+    /// `f` from [`factors`]), power-major.
+    #[inline(always)]
+    fn fill_block<const K: usize, const MD: usize>(
+        &self,
+        i: usize,
+        order: usize,
+        f: &[f64; K],
+        block: &mut [[f64; MD]; K],
+    ) {
+        let dim = self.dim;
+        let c = &self.coeffs[i * dim * K..(i + 1) * dim * K];
+        for (d, cd) in c.chunks_exact(K).enumerate() {
+            for j in 0..K {
+                block[j][d] = if order == 0 { cd[j] } else { cd[j] * f[j] };
             }
         }
     }
@@ -437,12 +482,7 @@ impl PiecewisePolynomial {
     /// operations, same order); orders at or above `K` are zeros, as `eval_many_fixed` writes.
     fn eval_orders_block<const K: usize, const MD: usize>(&self, s: &[f64], out: [&mut [f64]; 4]) {
         let dim = self.dim;
-        let mut f = [[1.0; K]; 4];
-        for (m, fm) in f.iter_mut().enumerate().skip(1) {
-            for (j, fj) in fm.iter_mut().enumerate() {
-                *fj = if j >= m { falling(j, m) } else { 0.0 };
-            }
-        }
+        let f = [0, 1, 2, 3].map(factors::<K>);
         let mut blocks = [[[0.0; MD]; K]; 4];
         let mut piece = usize::MAX;
         let mut left = 0.0;
@@ -459,18 +499,9 @@ impl PiecewisePolynomial {
                 continue;
             }
             let x = self.clamp(si);
-            let i = self.piece_index_from(x, if piece == usize::MAX { 0 } else { piece });
-            if i != piece {
-                piece = i;
-                left = self.breaks[i];
-                let c = &self.coeffs[i * dim * K..(i + 1) * dim * K];
-                for (d, cd) in c.chunks_exact(K).enumerate() {
-                    for j in 0..K {
-                        blocks[0][j][d] = cd[j];
-                        for m in 1..4 {
-                            blocks[m][j][d] = cd[j] * f[m][j];
-                        }
-                    }
+            if self.sweep_to(x, &mut piece, &mut left) {
+                for (m, (fm, block)) in f.iter().zip(&mut blocks).enumerate().take(K) {
+                    self.fill_block(piece, m, fm, block);
                 }
             }
             let h = x - left;
@@ -479,27 +510,7 @@ impl PiecewisePolynomial {
                     o.fill(0.0);
                     continue;
                 }
-                let block = &blocks[m];
-                let mut acc = [0.0; MD];
-                if m == 0 {
-                    acc = block[K - 1];
-                    for row in block[..K - 1].iter().rev() {
-                        for d in 0..MD {
-                            acc[d] = acc[d] * h + row[d];
-                        }
-                    }
-                } else {
-                    for row in block[m..].iter().rev() {
-                        for d in 0..MD {
-                            acc[d] = acc[d] * h + row[d];
-                        }
-                    }
-                }
-                if MD == dim {
-                    o[..MD].copy_from_slice(&acc);
-                } else {
-                    o.copy_from_slice(&acc[..dim]);
-                }
+                write_row(o, &horner_block(&blocks[m], m, h));
             }
         }
     }
@@ -757,30 +768,41 @@ mod tests {
     /// `eval_many` writes what `eval` writes, bitwise, for every degree (the fixed-width and the
     /// general loops), order, and order of the parameters (sorted, reversed, random, repeated,
     /// out of range, NaN).
+    /// A random piecewise polynomial of 9 pieces, and parameters to evaluate it at: a sorted
+    /// sweep past both ends (breaks included), random ones with NaN, ends and infinities, and
+    /// the sweep reversed.
+    fn random_case(
+        rng: &mut crate::rng::SplitMix64,
+        degree: usize,
+        dim: usize,
+    ) -> (PiecewisePolynomial, [Vec<f64>; 3]) {
+        let mut breaks = vec![rng.uniform(-2.0, 0.0)];
+        for _ in 0..9 {
+            let last = *breaks.last().unwrap();
+            breaks.push(last + rng.uniform(0.05, 1.5));
+        }
+        let (a, b) = (breaks[0], breaks[9]);
+        let coeffs: Vec<f64> = (0..9 * dim * (degree + 1))
+            .map(|_| rng.uniform(-5.0, 5.0))
+            .collect();
+        let pp = PiecewisePolynomial::new(breaks.clone(), dim, degree, coeffs).unwrap();
+        let sorted: Vec<f64> = (0..=400)
+            .map(|i| a - 0.3 + (b - a + 0.6) * i as f64 / 400.0)
+            .chain(breaks.iter().copied())
+            .collect();
+        let mut random: Vec<f64> = (0..300).map(|_| rng.uniform(a - 1.0, b + 1.0)).collect();
+        random.extend([f64::NAN, a, b, b, a, f64::INFINITY, f64::NEG_INFINITY]);
+        let reversed: Vec<f64> = sorted.iter().rev().copied().collect();
+        (pp, [sorted, random, reversed])
+    }
+
     #[test]
     fn eval_many_equals_eval_bitwise() {
         let mut rng = crate::rng::SplitMix64::new(29);
         for degree in 0..=8usize {
             for dim in [1usize, 2, 3, 4, 5, 6, 7, 8, 12, 17] {
-                let mut breaks = vec![rng.uniform(-2.0, 0.0)];
-                for _ in 0..9 {
-                    let last = *breaks.last().unwrap();
-                    breaks.push(last + rng.uniform(0.05, 1.5));
-                }
-                let (a, b) = (breaks[0], breaks[9]);
-                let coeffs: Vec<f64> = (0..9 * dim * (degree + 1))
-                    .map(|_| rng.uniform(-5.0, 5.0))
-                    .collect();
-                let pp = PiecewisePolynomial::new(breaks.clone(), dim, degree, coeffs).unwrap();
-                let sorted: Vec<f64> = (0..=400)
-                    .map(|i| a - 0.3 + (b - a + 0.6) * i as f64 / 400.0)
-                    .chain(breaks.iter().copied())
-                    .collect();
-                let mut random: Vec<f64> =
-                    (0..300).map(|_| rng.uniform(a - 1.0, b + 1.0)).collect();
-                random.extend([f64::NAN, a, b, b, a, f64::INFINITY, f64::NEG_INFINITY]);
-                let reversed: Vec<f64> = sorted.iter().rev().copied().collect();
-                for s in [&sorted, &random, &reversed] {
+                let (pp, params) = random_case(&mut rng, degree, dim);
+                for s in &params {
                     for order in 0..=degree + 1 {
                         let mut many = vec![7.0; s.len() * dim];
                         pp.eval_many(s, order, &mut many);
@@ -809,24 +831,8 @@ mod tests {
         let mut rng = crate::rng::SplitMix64::new(31);
         for degree in 0..=8usize {
             for dim in [1usize, 2, 3, 5, 7, 8, 9, 16, 17] {
-                let mut breaks = vec![rng.uniform(-2.0, 0.0)];
-                for _ in 0..7 {
-                    let last = *breaks.last().unwrap();
-                    breaks.push(last + rng.uniform(0.05, 1.5));
-                }
-                let (a, b) = (breaks[0], breaks[7]);
-                let coeffs: Vec<f64> = (0..7 * dim * (degree + 1))
-                    .map(|_| rng.uniform(-5.0, 5.0))
-                    .collect();
-                let pp = PiecewisePolynomial::new(breaks.clone(), dim, degree, coeffs).unwrap();
-                let sorted: Vec<f64> = (0..=300)
-                    .map(|i| a - 0.3 + (b - a + 0.6) * i as f64 / 300.0)
-                    .chain(breaks.iter().copied())
-                    .collect();
-                let mut random: Vec<f64> =
-                    (0..200).map(|_| rng.uniform(a - 1.0, b + 1.0)).collect();
-                random.extend([f64::NAN, a, b, b, a, f64::INFINITY, f64::NEG_INFINITY]);
-                for s in [&sorted, &random] {
+                let (pp, params) = random_case(&mut rng, degree, dim);
+                for s in &params {
                     let n = s.len() * dim;
                     let mut fused = [0; 4].map(|_| vec![7.0; n]);
                     let [q, v, acc, j] = &mut fused;
