@@ -157,8 +157,9 @@ impl<P: Path, L: TimeLaw> Trajectory for Retimed<P, L> {
         }
     }
 
-    /// One law evaluation per time and one path sweep for orders 0..=3 ([`Path::eval_many_orders`]), in
-    /// blocks of 64 times; the chain rule as in `eval`, term by term.
+    /// One law evaluation per time and one path sweep for orders 0..=3
+    /// ([`Path::eval_many_orders`]), in blocks of 64 times; the chain rule as in `eval`, term
+    /// by term.
     fn eval_rows(&self, times: &[f64], mut out: [&mut [f64]; 4]) {
         use crate::traj::{row_block, ROW_BLOCK};
         let n = self.path.dim();
