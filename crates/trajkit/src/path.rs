@@ -42,6 +42,17 @@ pub trait Path {
         }
     }
 
+    /// Writes orders 0 to 3 at every parameter of `s` into `out[0..4]` (each row-major,
+    /// `s.len() × dim()`), each what [`Path::eval_many`] writes for that order. The default
+    /// makes the four `eval_many` calls; a path that can share the piece search and the
+    /// coefficient setup between the orders should override it (bitwise equal values). No
+    /// allocation.
+    fn eval_many_orders(&self, s: &[f64], out: [&mut [f64]; 4]) {
+        for (order, o) in out.into_iter().enumerate() {
+            self.eval_many(s, order, o);
+        }
+    }
+
     /// Parameters where σ or a low derivative is not smooth (segment joints of a spline,
     /// corners of a piecewise-linear path), increasing, including both ends. Time
     /// parameterization puts gridpoints there. The default is just the two ends; a path that
@@ -77,6 +88,9 @@ impl<P: Path + ?Sized> Path for &P {
     fn eval_many(&self, s: &[f64], order: usize, out: &mut [f64]) {
         (**self).eval_many(s, order, out)
     }
+    fn eval_many_orders(&self, s: &[f64], out: [&mut [f64]; 4]) {
+        (**self).eval_many_orders(s, out)
+    }
     fn breakpoints(&self) -> Vec<f64> {
         (**self).breakpoints()
     }
@@ -100,6 +114,9 @@ impl<P: Path + ?Sized> Path for Box<P> {
     }
     fn eval_many(&self, s: &[f64], order: usize, out: &mut [f64]) {
         (**self).eval_many(s, order, out)
+    }
+    fn eval_many_orders(&self, s: &[f64], out: [&mut [f64]; 4]) {
+        (**self).eval_many_orders(s, out)
     }
     fn breakpoints(&self) -> Vec<f64> {
         (**self).breakpoints()

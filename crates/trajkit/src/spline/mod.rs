@@ -110,6 +110,9 @@ macro_rules! ppoly_backed {
             fn eval_many(&self, s: &[f64], order: usize, out: &mut [f64]) {
                 self.pp.eval_many(s, order, out)
             }
+            fn eval_many_orders(&self, s: &[f64], out: [&mut [f64]; 4]) {
+                self.pp.eval_many_orders(s, out)
+            }
             fn breakpoints(&self) -> Vec<f64> {
                 self.pp.breaks().to_vec()
             }

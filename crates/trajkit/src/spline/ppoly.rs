@@ -4,7 +4,8 @@
 //! of every spline built on it) finds each parameter's piece from the previous one and writes
 //! into a caller buffer without allocating; its values are bitwise those of one-point `eval`
 //! (same operations, same order), which the tests check for every degree, dimension and
-//! parameter order.
+//! parameter order. [`PiecewisePolynomial::eval_many_orders`] (orders 0..=3 in one sweep, what
+//! sampling a retimed path needs) writes bitwise what `eval_many` writes for each order.
 
 use crate::error::{Error, Result};
 use crate::spline::validate;
@@ -69,6 +70,53 @@ fn falling(j: usize, m: usize) -> f64 {
         f *= k as f64;
     }
     f
+}
+
+/// The derivative factors `j!/(j − order)!` of the `K` coefficients (0 below `order`; all 1,
+/// unused, for order 0).
+fn factors<const K: usize>(order: usize) -> [f64; K] {
+    let mut f = [1.0; K];
+    if order > 0 {
+        for (j, fj) in f.iter_mut().enumerate() {
+            *fj = if j >= order { falling(j, order) } else { 0.0 };
+        }
+    }
+    f
+}
+
+/// Order `order`'s Horner pass at `h` over a derivative block of
+/// `PiecewisePolynomial::eval_many_block` (`block[j][d]`: coefficient `j` of component `d`
+/// times `j!/(j − order)!`), all components at once.
+#[inline(always)]
+fn horner_block<const K: usize, const MD: usize>(
+    block: &[[f64; MD]; K],
+    order: usize,
+    h: f64,
+) -> [f64; MD] {
+    let mut acc = [0.0; MD];
+    let rows = if order == 0 {
+        acc = block[K - 1];
+        &block[..K - 1]
+    } else {
+        &block[order..]
+    };
+    for row in rows.iter().rev() {
+        for d in 0..MD {
+            acc[d] = acc[d] * h + row[d];
+        }
+    }
+    acc
+}
+
+/// Copies the first `o.len()` components of `acc` into `o` (a copy of fixed size when all
+/// `MD` are used: no call per point).
+#[inline(always)]
+fn write_row<const MD: usize>(o: &mut [f64], acc: &[f64; MD]) {
+    if o.len() == MD {
+        o[..MD].copy_from_slice(acc);
+    } else {
+        o.copy_from_slice(&acc[..o.len()]);
+    }
 }
 
 impl PiecewisePolynomial {
@@ -342,54 +390,127 @@ impl PiecewisePolynomial {
         order: usize,
         out: &mut [f64],
     ) {
-        let dim = self.dim;
-        let mut f = [1.0; K];
-        if order > 0 {
-            for (j, fj) in f.iter_mut().enumerate() {
-                *fj = if j >= order { falling(j, order) } else { 0.0 };
-            }
-        }
+        let f = factors::<K>(order);
         let mut block = [[0.0; MD]; K];
         let mut piece = usize::MAX;
         let mut left = 0.0;
-        for (&si, o) in s.iter().zip(out.chunks_exact_mut(dim)) {
+        for (&si, o) in s.iter().zip(out.chunks_exact_mut(self.dim)) {
             if si.is_nan() {
                 o.fill(f64::NAN);
                 continue;
             }
             let x = self.clamp(si);
-            let i = self.piece_index_from(x, if piece == usize::MAX { 0 } else { piece });
-            if i != piece {
-                piece = i;
-                left = self.breaks[i];
-                let c = &self.coeffs[i * dim * K..(i + 1) * dim * K];
-                for (d, cd) in c.chunks_exact(K).enumerate() {
-                    for j in 0..K {
-                        block[j][d] = if order == 0 { cd[j] } else { cd[j] * f[j] };
-                    }
+            if self.sweep_to(x, &mut piece, &mut left) {
+                self.fill_block(piece, order, &f, &mut block);
+            }
+            write_row(o, &horner_block(&block, order, x - left));
+        }
+    }
+
+    /// Moves a sweep's `piece` (`usize::MAX` before the first point) to the piece holding `x`
+    /// (clamped, not NaN), `left` to its left break; true when the piece changed.
+    #[inline(always)]
+    fn sweep_to(&self, x: f64, piece: &mut usize, left: &mut f64) -> bool {
+        let i = self.piece_index_from(x, if *piece == usize::MAX { 0 } else { *piece });
+        if i == *piece {
+            return false;
+        }
+        *piece = i;
+        *left = self.breaks[i];
+        true
+    }
+
+    /// Piece `i`'s derivative block for `order` (see [`PiecewisePolynomial::eval_many_block`];
+    /// `f` from [`factors`]), power-major.
+    #[inline(always)]
+    fn fill_block<const K: usize, const MD: usize>(
+        &self,
+        i: usize,
+        order: usize,
+        f: &[f64; K],
+        block: &mut [[f64; MD]; K],
+    ) {
+        let dim = self.dim;
+        let c = &self.coeffs[i * dim * K..(i + 1) * dim * K];
+        for (d, cd) in c.chunks_exact(K).enumerate() {
+            for j in 0..K {
+                block[j][d] = if order == 0 { cd[j] } else { cd[j] * f[j] };
+            }
+        }
+    }
+
+    /// Writes orders 0 to 3 (position, first, second and third derivative) at every parameter
+    /// of `s` into `out[0..4]` (each row-major, `s.len() × dim`): bitwise what
+    /// [`PiecewisePolynomial::eval_many`] writes for each order, with one clamp and one piece
+    /// search per point and the piece's four coefficient blocks made once per piece.
+    /// Degrees 1, 3, 5 and 7 with up to 16 components take this fused pass; other shapes make
+    /// the four `eval_many` calls. Panics only if an `out` slice is too short.
+    pub fn eval_many_orders(&self, s: &[f64], out: [&mut [f64]; 4]) {
+        let n = s.len() * self.dim;
+        let out = out.map(|o| &mut o[..n]);
+        match (self.degree, self.dim) {
+            (1, 1..=16) => self.eval_orders_fixed::<2>(s, out),
+            (3, 1..=16) => self.eval_orders_fixed::<4>(s, out),
+            (5, 1..=16) => self.eval_orders_fixed::<6>(s, out),
+            (7, 1..=16) => self.eval_orders_fixed::<8>(s, out),
+            _ => {
+                for (order, o) in out.into_iter().enumerate() {
+                    self.eval_many(s, order, o);
+                }
+            }
+        }
+    }
+
+    /// [`PiecewisePolynomial::eval_many_orders`] with `K = degree + 1` fixed, by component
+    /// count (exactly `MD` up to 8, at most 16 otherwise).
+    fn eval_orders_fixed<const K: usize>(&self, s: &[f64], out: [&mut [f64]; 4]) {
+        match self.dim {
+            1 => self.eval_orders_block::<K, 1>(s, out),
+            2 => self.eval_orders_block::<K, 2>(s, out),
+            3 => self.eval_orders_block::<K, 3>(s, out),
+            4 => self.eval_orders_block::<K, 4>(s, out),
+            5 => self.eval_orders_block::<K, 5>(s, out),
+            6 => self.eval_orders_block::<K, 6>(s, out),
+            7 => self.eval_orders_block::<K, 7>(s, out),
+            8 => self.eval_orders_block::<K, 8>(s, out),
+            _ => self.eval_orders_block::<K, 16>(s, out),
+        }
+    }
+
+    /// The fused form of [`PiecewisePolynomial::eval_many_block`]: `blocks[m]` is that
+    /// function's block for order `m`, and each order's Horner pass is its pass (same
+    /// operations, same order); orders at or above `K` are zeros, as `eval_many_fixed` writes.
+    fn eval_orders_block<const K: usize, const MD: usize>(&self, s: &[f64], out: [&mut [f64]; 4]) {
+        let dim = self.dim;
+        let f = [0, 1, 2, 3].map(factors::<K>);
+        let mut blocks = [[[0.0; MD]; K]; 4];
+        let mut piece = usize::MAX;
+        let mut left = 0.0;
+        let [o0, o1, o2, o3] = out;
+        let rows = o0
+            .chunks_exact_mut(dim)
+            .zip(o1.chunks_exact_mut(dim))
+            .zip(o2.chunks_exact_mut(dim))
+            .zip(o3.chunks_exact_mut(dim));
+        for (&si, (((r0, r1), r2), r3)) in s.iter().zip(rows) {
+            let rows = [r0, r1, r2, r3];
+            if si.is_nan() {
+                rows.into_iter().for_each(|r| r.fill(f64::NAN));
+                continue;
+            }
+            let x = self.clamp(si);
+            if self.sweep_to(x, &mut piece, &mut left) {
+                for (m, (fm, block)) in f.iter().zip(&mut blocks).enumerate().take(K) {
+                    self.fill_block(piece, m, fm, block);
                 }
             }
             let h = x - left;
-            let mut acc = [0.0; MD];
-            if order == 0 {
-                acc = block[K - 1];
-                for row in block[..K - 1].iter().rev() {
-                    for d in 0..MD {
-                        acc[d] = acc[d] * h + row[d];
-                    }
+            for (m, o) in rows.into_iter().enumerate() {
+                if m >= K {
+                    o.fill(0.0);
+                    continue;
                 }
-            } else {
-                for row in block[order..].iter().rev() {
-                    for d in 0..MD {
-                        acc[d] = acc[d] * h + row[d];
-                    }
-                }
-            }
-            if MD == dim {
-                // A copy of fixed size (no call per point).
-                o[..MD].copy_from_slice(&acc);
-            } else {
-                o.copy_from_slice(&acc[..dim]);
+                write_row(o, &horner_block(&blocks[m], m, h));
             }
         }
     }
@@ -557,6 +678,9 @@ impl crate::Path for PiecewisePolynomial {
     fn eval_many(&self, s: &[f64], order: usize, out: &mut [f64]) {
         PiecewisePolynomial::eval_many(self, s, order, out)
     }
+    fn eval_many_orders(&self, s: &[f64], out: [&mut [f64]; 4]) {
+        PiecewisePolynomial::eval_many_orders(self, s, out)
+    }
     fn breakpoints(&self) -> Vec<f64> {
         self.breaks.clone()
     }
@@ -644,30 +768,41 @@ mod tests {
     /// `eval_many` writes what `eval` writes, bitwise, for every degree (the fixed-width and the
     /// general loops), order, and order of the parameters (sorted, reversed, random, repeated,
     /// out of range, NaN).
+    /// A random piecewise polynomial of 9 pieces, and parameters to evaluate it at: a sorted
+    /// sweep past both ends (breaks included), random ones with NaN, ends and infinities, and
+    /// the sweep reversed.
+    fn random_case(
+        rng: &mut crate::rng::SplitMix64,
+        degree: usize,
+        dim: usize,
+    ) -> (PiecewisePolynomial, [Vec<f64>; 3]) {
+        let mut breaks = vec![rng.uniform(-2.0, 0.0)];
+        for _ in 0..9 {
+            let last = *breaks.last().unwrap();
+            breaks.push(last + rng.uniform(0.05, 1.5));
+        }
+        let (a, b) = (breaks[0], breaks[9]);
+        let coeffs: Vec<f64> = (0..9 * dim * (degree + 1))
+            .map(|_| rng.uniform(-5.0, 5.0))
+            .collect();
+        let pp = PiecewisePolynomial::new(breaks.clone(), dim, degree, coeffs).unwrap();
+        let sorted: Vec<f64> = (0..=400)
+            .map(|i| a - 0.3 + (b - a + 0.6) * i as f64 / 400.0)
+            .chain(breaks.iter().copied())
+            .collect();
+        let mut random: Vec<f64> = (0..300).map(|_| rng.uniform(a - 1.0, b + 1.0)).collect();
+        random.extend([f64::NAN, a, b, b, a, f64::INFINITY, f64::NEG_INFINITY]);
+        let reversed: Vec<f64> = sorted.iter().rev().copied().collect();
+        (pp, [sorted, random, reversed])
+    }
+
     #[test]
     fn eval_many_equals_eval_bitwise() {
         let mut rng = crate::rng::SplitMix64::new(29);
         for degree in 0..=8usize {
             for dim in [1usize, 2, 3, 4, 5, 6, 7, 8, 12, 17] {
-                let mut breaks = vec![rng.uniform(-2.0, 0.0)];
-                for _ in 0..9 {
-                    let last = *breaks.last().unwrap();
-                    breaks.push(last + rng.uniform(0.05, 1.5));
-                }
-                let (a, b) = (breaks[0], breaks[9]);
-                let coeffs: Vec<f64> = (0..9 * dim * (degree + 1))
-                    .map(|_| rng.uniform(-5.0, 5.0))
-                    .collect();
-                let pp = PiecewisePolynomial::new(breaks.clone(), dim, degree, coeffs).unwrap();
-                let sorted: Vec<f64> = (0..=400)
-                    .map(|i| a - 0.3 + (b - a + 0.6) * i as f64 / 400.0)
-                    .chain(breaks.iter().copied())
-                    .collect();
-                let mut random: Vec<f64> =
-                    (0..300).map(|_| rng.uniform(a - 1.0, b + 1.0)).collect();
-                random.extend([f64::NAN, a, b, b, a, f64::INFINITY, f64::NEG_INFINITY]);
-                let reversed: Vec<f64> = sorted.iter().rev().copied().collect();
-                for s in [&sorted, &random, &reversed] {
+                let (pp, params) = random_case(&mut rng, degree, dim);
+                for s in &params {
                     for order in 0..=degree + 1 {
                         let mut many = vec![7.0; s.len() * dim];
                         pp.eval_many(s, order, &mut many);
@@ -682,6 +817,35 @@ mod tests {
                                 );
                             }
                         }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The fused four-order sweep writes bitwise what `eval_many` writes for each order, on
+    /// every degree (fused or not), dimension (fixed, wide, beyond 16) and parameter order,
+    /// NaN and out-of-range parameters included.
+    #[test]
+    fn eval_many_orders_equals_eval_many_bitwise() {
+        let mut rng = crate::rng::SplitMix64::new(31);
+        for degree in 0..=8usize {
+            for dim in [1usize, 2, 3, 5, 7, 8, 9, 16, 17] {
+                let (pp, params) = random_case(&mut rng, degree, dim);
+                for s in &params {
+                    let n = s.len() * dim;
+                    let mut fused = [0; 4].map(|_| vec![7.0; n]);
+                    let [q, v, acc, j] = &mut fused;
+                    pp.eval_many_orders(s, [q, v, acc, j]);
+                    for (order, f) in fused.iter().enumerate() {
+                        let mut many = vec![-7.0; n];
+                        pp.eval_many(s, order, &mut many);
+                        let bits = |x: &[f64]| x.iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+                        assert_eq!(
+                            bits(f),
+                            bits(&many),
+                            "degree {degree} dim {dim} order {order}"
+                        );
                     }
                 }
             }

@@ -189,6 +189,13 @@ impl Path for PiecePath {
             PiecePath::Linear(p) => p.eval_many(s, order, out),
         }
     }
+    fn eval_many_orders(&self, s: &[f64], out: [&mut [f64]; 4]) {
+        match self {
+            PiecePath::Cubic(p) => p.eval_many_orders(s, out),
+            PiecePath::Bounded(p) => p.eval_many_orders(s, out),
+            PiecePath::Linear(p) => p.eval_many_orders(s, out),
+        }
+    }
     fn breakpoints(&self) -> Vec<f64> {
         match self {
             PiecePath::Cubic(p) => p.breakpoints(),

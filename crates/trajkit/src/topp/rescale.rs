@@ -157,8 +157,9 @@ impl<P: Path, L: TimeLaw> Trajectory for Retimed<P, L> {
         }
     }
 
-    /// One law evaluation per time and one path sweep per order ([`Path::eval_many`]), in
-    /// blocks of 64 times; the chain rule as in `eval`, term by term.
+    /// One law evaluation per time and one path sweep for orders 0..=3
+    /// ([`Path::eval_many_orders`]), in blocks of 64 times; the chain rule as in `eval`, term
+    /// by term.
     fn eval_rows(&self, times: &[f64], mut out: [&mut [f64]; 4]) {
         use crate::traj::{row_block, ROW_BLOCK};
         let n = self.path.dim();
@@ -172,10 +173,8 @@ impl<P: Path, L: TimeLaw> Trajectory for Retimed<P, L> {
                 *si = l[0];
             }
             let [q, v, a, jk] = row_block(&mut out, n, from, from + m);
-            self.path.eval_many(&s[..m], 0, q);
-            self.path.eval_many(&s[..m], 1, v);
-            self.path.eval_many(&s[..m], 2, a);
-            self.path.eval_many(&s[..m], 3, jk);
+            self.path
+                .eval_many_orders(&s[..m], [&mut *q, &mut *v, &mut *a, &mut *jk]);
             for (i, &[_, sd, sdd, sddd]) in law[..m].iter().enumerate() {
                 let r = i * n..(i + 1) * n;
                 let (d1, d2, d3) = (&mut v[r.clone()], &mut a[r.clone()], &mut jk[r]);
