@@ -356,14 +356,26 @@ def follow_with_budget(inp, dt):
     calculations with their trajectories, every output state, and the sections passed."""
     otg, out = tk.Ruckig(inp.degrees_of_freedom, dt), tk.OutputParameter(inp.degrees_of_freedom)
     plans, states, passed, res = [], [], 0, tk.Result.Working
-    while res == tk.Result.Working:
-        res = otg.update(inp, out)
+    # The budget is wall-clock time: on a busy machine even stopping at every waypoint can miss
+    # it, and then the first calculation is refused as interrupted (what the library promises);
+    # the first update is tried again, a few times at most.
+    for attempt in range(5):
+        try:
+            res = otg.update(inp, out)
+            break
+        except trajkit.TrajkitError as e:
+            if e.kind != "interrupted" or attempt == 4:
+                raise
+    while True:
         if out.new_calculation:
             plans.append((pickle.loads(pickle.dumps(inp)), copy.copy(out)))
         passed += out.did_section_change
         states.append(out.new_position)
         out.pass_to_input(inp)
         assert len(states) < 100_000
+        if res != tk.Result.Working:
+            break
+        res = otg.update(inp, out)
     return plans, np.array(states), passed, out
 
 
@@ -399,14 +411,16 @@ def test_ruckig_online_waypoint_example_with_a_budget_reaches_the_target():
 
 
 def test_a_short_budget_gives_a_valid_motion_then_refines_it():
-    """30 waypoints on 7 DOF: the planning takes longer than 300 µs, so the first calculation
+    """30 waypoints on 7 DOF: the planning takes longer than 600 µs, so the first calculation
     is interrupted with a valid motion (never longer than stopping at every waypoint); the
     following updates refine it (each switch shortens the rest of the motion) and the loop
     ends at the target having passed every waypoint. The budget holds (least calculation
     ≤ 1.1× the budget; a thread preempted past its deadline overruns by the preemption)."""
     inp = waypoint_problem(np.random.default_rng(77), dofs=7, waypoints=30, rest=True)
     free = calculate(inp, 0.004)
-    budget = 300.0
+    # Stopping at every waypoint (what must fit) takes about 150 µs here and the whole search
+    # about 3 ms: 600 µs leaves the first a margin against a noisy machine and cuts the second.
+    budget = 600.0
     inp.interrupt_calculation_duration = budget
     first = calculate(inp, 0.004)
     assert first.was_interrupted and not free.was_interrupted

@@ -5,8 +5,8 @@
 //! The planner is an anytime algorithm (`plan.rs`): stopping at every waypoint is solved
 //! first and kept, then the search improves on it. With a budget every section solve gets
 //! what is left of it (so the synchronization's own bisection stops at the same deadline),
-//! the search stops when what is left would not pay for building its result (the time the
-//! reference took, measured), and a build that does not finish in time falls back to the
+//! the search stops when what is left would not pay for building its result (twice the time
+//! the reference took, measured), and a build that does not finish in time falls back to the
 //! reference. Only a reference that does not fit is [`OtgError::Interrupted`].
 
 use crate::otg::result::OtgError;
@@ -39,6 +39,12 @@ impl Clock {
     /// Microseconds since the start.
     pub(super) fn elapsed_us(&self) -> f64 {
         self.start.elapsed().as_secs_f64() * 1e6
+    }
+
+    /// The budget's own error: [`OtgError::Interrupted`] naming the whole budget (not what
+    /// was left of it for one section).
+    pub(super) fn interrupted(&self) -> OtgError {
+        OtgError::Interrupted { budget_us: self.us }
     }
 
     /// Microseconds left; [`OtgError::Interrupted`] when none are.

@@ -98,16 +98,22 @@
 //! stopping at every waypoint (step 1) is a valid motion as soon as it is solved and is
 //! kept, steps 2–3 only improve on it. With a budget the search stops when what is left
 //! would not pay for its next step (two section ratings, timed by the longest solve so far)
-//! and the final build (timed by step 1); the result is the best valid motion found, marked
+//! and the final build (twice the time step 1 took: the build's sections move through their
+//! waypoints and cost more than step 1's rest-to-rest ones); the result is the best valid
+//! motion found, marked
 //! [`WaypointTrajectory::was_interrupted`] when the budget cut anything short. A final build
 //! that runs out of time gives way to the kept stop-at-every-waypoint motion. When even step 1
 //! does not fit, the error is [`OtgError::Interrupted`]. The budget is wall-clock time: a
 //! thread preempted past the deadline overruns by the preemption. Otherwise the overrun is
 //! what the search could not foresee: a section solve longer than every one before it (one
-//! attempt of the generator's step 2 is not interrupted, and on a few sections takes hundreds
-//! of µs). Measured 2026-11-26 from Python (release, 300 calls each, CPU time of the calling
-//! thread): Ruckig's example 04 with 500 µs at most 481 µs; 7 DOF × 30 waypoints at most
-//! 1.24× / 1.28× / 1.04× budgets of 300 / 1000 / 3000 µs, above 1.1× in ≤ 1.7 % of calls.
+//! attempt of the generator's step 2 is not interrupted). Measured 2026-11-26 09:30–09:33 UTC
+//! from Python (release, 7 DOF × 30 waypoints, 300 calls per budget, CPU time of the calling
+//! thread, load 1.6): with the build's reserve at twice step 1's time, two runs, budgets of
+//! 300 / 1000 / 3000 µs used at most 1.03× and 0.75× / 0.84× and 1.11× / 1.09× and 1.22×,
+//! above 1.1× in 0 and 0 % / 0 and 0.3 % / 0 and 0.7 % of calls; with the reserve at once
+//! step 1's time (the run just before): at most 1.5× / 1.2× / 1.1×, above 1.1× in 2.4 % /
+//! 2.0 % / 0.3 % of calls. Ruckig's example 04 with 500 µs: at most 481 µs (once-step-1
+//! reserve).
 //! `tests/otg_budget.rs` asserts the least of up to 20 runs ≤ 1.1× the budget. An ample
 //! budget changes nothing (same motion, bit for bit).
 

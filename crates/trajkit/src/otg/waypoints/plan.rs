@@ -76,7 +76,8 @@ pub(super) struct Planner<'a> {
     dur: Vec<f64>,
     /// The calculation budget, when one is given.
     clock: Option<Clock>,
-    /// Microseconds the reference took: what the search leaves for the final build.
+    /// Twice the microseconds the reference took: what the search leaves for the final build
+    /// (its sections move through the waypoints and cost more than the reference's).
     reserve_us: f64,
     /// The longest section solve so far in microseconds (with a budget): what the search
     /// expects its next step to cost.
@@ -149,7 +150,11 @@ impl<'a> Planner<'a> {
         let t0 = clock.elapsed_us();
         let r = self.run_in(s, search);
         self.step_us = self.step_us.max(clock.elapsed_us() - t0);
-        r
+        // A section that ran out of what was left of the budget: the budget ran out.
+        r.map_err(|e| match e {
+            OtgError::Interrupted { .. } => clock.interrupted(),
+            e => e,
+        })
     }
 
     /// [`Planner::run`] without the clock.
@@ -211,7 +216,7 @@ impl<'a> Planner<'a> {
                 reference.push(self.section(self.dur[s]));
             }
         }
-        self.reserve_us = self.clock.map_or(0.0, |c| c.elapsed_us());
+        self.reserve_us = 2.0 * self.clock.map_or(0.0, |c| c.elapsed_us());
         let stop: Vec<f64> = self.dur.clone();
         let stop_total: f64 = stop.iter().sum();
         if self.m > 0 && !self.out_of_time() {
