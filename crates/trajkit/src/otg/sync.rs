@@ -572,7 +572,7 @@ impl Planner<'_, '_> {
         if t > tc * (1.0 + 1e-12) || self.disc(tc) != tc {
             return Err(OtgError::ZeroLimits { dof: i });
         }
-        match try_all(self.scratch, self.spare, self.out, self.n, tc) {
+        match try_each(self.scratch, self.spare, self.out, tc, 0..self.n) {
             Ok(()) => finish(self.view, self.delta_time, self.out, self.scratch, tc),
             Err(Miss::At(k) | Miss::Below(k) | Miss::Unsolvable(k)) => Err(OtgError::ZeroLimits {
                 dof: if has_zero_limit(&self.scratch[k].dof) {
@@ -597,7 +597,7 @@ impl Planner<'_, '_> {
                 break;
             }
             self.check_budget()?;
-            match try_all(self.scratch, self.spare, self.out, self.n, t) {
+            match try_each(self.scratch, self.spare, self.out, t, 0..self.n) {
                 Ok(()) => {
                     if let Some(lo) = last_fail.filter(|_| !self.bounded) {
                         t = self.bisect(lo, t, failed)?;
@@ -667,7 +667,7 @@ impl Planner<'_, '_> {
             }
         }
         // A failed attempt leaves `out` partly written: redo the last success.
-        if !last_ok && try_all(self.scratch, self.spare, self.out, self.n, hi).is_err() {
+        if !last_ok && try_each(self.scratch, self.spare, self.out, hi, 0..self.n).is_err() {
             return Err(OtgError::SynchronizationFailed {
                 dof: Some(failed),
                 duration: hi,
@@ -798,22 +798,7 @@ enum Miss {
     Unsolvable(usize),
 }
 
-/// Step 2 for every synchronized DOF at duration `t`, written into `out`; why it failed
-/// otherwise (then the synchronized entries of `out` are partly overwritten). A DOF whose
-/// step 1 has not run goes straight to step 2; only if that fails does step 1 run for it.
-/// The DOFs are tried in index order (the search's candidates depend on which DOF it
-/// reports).
-fn try_all(
-    scratch: &mut [Scratch],
-    spare: &mut [Spare],
-    out: &mut [DofTrajectory],
-    n: usize,
-    t: f64,
-) -> Result<(), Miss> {
-    try_each(scratch, spare, out, t, 0..n)
-}
-
-/// [`try_all`] with DOF `first` tried before the others: whether it succeeds is the same
+/// [`try_each`] with DOF `first` tried before the others: whether it succeeds is the same
 /// (every synchronized DOF must succeed; which DOF a failure names may differ). The
 /// bisection uses it with the DOF that failed at its lower end, which usually fails again,
 /// so a failed attempt costs one step 2 instead of one per DOF before it.
@@ -831,7 +816,11 @@ fn try_all_from(
     try_each(scratch, spare, out, t, order)
 }
 
-/// [`try_all`] over the DOFs in the order `order` gives (each synchronized DOF once).
+/// Step 2 for every synchronized DOF at duration `t`, written into `out`; why it failed
+/// otherwise (then the synchronized entries of `out` are partly overwritten). A DOF whose
+/// step 1 has not run goes straight to step 2; only if that fails does step 1 run for it.
+/// The DOFs are tried in the order `order` gives (each synchronized DOF once; the search's
+/// candidates depend on which DOF it reports, so its ordinary order is `0..n`).
 #[inline]
 fn try_each(
     scratch: &mut [Scratch],

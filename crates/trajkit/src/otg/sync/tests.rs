@@ -200,7 +200,7 @@ fn a_spent_budget_stops_the_bisection_and_is_reported() {
         };
         // As `search` calls it: after a success at `hi`. Every duration from the minimum
         // on is feasible, so bisecting from below it ends at the minimum unless stopped.
-        assert!(try_all(p.scratch, p.spare, p.out, 2, 2.0 * t_min).is_ok());
+        assert!(try_each(p.scratch, p.spare, p.out, 2.0 * t_min, 0..2).is_ok());
         let t = p.bisect(0.5 * t_min, 2.0 * t_min, 0).unwrap();
         (t, p.interrupted, out[1].profile.duration())
     };
