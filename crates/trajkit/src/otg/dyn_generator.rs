@@ -61,7 +61,7 @@ impl DynOutputParameter {
     }
 
     /// Resizes the state vectors to `n` entries (no allocation when they are long enough).
-    fn fit(&mut self, n: usize) {
+    pub(crate) fn fit(&mut self, n: usize) {
         for v in [
             &mut self.new_position,
             &mut self.new_velocity,

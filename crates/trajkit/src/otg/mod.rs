@@ -49,7 +49,9 @@
 //! [`plan_waypoints`] (method, what is optimal about it and precision: `waypoints/`), with the
 //! calculation budget too (an anytime search: the best valid motion found in time, stopping
 //! at every waypoint at worst; [`OtgError::Interrupted`] when even that does not fit) and
-//! [`Waypoints::validate`] as their `validate_input`; Ruckig Pro's per-section minimum velocity and acceleration and per-section position
+//! [`Waypoints::validate`] as their `validate_input`, and [`WaypointOtg`] as their `update`
+//! loop (plan on a changed input, follow, sections, refine a motion the budget cut short;
+//! allocation-free when it does not calculate); Ruckig Pro's per-section minimum velocity and acceleration and per-section position
 //! limits are refused by the JSON reader.
 //!
 //! # Files (one per step)
@@ -153,7 +155,8 @@ pub use result::{FieldName, OtgError, OtgResult};
 pub use step1::{TOL_LIMIT, TOL_POSITION, TOL_VELOCITY};
 pub use trajectory::{DofTrajectory, DynTrajectory, FixedTrajectory, OtgTrajectory};
 pub use waypoints::{
-    check_waypoints, plan_waypoints, WaypointCheck, WaypointTrajectory, Waypoints,
+    check_waypoints, plan_waypoints, WaypointCheck, WaypointOtg, WaypointOutput,
+    WaypointTrajectory, Waypoints,
 };
 
 /// One DOF's problem (limits, start, target), used by `plan`'s exact straight lines.

@@ -24,6 +24,10 @@
 //! # Ok::<(), trajkit::otg::OtgError>(())
 //! ```
 //!
+//! Online, once per control cycle: [`WaypointOtg::update`] (`online.rs`: plans on a changed
+//! input, follows the motion with its section index, and refines a motion the calculation
+//! budget cut short).
+//!
 //! # Method
 //! The waypoints split the motion into sections: current state → waypoint 1 → … → target
 //! state. The state at each waypoint is chosen (its position is given; its acceleration is
@@ -118,10 +122,12 @@
 //! budget changes nothing (same motion, bit for bit).
 
 mod budget;
+mod online;
 mod plan;
 mod trajectory;
 mod validate;
 
+pub use online::{WaypointOtg, WaypointOutput};
 pub use trajectory::{check_waypoints, WaypointCheck, WaypointTrajectory};
 
 use super::input::DynInputParameter;
