@@ -10,7 +10,6 @@ use trajkit::otg::{
     check_waypoints, plan_waypoints, DynInputParameter, OtgError, OtgResult, WaypointOtg,
     WaypointOutput, WaypointTrajectory, Waypoints,
 };
-use trajkit::rng::SplitMix64;
 
 /// Ruckig's example 04: 3 DOF, four waypoints, a moving target.
 fn example_04() -> (DynInputParameter, Waypoints) {
@@ -33,28 +32,29 @@ fn example_04() -> (DynInputParameter, Waypoints) {
     (inp, wp)
 }
 
-/// A 7-DOF bent path (Franka Panda limits) through `m` waypoints, at rest at both ends.
-fn bent_path(r: &mut SplitMix64, m: usize) -> (DynInputParameter, Waypoints) {
+/// A 7-DOF path (Franka Panda limits) through `m` waypoints, at rest at both ends: joint
+/// `i` moves by `step(k) = 0.3 + 0.15·(sin(1.3(k+1) + i + phase) − sin(1.3k + i + phase))`
+/// (always positive) in section `k`, up for even joints and down for odd ones, so the path
+/// bends at every waypoint and no joint reverses.
+fn bent_path(phase: f64, m: usize) -> (DynInputParameter, Waypoints) {
     let lim = trajkit::Limits::preset("panda").unwrap();
+    let joints: Vec<_> = (0..7).map(|i| lim.joint(i)).collect();
     let mut p = DynInputParameter::new(7);
-    for i in 0..7 {
-        let j = lim.joint(i);
-        p.max_velocity[i] = j.velocity;
-        p.max_acceleration[i] = j.acceleration;
-        p.max_jerk[i] = j.jerk;
-    }
-    let sign: Vec<f64> = (0..7).map(|_| r.uniform(-1.0, 1.0).signum()).collect();
-    let mut x: Vec<f64> = (0..7).map(|_| r.uniform(-1.0, 1.0)).collect();
-    p.current_position.clone_from(&x);
-    let mut wps = Vec::new();
-    for _ in 0..=m {
-        for i in 0..7 {
-            x[i] += sign[i] * r.uniform(0.05, 0.6);
-        }
-        wps.push(x.clone());
-    }
-    p.target_position = wps.pop().unwrap();
-    (p, Waypoints::new(wps))
+    p.max_velocity = joints.iter().map(|j| j.velocity).collect();
+    p.max_acceleration = joints.iter().map(|j| j.acceleration).collect();
+    p.max_jerk = joints.iter().map(|j| j.jerk).collect();
+    let at = |k: usize| -> Vec<f64> {
+        (0..7)
+            .map(|i| {
+                let (k, f) = (k as f64, i as f64);
+                let dir = if i % 2 == 0 { 1.0 } else { -1.0 };
+                dir * (0.3 * k + 0.15 * (1.3 * k + f + phase).sin()) - 0.5 * dir
+            })
+            .collect()
+    };
+    p.current_position = at(0);
+    p.target_position = at(m + 1);
+    (p, Waypoints::new((1..=m).map(at).collect()))
 }
 
 /// The trajectory's state at `t` (position, velocity, acceleration, jerk).
@@ -150,8 +150,7 @@ fn the_loop_passes_every_waypoint_in_order_and_reaches_the_target() {
 #[test]
 fn a_changed_input_replans_from_the_current_state() {
     let dt = 0.004;
-    let mut r = SplitMix64::new(16);
-    let (mut inp, mut wp) = bent_path(&mut r, 4);
+    let (mut inp, mut wp) = bent_path(0.4, 4);
     let mut otg = WaypointOtg::new(dt);
     let mut out = WaypointOutput::new(7);
     // Follow until two waypoints are passed.
@@ -189,8 +188,7 @@ fn a_changed_input_replans_from_the_current_state() {
 #[test]
 fn per_section_fields_shrink_with_the_waypoints() {
     let dt = 0.002;
-    let mut r = SplitMix64::new(3);
-    let (mut inp, mut wp) = bent_path(&mut r, 3);
+    let (mut inp, mut wp) = bent_path(1.1, 3);
     let vmax: Vec<Vec<f64>> = (0..4)
         .map(|s| {
             inp.max_velocity
@@ -328,8 +326,7 @@ fn follow(
 
 #[test]
 fn without_a_budget_one_calculation_and_no_refinement() {
-    let mut r = SplitMix64::new(77);
-    let (inp, wp) = bent_path(&mut r, 12);
+    let (inp, wp) = bent_path(2.0, 12);
     let free = plan_waypoints(&inp, &wp, 0.004).unwrap();
     let (plans, cycles, passed, out) = follow(inp.clone(), wp.clone(), 0.004);
     assert_eq!(plans.len(), 1);
@@ -346,8 +343,7 @@ fn an_interrupted_motion_is_refined_only_to_one_arriving_a_period_sooner() {
     // of a third of the full planning (measured here) cuts it short with a valid motion.
     // (While refining, every cycle plans: a long control period keeps the test short.)
     let dt = 0.01;
-    let mut r = SplitMix64::new(77);
-    let (mut inp, wp) = bent_path(&mut r, 10);
+    let (mut inp, wp) = bent_path(0.7, 10);
     let mut full_us = f64::INFINITY;
     for _ in 0..3 {
         let t0 = Instant::now();
