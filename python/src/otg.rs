@@ -22,8 +22,8 @@
 //! `was_calculation_interrupted = True` when the library says the budget cut its search short
 //! (`DynOutputParameter::was_calculation_interrupted`, `Trajectory.was_interrupted`). With
 //! intermediate waypoints the budget bounds the whole planning (`plan_waypoints` is an anytime
-//! search) and `update` refines an interrupted motion in the following cycles
-//! (`generator.rs`).
+//! search) and `update` refines an interrupted motion in the following cycles (the
+//! library's `WaypointOtg`, `generator.rs`).
 //!
 //! Ruckig Pro's intermediate waypoints: `InputParameter` also holds a
 //! `trajkit::otg::Waypoints` (`intermediate_positions`, `per_section_max_velocity`,

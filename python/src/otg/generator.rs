@@ -1,46 +1,29 @@
-//! `trajkit.otg`'s generator: `Ruckig` (the library's `DynOtg`) and `OutputParameter` (its
-//! `DynOutputParameter`). See the parent module for the API contract.
+//! `trajkit.otg`'s generator: `Ruckig` (the library's `DynOtg`, and `WaypointOtg` for
+//! motions through intermediate waypoints) and `OutputParameter` (the library's
+//! `WaypointOutput`). See the parent module for the API contract.
 //!
-//! With intermediate waypoints, `update` follows Ruckig's `update` step by step on the
-//! library's `plan_waypoints` (the library's `DynOtg` has no waypoints): it calculates when
-//! the input differs from the one it last calculated for (the time and section restart at
-//! 0), advances `delta_time`, writes the state and section there, and applies
-//! `pass_to_input` to its own copy of the input, so that feeding the output back (which
-//! removes a passed waypoint) does not cause a new calculation.
-//!
-//! With a calculation budget (`interrupt_calculation_duration`), as in Ruckig Pro, a motion
-//! whose calculation the budget cut short is refined in the following cycles: each `update`
-//! plans again from the current state through the waypoints still ahead (with the same
-//! budget) and follows the new motion when it ends at least one control period sooner than
-//! the one being followed (`new_calculation` is then true and the time restarts at 0). Refinement ends when a
-//! calculation completes within the budget.
-
-use std::time::Instant;
+//! With intermediate waypoints, `update` is the library's `WaypointOtg::update` (Ruckig
+//! Pro's loop: it plans when the input differs from its copy of the last one, follows the
+//! motion, reports the section, passes the state back into its copy, and refines a motion
+//! whose calculation the budget cut short in the following cycles; see its documentation).
+//! An input without waypoints that is not the one being followed goes to `DynOtg::update`.
 
 use pyo3::prelude::*;
-use trajkit::otg::{DynOtg, DynOutputParameter, DynTrajectory, OtgError, OtgResult};
+use trajkit::otg::{DynOtg, DynTrajectory, OtgError, OtgResult, WaypointOtg, WaypointOutput};
 
-use super::input::pass_section;
 use super::trajectory::set_source;
 use super::{otg_err, PyInput, PyOtgTrajectory, PyResult_, Solved};
 use crate::convert::bad;
 
 /// Ruckig's `OutputParameter(dofs)`: the state after an `update` (the library's
-/// `DynOutputParameter`, which `trajkit::otg::DynOtg::update` writes in place).
+/// `WaypointOutput`: its `DynOutputParameter`, which `DynOtg::update` writes in place, and
+/// the section that `WaypointOtg::update` writes).
 #[pyclass(module = "trajkit.otg", name = "OutputParameter")]
 pub struct PyOutput {
-    inner: DynOutputParameter,
+    inner: WaypointOutput,
     /// Number of degrees of freedom.
     #[pyo3(get)]
     degrees_of_freedom: usize,
-    /// Section index at the new time (Ruckig's: the number of sections passed; always 0
-    /// without waypoints).
-    #[pyo3(get)]
-    new_section: usize,
-    /// Whether the last `update` passed a waypoint (then `pass_to_input` removes it from the
-    /// input).
-    #[pyo3(get)]
-    did_section_change: bool,
     /// The trajectory being followed.
     #[pyo3(get)]
     trajectory: Py<PyOtgTrajectory>,
@@ -55,48 +38,60 @@ impl PyOutput {
     fn new(py: Python<'_>, dofs: usize, max_number_of_waypoints: usize) -> PyResult<Self> {
         let _ = max_number_of_waypoints;
         Ok(PyOutput {
-            inner: DynOutputParameter::new(dofs),
+            inner: WaypointOutput::new(dofs),
             degrees_of_freedom: dofs,
-            new_section: 0,
-            did_section_change: false,
             trajectory: Py::new(py, PyOtgTrajectory::empty(dofs))?,
         })
+    }
+
+    /// Section index at the new time (Ruckig's: the number of sections passed; always 0
+    /// without waypoints).
+    #[getter]
+    fn new_section(&self) -> usize {
+        self.inner.new_section
+    }
+
+    /// Whether the last `update` passed a waypoint (then `pass_to_input` removes it from the
+    /// input).
+    #[getter]
+    fn did_section_change(&self) -> bool {
+        self.inner.did_section_change
     }
 
     /// Position at the new time.
     #[getter]
     fn new_position(&self) -> Vec<f64> {
-        self.inner.new_position.clone()
+        self.inner.output.new_position.clone()
     }
 
     /// Velocity at the new time.
     #[getter]
     fn new_velocity(&self) -> Vec<f64> {
-        self.inner.new_velocity.clone()
+        self.inner.output.new_velocity.clone()
     }
 
     /// Acceleration at the new time.
     #[getter]
     fn new_acceleration(&self) -> Vec<f64> {
-        self.inner.new_acceleration.clone()
+        self.inner.output.new_acceleration.clone()
     }
 
     /// Jerk at the new time.
     #[getter]
     fn new_jerk(&self) -> Vec<f64> {
-        self.inner.new_jerk.clone()
+        self.inner.output.new_jerk.clone()
     }
 
     /// Time since the trajectory was calculated.
     #[getter]
     fn time(&self) -> f64 {
-        self.inner.time
+        self.inner.output.time
     }
 
     /// Whether this update calculated a new trajectory.
     #[getter]
     fn new_calculation(&self) -> bool {
-        self.inner.new_calculation
+        self.inner.output.new_calculation
     }
 
     /// True when the calculation budget (`interrupt_calculation_duration`) cut this update's
@@ -105,23 +100,20 @@ impl PyOutput {
     /// `kind == 'interrupted'`). False without a budget and when nothing was calculated.
     #[getter]
     fn was_calculation_interrupted(&self) -> bool {
-        self.inner.was_calculation_interrupted
+        self.inner.output.was_calculation_interrupted
     }
 
     /// Wall-clock duration of the calculation in microseconds.
     #[getter]
     fn calculation_duration(&self) -> f64 {
-        self.inner.calculation_duration_us
+        self.inner.output.calculation_duration_us
     }
 
     /// Copies the new state into `input`'s current state (the usual control loop); when the
     /// last update passed a waypoint, removes it from `input.intermediate_positions` (and the
     /// first entry of each per-section list, so one entry per section remains).
     fn pass_to_input(&self, input: &mut PyInput) {
-        self.inner.pass_to_input(&mut input.inner);
-        if self.did_section_change {
-            pass_section(&mut input.wp);
-        }
+        self.inner.pass_to_input(&mut input.inner, &mut input.wp);
     }
 
     /// A copy with its own trajectory (Ruckig's `copy(out)`, to keep an output of the loop).
@@ -129,8 +121,6 @@ impl PyOutput {
         Ok(PyOutput {
             inner: self.inner.clone(),
             degrees_of_freedom: self.degrees_of_freedom,
-            new_section: self.new_section,
-            did_section_change: self.did_section_change,
             trajectory: Py::new(py, self.trajectory.borrow(py).clone())?,
         })
     }
@@ -140,7 +130,7 @@ impl PyOutput {
     }
 
     fn __repr__(&self) -> String {
-        let o = &self.inner;
+        let o = &self.inner.output;
         format!(
             "out.new_position = {:?}\nout.new_velocity = {:?}\nout.new_acceleration = {:?}\nout.new_jerk = {:?}\nout.time = {}\nout.calculation_duration = {}\n",
             o.new_position,
@@ -167,11 +157,8 @@ pub struct PyRuckig {
     /// Ruckig Pro's `max_number_of_waypoints` (a storage hint; not a limit here).
     #[pyo3(get)]
     max_number_of_waypoints: usize,
-    /// The motion through waypoints `update` follows, with its copy of the input.
-    run: Option<(PyInput, Solved)>,
-    /// Whether that motion is still to be refined (its calculation was interrupted and no
-    /// complete calculation has been made since).
-    refine: bool,
+    /// The generator of motions through waypoints (`update` with waypoints).
+    wotg: WaypointOtg,
 }
 
 impl PyRuckig {
@@ -187,91 +174,32 @@ impl PyRuckig {
 }
 
 impl PyRuckig {
-    /// Starts following `solved`, calculated for `input` (a new calculation of `update`).
-    fn follow(&mut self, py: Python<'_>, input: PyInput, solved: Solved, out: &mut PyOutput) {
-        // The library's generator must calculate anew when an input without waypoints
-        // follows.
-        self.otg.reset();
-        let mut ot = out.trajectory.borrow_mut(py);
-        ot.traj = Some(solved.clone());
-        ot.dofs = self.degrees_of_freedom;
-        set_source(&mut ot.source, &input, self.otg.delta_time);
-        self.refine = solved.was_interrupted();
-        out.inner.time = 0.0;
-        out.inner.new_calculation = true;
-        out.inner.was_calculation_interrupted = self.refine;
-        out.new_section = 0;
-        self.run = Some((input, solved));
-    }
-
-    /// Plans the followed motion again from the current state (its copy of the input) and
-    /// follows the new motion when it ends sooner (see the module documentation).
-    fn refine_run(&mut self, py: Python<'_>, out: &mut PyOutput) {
-        let Some((last, current)) = self.run.as_ref() else {
-            return;
-        };
-        let left = current.duration() - out.inner.time;
-        // A failed calculation (out of budget, say) keeps the motion being followed.
-        let Ok(solved) = super::solve(&last.inner, last.waypoints(), self.otg.delta_time) else {
-            return;
-        };
-        // A switch must gain at least one control period (smaller gains would not arrive a
-        // cycle sooner, only restart the motion's time every cycle).
-        if solved.duration() <= left - self.otg.delta_time {
-            let input = last.clone();
-            self.follow(py, input, solved, out);
-        } else if !solved.was_interrupted() {
-            self.refine = false;
-        }
-    }
-
-    /// `update` on a motion through waypoints (see the module documentation).
+    /// `update` on a motion through waypoints: the library's `WaypointOtg::update`; a new
+    /// calculation is copied into the output's trajectory.
     fn update_waypoints(
         &mut self,
         py: Python<'_>,
         input: &PyInput,
         out: &mut PyOutput,
     ) -> PyResult<PyResult_> {
-        let start = Instant::now();
-        let dt = self.otg.delta_time;
-        out.inner.new_calculation = false;
-        out.inner.was_calculation_interrupted = false;
-        let same = matches!(&self.run, Some((last, _)) if last.inner == input.inner && last.wp == input.wp);
-        if !same {
-            let solved = super::solve(&input.inner, input.waypoints(), dt).map_err(|e| {
-                // No valid motion within the budget: the budget cut the calculation.
-                out.inner.was_calculation_interrupted = matches!(e, OtgError::Interrupted { .. });
-                otg_err(e)
-            })?;
-            self.follow(py, input.clone(), solved, out);
-        } else if self.refine {
-            self.refine_run(py, out);
+        let r = self
+            .wotg
+            .update(&input.inner, &input.wp, &mut out.inner)
+            .map_err(otg_err)?;
+        if out.inner.output.new_calculation {
+            // The library's generator must calculate anew when an input without waypoints
+            // follows.
+            self.otg.reset();
+            if let Some(traj) = self.wotg.trajectory() {
+                let mut ot = out.trajectory.borrow_mut(py);
+                ot.traj = Some(Solved::Waypoints(traj.clone()));
+                ot.dofs = self.degrees_of_freedom;
+                set_source(&mut ot.source, input, self.otg.delta_time);
+            }
         }
-        let Some((last, traj)) = self.run.as_mut() else {
-            return Err(bad("no motion through waypoints to follow"));
-        };
-        out.inner.time += dt;
-        let o = &mut out.inner;
-        traj.at_time(
-            o.time,
-            &mut o.new_position,
-            &mut o.new_velocity,
-            &mut o.new_acceleration,
-            &mut o.new_jerk,
-        );
-        let section = traj.section_at(o.time);
-        out.did_section_change = section > out.new_section;
-        out.new_section = section;
-        o.duration = traj.as_traj().duration();
-        o.pass_to_input(&mut last.inner);
-        if out.did_section_change {
-            pass_section(&mut last.wp);
-        }
-        o.calculation_duration_us = start.elapsed().as_secs_f64() * 1e6;
-        Ok(if o.time > o.duration {
-            PyResult_::Finished
-        } else {
-            PyResult_::Working
+        Ok(match r {
+            OtgResult::Finished => PyResult_::Finished,
+            _ => PyResult_::Working,
         })
     }
 }
@@ -289,8 +217,7 @@ impl PyRuckig {
             otg: DynOtg::new(dofs, delta_time),
             spare_traj: None,
             max_number_of_waypoints,
-            run: None,
-            refine: false,
+            wotg: WaypointOtg::new(delta_time),
         })
     }
 
@@ -303,6 +230,7 @@ impl PyRuckig {
     #[setter]
     fn set_delta_time(&mut self, dt: f64) {
         self.otg.delta_time = dt;
+        self.wotg.delta_time = dt;
     }
 
     /// Calculates the trajectory for `input` into `trajectory` (through its intermediate
@@ -354,22 +282,21 @@ impl PyRuckig {
     ) -> PyResult<PyResult_> {
         self.check_dofs(input.inner.dof(), "the input")?;
         let out = &mut *output;
-        let following = matches!(&self.run, Some((last, _)) if last.inner == input.inner && last.wp == input.wp);
-        if following || input.waypoints().is_some() {
+        if self.wotg.follows(&input.inner, &input.wp) || input.waypoints().is_some() {
             return self.update_waypoints(py, &input, out);
         }
-        self.run = None;
-        out.new_section = 0;
-        out.did_section_change = false;
-        let r = match self.otg.update(&input.inner, &mut out.inner) {
+        self.wotg.reset();
+        out.inner.new_section = 0;
+        out.inner.did_section_change = false;
+        let r = match self.otg.update(&input.inner, &mut out.inner.output) {
             Ok(r) => r,
             Err(e) => {
                 // No valid trajectory within the budget: the budget cut the calculation.
-                out.inner.was_calculation_interrupted = matches!(e, OtgError::Interrupted { .. });
+                out.inner.output.was_calculation_interrupted = matches!(e, OtgError::Interrupted { .. });
                 return Err(otg_err(e));
             }
         };
-        if out.inner.new_calculation {
+        if out.inner.output.new_calculation {
             let mut ot = out.trajectory.borrow_mut(py);
             let src = self.otg.trajectory();
             match ot.traj.as_mut() {
@@ -416,7 +343,6 @@ impl PyRuckig {
     /// Forgets the last input: the next `update` calculates anew.
     fn reset(&mut self) {
         self.otg.reset();
-        self.run = None;
-        self.refine = false;
+        self.wotg.reset();
     }
 }

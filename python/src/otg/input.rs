@@ -77,34 +77,6 @@ impl PyInput {
     }
 }
 
-/// Ruckig's `pass_to_input` for waypoints: once the motion has passed the first waypoint,
-/// it is removed; trajkit also removes the first entry of each per-section list (the section
-/// just completed), so the input stays one entry per section and can be calculated again.
-pub fn pass_section(w: &mut Waypoints) {
-    if w.intermediate_positions.is_empty() {
-        return;
-    }
-    w.intermediate_positions.remove(0);
-    let sections = w.intermediate_positions.len() + 1;
-    for list in [
-        &mut w.per_section_max_velocity,
-        &mut w.per_section_max_acceleration,
-        &mut w.per_section_max_jerk,
-    ]
-    .into_iter()
-    .flatten()
-    {
-        if list.len() > sections {
-            list.remove(0);
-        }
-    }
-    if let Some(d) = &mut w.per_section_minimum_duration {
-        if d.len() > sections {
-            d.remove(0);
-        }
-    }
-}
-
 #[pymethods]
 impl PyInput {
     /// `dofs` degrees of freedom: states zero, limits infinite (set them), all enabled, no

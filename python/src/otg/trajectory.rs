@@ -73,12 +73,13 @@ impl Solved {
         }
     }
 
-    /// Ruckig's section index at `t`: the number of sections that have ended.
+    /// Ruckig's section index at `t`: the number of sections that have ended (the
+    /// library's `WaypointTrajectory::section_index_at`; one section without waypoints).
     pub fn section_at(&self, t: f64) -> usize {
-        if t >= self.duration() {
-            return self.sections().len();
+        match self {
+            Solved::Plain(tr) => usize::from(t >= tr.duration()),
+            Solved::Waypoints(w) => w.section_index_at(t),
         }
-        self.starts()[1..].partition_point(|&s| s <= t)
     }
 
     /// Position, velocity, acceleration and jerk at `t` (before 0 the start state, after the
