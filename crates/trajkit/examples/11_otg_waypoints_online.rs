@@ -10,7 +10,9 @@
 //!
 //! Run: `cargo run --release -p trajkit --example 11_otg_waypoints_online`
 
-use trajkit::otg::{DynInputParameter, OtgResult, WaypointOtg, WaypointOutput, Waypoints};
+use trajkit::otg::{
+    DynInputParameter, OtgError, OtgResult, WaypointOtg, WaypointOutput, Waypoints,
+};
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut otg = WaypointOtg::new(0.01); // control period [s]
@@ -38,7 +40,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut cycles = 0;
     loop {
         cycles += 1;
-        let result = otg.update(&input, &waypoints, &mut out)?;
+        let result = match otg.update(&input, &waypoints, &mut out) {
+            Ok(r) => r,
+            // The budget is wall-clock time: on a busy machine even stopping at every waypoint
+            // can miss it before any motion exists. Hold still and try again next cycle.
+            Err(OtgError::Interrupted { .. }) if otg.trajectory().is_none() && cycles < 100 => {
+                println!("No motion within the budget yet; holding.");
+                continue;
+            }
+            Err(e) => return Err(e.into()),
+        };
         let o = &out.output;
         if o.new_calculation {
             println!("Updated the trajectory:");
