@@ -45,7 +45,7 @@ use super::problem::Dof1;
 use super::profile::{Profile, State1};
 use super::result::OtgError;
 use super::step1::{step1_fastest_into, step1_into, MAX_CANDIDATES};
-use super::step2::{step2, step2_into};
+use super::step2::{step2, step2_closed_into, step2_into};
 use super::trajectory::DofTrajectory;
 use super::zero::{at_rest, coasts, has_zero_limit};
 use std::time::{Duration, Instant};
@@ -348,6 +348,8 @@ fn calculate_profiles(
         budget: opts.interrupt_calculation_duration.map(Budget::start),
         interrupted: false,
         bounded: search == Search::Bounded,
+        // (Phase synchronization reads every profile.)
+        unbuilt: search == Search::Bounded && !view.any_sync(Synchronization::Phase),
     };
     let (t_lead, lazy) = p.prepare()?;
     if opts.synchronization == Synchronization::StraightLine
@@ -382,6 +384,9 @@ struct Planner<'a, 'v> {
     interrupted: bool,
     /// Bounded mode (module docs): no bisection, no durations past the last candidate.
     bounded: bool,
+    /// Bounded mode without phase synchronization: only the duration is wanted, profiles
+    /// that do not decide it are not built ([`try_each`]'s `rate`).
+    unbuilt: bool,
 }
 
 /// A calculation budget: its deadline and its size in microseconds.
@@ -478,6 +483,8 @@ impl Planner<'_, '_> {
                 lazy += 1;
                 continue;
             }
+            // (No bound: its step 1 has run; bounded mode skips only DOFs with a bound.)
+            sc.bound = f64::INFINITY;
             if !solve(sc, &mut self.spare[i], &mut self.out[i].profile, false) {
                 return Err(OtgError::CalculationFailed { dof: i });
             }
@@ -572,7 +579,7 @@ impl Planner<'_, '_> {
         if t > tc * (1.0 + 1e-12) || self.disc(tc) != tc {
             return Err(OtgError::ZeroLimits { dof: i });
         }
-        match try_each(self.scratch, self.spare, self.out, tc, 0..self.n) {
+        match try_each(self.scratch, self.spare, self.out, tc, 0..self.n, false) {
             Ok(()) => finish(self.view, self.delta_time, self.out, self.scratch, tc),
             Err(Miss::At(k) | Miss::Below(k) | Miss::Unsolvable(k)) => Err(OtgError::ZeroLimits {
                 dof: if has_zero_limit(&self.scratch[k].dof) {
@@ -597,7 +604,15 @@ impl Planner<'_, '_> {
                 break;
             }
             self.check_budget()?;
-            match try_each(self.scratch, self.spare, self.out, t, 0..self.n) {
+            match try_each(
+                self.scratch,
+                self.spare,
+                self.out,
+                t,
+                0..self.n,
+                self.unbuilt,
+            ) {
+                Ok(()) if self.unbuilt => return Ok(self.rated(t)),
                 Ok(()) => {
                     if let Some(lo) = last_fail.filter(|_| !self.bounded) {
                         t = self.bisect(lo, t, failed)?;
@@ -667,13 +682,26 @@ impl Planner<'_, '_> {
             }
         }
         // A failed attempt leaves `out` partly written: redo the last success.
-        if !last_ok && try_each(self.scratch, self.spare, self.out, hi, 0..self.n).is_err() {
+        if !last_ok && try_each(self.scratch, self.spare, self.out, hi, 0..self.n, false).is_err() {
             return Err(OtgError::SynchronizationFailed {
                 dof: Some(failed),
                 duration: hi,
             });
         }
         Ok(hi)
+    }
+
+    /// Bounded mode's duration once `t` works for every synchronized DOF (whose profiles
+    /// [`try_each`] may have left unbuilt, see [`Planner::unbuilt`]): `t`, or longer where a
+    /// DOF that is not synchronized needs longer.
+    #[inline]
+    fn rated(&self, t: f64) -> f64 {
+        let n = self.n;
+        let mut d = t;
+        for i in (0..n).filter(|&i| self.view.enabled[i] && !self.scratch[i].sync) {
+            d = d.max(self.out[i].profile.duration());
+        }
+        d
     }
 
     /// The next candidate duration above `t`, or (when none is left) a geometrically growing
@@ -813,7 +841,7 @@ fn try_all_from(
     let order = std::iter::once(first)
         .filter(|&f| f < n)
         .chain((0..n).filter(|&i| i != first));
-    try_each(scratch, spare, out, t, order)
+    try_each(scratch, spare, out, t, order, false)
 }
 
 /// Step 2 for every synchronized DOF at duration `t`, written into `out`; why it failed
@@ -828,17 +856,29 @@ fn try_each(
     out: &mut [DofTrajectory],
     t: f64,
     order: impl Iterator<Item = usize>,
+    rate: bool,
 ) -> Result<(), Miss> {
     for i in order {
         let sc = &mut scratch[i];
         if !sc.sync {
             continue;
         }
+        // t is feasible for it (see `duration_bound`; only DOFs whose step 1 has not run in
+        // `prepare` have a bound): rating needs no profile.
+        let certified = sc.bound <= t;
+        if rate && certified {
+            continue;
+        }
         if sc.solved == Solved::No {
-            // t is feasible for it (see `duration_bound`): step 2 plans it. (No brake, see
-            // `calculate`: step 2 from the start state.)
-            let certified = sc.bound <= t;
+            // Certified, step 2 plans it. (No brake, see `calculate`: step 2 from the start
+            // state.)
             if certified && step2_into(&sc.dof, t, &mut out[i].profile) {
+                continue;
+            }
+            // Rating, step 2's closed forms are tried first: when they plan, t is feasible
+            // (so at least the DOF's minimum) and step 1 is not needed; when they do not,
+            // step 1 says whether t is below its minimum, before the costlier families run.
+            if rate && step2_closed_into(&sc.dof, t, &mut out[i].profile) {
                 continue;
             }
             // Certified, every duration from the bound on is feasible for it (the bound's
