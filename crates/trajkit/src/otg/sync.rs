@@ -28,13 +28,22 @@
 //! attempt (step 2 for every synchronized DOF), and step 1 (before the search) and the
 //! single-DOF shortcut run to the end.
 //!
-//! Bounded mode (`calculate` with `Search::Bounded`, crate-private; the waypoint planner's search uses it to
-//! rate candidate waypoint velocities): the same search, but it gives up instead of walking
-//! durations past the last candidate (an error), and it keeps the first success after a
-//! failure instead of bisecting below it. Its duration is therefore at least the full
-//! search's (equal whenever the full search needs neither), its profiles are valid at that
-//! duration, and its cost is bounded by the number of candidate durations, never by the
-//! 200 + 64 attempts of the full search.
+//! Bounded mode (`calculate` with `Search::Bounded`, crate-private; the waypoint planner's
+//! search uses it to rate candidate waypoint velocities): the same search, but it gives up
+//! instead of walking durations past the last candidate (an error), and it keeps the first
+//! success after a failure instead of bisecting below it. Its duration is therefore at least
+//! the full search's (equal whenever the full search needs neither), and its cost is bounded
+//! by the number of candidate durations, never by the 200 + 64 attempts of the full search.
+//! It returns the duration only (except under phase synchronization, which reads every
+//! profile): the profiles left in the output are unspecified. So a trial duration t needs no
+//! profile of a DOF whose duration bound is at most t (t is feasible for it, see
+//! `sync/bound.rs`), and for a DOF whose step 1 has not run step 2's closed forms
+//! (`step2_closed_into`) go first: when one plans, t is feasible and step 1 is not needed;
+//! otherwise step 1 and then the whole of step 2 decide, as in the full search. The duration
+//! is the one the same search with every profile built gives, up to the rounding of the
+//! durations it compares (it returns the trial duration itself, not the longest profile's,
+//! which matches it to 1e-12 relative), provided step 2 plans every duration a bound
+//! certifies (the lazy step 1 above relies on that too).
 //!
 //! Phase synchronization (Ruckig's) and trajkit's straight-line mode live in `phase.rs`.
 
@@ -138,7 +147,8 @@ fn solve(sc: &mut Scratch, spare: &mut Spare, out: &mut Profile, full: bool) -> 
     true
 }
 
-/// Computes all profiles; returns the trajectory duration.
+/// Computes all profiles (in [`Search::Bounded`] mode only those the duration needs);
+/// returns the trajectory duration.
 ///
 /// Under time (and phase) synchronization step 1 runs only where synchronization needs it:
 /// for the degrees of freedom that start with a brake, and for the one whose estimated
@@ -177,7 +187,9 @@ pub(crate) enum Search {
     /// Bounded mode (see the module docs): no bisection and no durations past the last
     /// candidate. The duration is at least the full search's (equal when that search needs
     /// neither); `Err` where the full search would have walked past the candidates. A cheap,
-    /// never optimistic rating of an input, for searches that call the generator many times.
+    /// never optimistic rating of an input, for searches that call the generator many times:
+    /// only the duration, the profiles left in the output are unspecified (except under
+    /// phase synchronization).
     Bounded,
 }
 

@@ -5,7 +5,8 @@
 //! Every evaluation solves whole sections with the generator into buffers the planner
 //! reuses: the search rates candidate velocities with the synchronization's bounded mode
 //! (`sync::calculate` with `Search::Bounded`: no bisection, no durations past the last
-//! candidate, never shorter than the full solve), the reference (stopping at every waypoint)
+//! candidate, never shorter than the full solve; it returns the duration alone and builds
+//! only the profiles that decide it), the reference (stopping at every waypoint)
 //! and the final trajectory are full solves (`Search::Full`), each chosen section once more into its
 //! own storage. A full solve is never longer than the bounded rating the search kept (to
 //! round-off), so the result is never longer than the search believed; the final check
