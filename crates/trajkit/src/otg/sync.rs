@@ -860,7 +860,10 @@ fn try_all_from(
 /// otherwise (then the synchronized entries of `out` are partly overwritten). A DOF whose
 /// step 1 has not run goes straight to step 2; only if that fails does step 1 run for it.
 /// The DOFs are tried in the order `order` gives (each synchronized DOF once; the search's
-/// candidates depend on which DOF it reports, so its ordinary order is `0..n`).
+/// candidates depend on which DOF it reports, so its ordinary order is `0..n`). With `rate`
+/// (bounded mode's ratings) only whether `t` works matters: a DOF whose bound certifies `t`
+/// is not planned, and one whose step 1 has not run tries step 2's closed forms before
+/// step 1; the entries of `out` are then unspecified.
 #[inline]
 fn try_each(
     scratch: &mut [Scratch],
