@@ -46,6 +46,12 @@ pub(crate) fn step2_into(dof: &Dof1, t: f64, out: &mut Profile) -> bool {
     {
         return true;
     }
+    if dof.interface == ControlInterface::Position
+        && dof.order() == ProfileOrder::Third
+        && cruise_closed(dof, t, &ok, out)
+    {
+        return true;
+    }
     match other_families(dof, t, &ok) {
         Some(p) => {
             *out = p;
@@ -55,7 +61,27 @@ pub(crate) fn step2_into(dof: &Dof1, t: f64, out: &mut Profile) -> bool {
     }
 }
 
-/// The step-2 families other than the rest-to-rest closed form.
+/// The closed-form families of [`step2_into`] alone (third order, position interface): the
+/// rest-to-rest closed form and the cruise family's position polynomials. True when one of
+/// them plans a verified profile of duration `t` into `out` (the profile [`step2_into`]
+/// would return: it tries them first, with the same check); false says nothing about the
+/// other families. A cheap proof that `t` is feasible, for searches that rate durations.
+pub(crate) fn step2_closed_into(dof: &Dof1, t: f64, out: &mut Profile) -> bool {
+    if !t.is_finite()
+        || t < 0.0
+        || dof.interface != ControlInterface::Position
+        || dof.order() != ProfileOrder::Third
+        || super::zero::coasts(dof)
+    {
+        return false;
+    }
+    let ok = |pr: &Profile| verify(dof, pr) && (pr.duration() - t).abs() <= 1e-12 * t.max(1.0);
+    rest_to_rest(dof, t, &ok, out) || cruise_closed(dof, t, &ok, out)
+}
+
+/// The step-2 families other than the closed forms (rest to rest, and the cruise family's
+/// polynomials for third order and the position interface), which [`step2_into`] tries
+/// first.
 fn other_families(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
     let start = State1 {
         p: dof.p0,
@@ -98,9 +124,6 @@ fn other_families(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<
         (ProfileOrder::Third, ControlInterface::Position) => {
             // Early returns rather than an `or_else` chain, which moves the profile through
             // every remaining stage.
-            if let r @ Some(_) = cruise_closed(dof, t, ok) {
-                return r;
-            }
             for (mirror, at_valley) in [(false, false), (false, true), (true, false), (true, true)]
             {
                 if let r @ Some(_) = hold(dof, t, mirror, at_valley, ok) {
@@ -270,8 +293,8 @@ fn rest_to_rest(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool, pr: &mut Pro
 /// Cruise family with a free cruise velocity (third order), from the roots of its position
 /// polynomials: for each direction of the two velocity changes and each plateau variant
 /// (see [`two_changes`]). The directions that the mean velocity D/t suggests go first; the
-/// first valid profile wins.
-fn cruise_closed(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile> {
+/// first valid profile wins, copied into `out` (true; false and `out` untouched otherwise).
+fn cruise_closed(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool, out: &mut Profile) -> bool {
     let j = dof.jmax;
     let guess = if t > 0.0 { (dof.pf - dof.p0) / t } else { 0.0 };
     let k0 = kink(ProfileOrder::Third, dof.v0, dof.a0, j, 1.0);
@@ -279,19 +302,18 @@ fn cruise_closed(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<P
     let g1 = if guess >= k0 { 1.0 } else { -1.0 };
     let g2 = if guess <= kf { 1.0 } else { -1.0 };
     let (vlo, vhi) = velocity_window(dof);
-    let mut best = None;
     for (d1, d2) in [(g1, g2), (-g1, g2), (g1, -g2), (-g1, -g2)] {
         if two_changes(dof, d1, d2, Some(t), vlo, vhi, &mut |pr| {
             let good = ok(pr);
             if good {
-                best = Some(*pr);
+                *out = *pr;
             }
             good
         }) {
-            return best;
+            return true;
         }
     }
-    None
+    false
 }
 
 /// Cruise family with a free cruise velocity, by bracketing (the fallback of

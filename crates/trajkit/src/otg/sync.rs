@@ -28,13 +28,22 @@
 //! attempt (step 2 for every synchronized DOF), and step 1 (before the search) and the
 //! single-DOF shortcut run to the end.
 //!
-//! Bounded mode (`calculate` with `Search::Bounded`, crate-private; the waypoint planner's search uses it to
-//! rate candidate waypoint velocities): the same search, but it gives up instead of walking
-//! durations past the last candidate (an error), and it keeps the first success after a
-//! failure instead of bisecting below it. Its duration is therefore at least the full
-//! search's (equal whenever the full search needs neither), its profiles are valid at that
-//! duration, and its cost is bounded by the number of candidate durations, never by the
-//! 200 + 64 attempts of the full search.
+//! Bounded mode (`calculate` with `Search::Bounded`, crate-private; the waypoint planner's
+//! search uses it to rate candidate waypoint velocities): the same search, but it gives up
+//! instead of walking durations past the last candidate (an error), and it keeps the first
+//! success after a failure instead of bisecting below it. Its duration is therefore at least
+//! the full search's (equal whenever the full search needs neither), and its cost is bounded
+//! by the number of candidate durations, never by the 200 + 64 attempts of the full search.
+//! It returns the duration only (except under phase synchronization, which reads every
+//! profile): the profiles left in the output are unspecified. So a trial duration t needs no
+//! profile of a DOF whose duration bound is at most t (t is feasible for it, see
+//! `sync/bound.rs`), and for a DOF whose step 1 has not run step 2's closed forms
+//! (`step2_closed_into`) go first: when one plans, t is feasible and step 1 is not needed;
+//! otherwise step 1 and then the whole of step 2 decide, as in the full search. The duration
+//! is the one the same search with every profile built gives, up to the rounding of the
+//! durations it compares (it returns the trial duration itself, not the longest profile's,
+//! which matches it to 1e-12 relative), provided step 2 plans every duration a bound
+//! certifies (the lazy step 1 above relies on that too).
 //!
 //! Phase synchronization (Ruckig's) and trajkit's straight-line mode live in `phase.rs`.
 
@@ -45,7 +54,7 @@ use super::problem::Dof1;
 use super::profile::{Profile, State1};
 use super::result::OtgError;
 use super::step1::{step1_fastest_into, step1_into, MAX_CANDIDATES};
-use super::step2::{step2, step2_into};
+use super::step2::{step2, step2_closed_into, step2_into};
 use super::trajectory::DofTrajectory;
 use super::zero::{at_rest, coasts, has_zero_limit};
 use std::time::{Duration, Instant};
@@ -138,7 +147,8 @@ fn solve(sc: &mut Scratch, spare: &mut Spare, out: &mut Profile, full: bool) -> 
     true
 }
 
-/// Computes all profiles; returns the trajectory duration.
+/// Computes all profiles (in [`Search::Bounded`] mode only those the duration needs);
+/// returns the trajectory duration.
 ///
 /// Under time (and phase) synchronization step 1 runs only where synchronization needs it:
 /// for the degrees of freedom that start with a brake, and for the one whose estimated
@@ -177,7 +187,9 @@ pub(crate) enum Search {
     /// Bounded mode (see the module docs): no bisection and no durations past the last
     /// candidate. The duration is at least the full search's (equal when that search needs
     /// neither); `Err` where the full search would have walked past the candidates. A cheap,
-    /// never optimistic rating of an input, for searches that call the generator many times.
+    /// never optimistic rating of an input, for searches that call the generator many times:
+    /// only the duration, the profiles left in the output are unspecified (except under
+    /// phase synchronization).
     Bounded,
 }
 
@@ -348,6 +360,8 @@ fn calculate_profiles(
         budget: opts.interrupt_calculation_duration.map(Budget::start),
         interrupted: false,
         bounded: search == Search::Bounded,
+        // (Phase synchronization reads every profile.)
+        unbuilt: search == Search::Bounded && !view.any_sync(Synchronization::Phase),
     };
     let (t_lead, lazy) = p.prepare()?;
     if opts.synchronization == Synchronization::StraightLine
@@ -382,6 +396,9 @@ struct Planner<'a, 'v> {
     interrupted: bool,
     /// Bounded mode (module docs): no bisection, no durations past the last candidate.
     bounded: bool,
+    /// Bounded mode without phase synchronization: only the duration is wanted, profiles
+    /// that do not decide it are not built ([`try_each`]'s `rate`).
+    unbuilt: bool,
 }
 
 /// A calculation budget: its deadline and its size in microseconds.
@@ -478,6 +495,8 @@ impl Planner<'_, '_> {
                 lazy += 1;
                 continue;
             }
+            // (No bound: its step 1 has run; bounded mode skips only DOFs with a bound.)
+            sc.bound = f64::INFINITY;
             if !solve(sc, &mut self.spare[i], &mut self.out[i].profile, false) {
                 return Err(OtgError::CalculationFailed { dof: i });
             }
@@ -572,7 +591,7 @@ impl Planner<'_, '_> {
         if t > tc * (1.0 + 1e-12) || self.disc(tc) != tc {
             return Err(OtgError::ZeroLimits { dof: i });
         }
-        match try_each(self.scratch, self.spare, self.out, tc, 0..self.n) {
+        match try_each(self.scratch, self.spare, self.out, tc, 0..self.n, false) {
             Ok(()) => finish(self.view, self.delta_time, self.out, self.scratch, tc),
             Err(Miss::At(k) | Miss::Below(k) | Miss::Unsolvable(k)) => Err(OtgError::ZeroLimits {
                 dof: if has_zero_limit(&self.scratch[k].dof) {
@@ -597,7 +616,15 @@ impl Planner<'_, '_> {
                 break;
             }
             self.check_budget()?;
-            match try_each(self.scratch, self.spare, self.out, t, 0..self.n) {
+            match try_each(
+                self.scratch,
+                self.spare,
+                self.out,
+                t,
+                0..self.n,
+                self.unbuilt,
+            ) {
+                Ok(()) if self.unbuilt => return Ok(self.rated(t)),
                 Ok(()) => {
                     if let Some(lo) = last_fail.filter(|_| !self.bounded) {
                         t = self.bisect(lo, t, failed)?;
@@ -667,13 +694,26 @@ impl Planner<'_, '_> {
             }
         }
         // A failed attempt leaves `out` partly written: redo the last success.
-        if !last_ok && try_each(self.scratch, self.spare, self.out, hi, 0..self.n).is_err() {
+        if !last_ok && try_each(self.scratch, self.spare, self.out, hi, 0..self.n, false).is_err() {
             return Err(OtgError::SynchronizationFailed {
                 dof: Some(failed),
                 duration: hi,
             });
         }
         Ok(hi)
+    }
+
+    /// Bounded mode's duration once `t` works for every synchronized DOF (whose profiles
+    /// [`try_each`] may have left unbuilt, see [`Planner::unbuilt`]): `t`, or longer where a
+    /// DOF that is not synchronized needs longer.
+    #[inline]
+    fn rated(&self, t: f64) -> f64 {
+        let n = self.n;
+        let mut d = t;
+        for i in (0..n).filter(|&i| self.view.enabled[i] && !self.scratch[i].sync) {
+            d = d.max(self.out[i].profile.duration());
+        }
+        d
     }
 
     /// The next candidate duration above `t`, or (when none is left) a geometrically growing
@@ -813,14 +853,17 @@ fn try_all_from(
     let order = std::iter::once(first)
         .filter(|&f| f < n)
         .chain((0..n).filter(|&i| i != first));
-    try_each(scratch, spare, out, t, order)
+    try_each(scratch, spare, out, t, order, false)
 }
 
 /// Step 2 for every synchronized DOF at duration `t`, written into `out`; why it failed
 /// otherwise (then the synchronized entries of `out` are partly overwritten). A DOF whose
 /// step 1 has not run goes straight to step 2; only if that fails does step 1 run for it.
 /// The DOFs are tried in the order `order` gives (each synchronized DOF once; the search's
-/// candidates depend on which DOF it reports, so its ordinary order is `0..n`).
+/// candidates depend on which DOF it reports, so its ordinary order is `0..n`). With `rate`
+/// (bounded mode's ratings) only whether `t` works matters: a DOF whose bound certifies `t`
+/// is not planned, and one whose step 1 has not run tries step 2's closed forms before
+/// step 1; the entries of `out` are then unspecified.
 #[inline]
 fn try_each(
     scratch: &mut [Scratch],
@@ -828,17 +871,29 @@ fn try_each(
     out: &mut [DofTrajectory],
     t: f64,
     order: impl Iterator<Item = usize>,
+    rate: bool,
 ) -> Result<(), Miss> {
     for i in order {
         let sc = &mut scratch[i];
         if !sc.sync {
             continue;
         }
+        // t is feasible for it (see `duration_bound`; only DOFs whose step 1 has not run in
+        // `prepare` have a bound): rating needs no profile.
+        let certified = sc.bound <= t;
+        if rate && certified {
+            continue;
+        }
         if sc.solved == Solved::No {
-            // t is feasible for it (see `duration_bound`): step 2 plans it. (No brake, see
-            // `calculate`: step 2 from the start state.)
-            let certified = sc.bound <= t;
+            // Certified, step 2 plans it. (No brake, see `calculate`: step 2 from the start
+            // state.)
             if certified && step2_into(&sc.dof, t, &mut out[i].profile) {
+                continue;
+            }
+            // Rating, step 2's closed forms are tried first: when they plan, t is feasible
+            // (so at least the DOF's minimum) and step 1 is not needed; when they do not,
+            // step 1 says whether t is below its minimum, before the costlier families run.
+            if rate && step2_closed_into(&sc.dof, t, &mut out[i].profile) {
                 continue;
             }
             // Certified, every duration from the bound on is feasible for it (the bound's

@@ -76,6 +76,11 @@
 //! into a bisection of about 1.5 ms; the bounded mode keeps the first candidate duration that
 //! works (or rates the section ∞ when none does), so such velocities, poor anyway, are rated
 //! long rather than exactly. Only the reference and the chosen sections get full solves.
+//! A rating wants the duration alone, so it builds only the profiles that decide it: a DOF
+//! whose closed-form duration bound is at most the trial duration gets none, and a DOF whose
+//! step 1 has not run is tried with step 2's closed forms first (when they plan, its step 1
+//! is skipped). The golden search does not rate a candidate's second section when the first
+//! alone is longer than the other inner point's total (same steps, same choice).
 //!
 //! # Precision contract
 //! Every section is a generator result: it ends at its waypoint (and the last one at the

@@ -5,7 +5,8 @@
 //! Every evaluation solves whole sections with the generator into buffers the planner
 //! reuses: the search rates candidate velocities with the synchronization's bounded mode
 //! (`sync::calculate` with `Search::Bounded`: no bisection, no durations past the last
-//! candidate, never shorter than the full solve), the reference (stopping at every waypoint)
+//! candidate, never shorter than the full solve; it returns the duration alone and builds
+//! only the profiles that decide it), the reference (stopping at every waypoint)
 //! and the final trajectory are full solves (`Search::Full`), each chosen section once more into its
 //! own storage. A full solve is never longer than the bounded rating the search kept (to
 //! round-off), so the result is never longer than the search believed; the final check
@@ -194,15 +195,17 @@ impl<'a> Planner<'a> {
     }
 
     /// The two sections around waypoint `w` at scale `s`: their ratings ([`Planner::rate`]).
-    /// Out of time (with a budget): both ∞, nothing solved.
-    fn around(&mut self, w: usize, s: f64) -> (f64, f64) {
+    /// When the first alone is longer than `beaten` the second is not rated: ∞ stands for it
+    /// (the pair is worse than a total of `beaten` either way). Out of time (with a budget):
+    /// both ∞, nothing solved.
+    fn around(&mut self, w: usize, s: f64, beaten: f64) -> (f64, f64) {
         if self.out_of_time() {
             return (f64::INFINITY, f64::INFINITY);
         }
         self.set_scale(w, s);
         let a = self.rate(w);
-        if a.is_infinite() {
-            return (a, a);
+        if a.is_infinite() || a > beaten {
+            return (a, f64::INFINITY);
         }
         (a, self.rate(w + 1))
     }
@@ -329,13 +332,16 @@ impl<'a> Planner<'a> {
         }
         let mut dur = vec![0.0; self.m + 1];
         let mut ok = true;
+        // (Rating stops once the sum cannot be shorter.)
+        let (stop, mut sum) = (self.dur.iter().sum::<f64>(), 0.0);
         for s in 0..=self.m {
             if self.out_of_time() {
                 ok = false;
                 break;
             }
             dur[s] = self.rate(s);
-            if dur[s].is_infinite() {
+            sum += dur[s];
+            if dur[s].is_infinite() || sum >= stop {
                 ok = false;
                 break;
             }
@@ -353,6 +359,11 @@ impl<'a> Planner<'a> {
 
     /// Golden-section search of waypoint `w`'s scale over `[lo, hi]` with `evals`
     /// evaluations; keeps the best of them and the current scale.
+    ///
+    /// Each new point only has to be compared with the other inner point (and the best so
+    /// far, never longer than either), so its second section is not rated when its first
+    /// already exceeds the other point's total ([`Planner::around`]): the search takes the
+    /// same steps and keeps the same scale as with both ratings.
     fn golden(&mut self, w: usize, lo: f64, hi: f64, evals: usize) {
         let mut best = (self.scale[w], self.dur[w], self.dur[w + 1]);
         let consider = |s: f64, d: (f64, f64), best: &mut (f64, f64, f64)| {
@@ -364,20 +375,20 @@ impl<'a> Planner<'a> {
             let (mut a, mut b) = (lo, hi);
             let mut x1 = b - INV_PHI * (b - a);
             let mut x2 = a + INV_PHI * (b - a);
-            let mut f1 = self.around(w, x1);
-            let mut f2 = self.around(w, x2);
+            let mut f1 = self.around(w, x1, f64::INFINITY);
+            let mut f2 = self.around(w, x2, f1.0 + f1.1);
             consider(x1, f1, &mut best);
             consider(x2, f2, &mut best);
             for _ in 2..evals {
                 if f1.0 + f1.1 <= f2.0 + f2.1 {
                     (b, x2, f2) = (x2, x1, f1);
                     x1 = b - INV_PHI * (b - a);
-                    f1 = self.around(w, x1);
+                    f1 = self.around(w, x1, f2.0 + f2.1);
                     consider(x1, f1, &mut best);
                 } else {
                     (a, x1, f1) = (x1, x2, f2);
                     x2 = a + INV_PHI * (b - a);
-                    f2 = self.around(w, x2);
+                    f2 = self.around(w, x2, f1.0 + f1.1);
                     consider(x2, f2, &mut best);
                 }
             }
