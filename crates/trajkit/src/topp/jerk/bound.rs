@@ -33,14 +33,19 @@
 //! cost is linear in the number of TOPP-RA gridpoints (each gives at most two kinks). Two
 //! shortcuts leave the factor bitwise unchanged: a joint whose cheap interval bound cannot
 //! raise the running lower bound of the factor is not bounded further, and a segment where
-//! that holds for every joint by the (larger) bounds of its path *cell* is skipped before its
-//! own derivative bounds are formed. To make the running lower bound large early, the
+//! that holds for every joint by the (larger) bounds of its path *cell* (`cells.rs`) is
+//! skipped before its own derivative bounds are formed. The cell test runs per joint too:
+//! a segment's derivative bounds are formed only for the joints it leaves (about a quarter
+//! of them on the standard 7-waypoint problem at the Panda's limits, where almost no segment
+//! is skipped whole), and the values at the three points only up to the highest order that
+//! still needs them. To make the running lower bound large early, the
 //! segments whose cell bounds are largest are bounded first (`SEEDS` of them), then the rest
 //! in time order: only which segments are skipped depends on the order, and a skipped segment
 //! cannot change the result. Where the factor is close to 1 (the limits bind almost
 //! everywhere along a time-optimal law) few segments can be skipped; with low jerk limits
 //! most are.
 
+use super::cells::Cells;
 use super::segments::{Cubic, RawLaw};
 use super::FilteredProfile;
 use crate::topp::rescale::TimeLaw;
@@ -125,9 +130,9 @@ struct Sweep<'a, P: Path> {
     /// joint's cheap bound from these can raise the factor is skipped before its own bounds
     /// are computed (see [`Sweep::bound_spans`]).
     cells: Cells,
-    /// Whether that test runs and [`Sweep::derivative_bounds_fixed`] stands in for
-    /// [`Sweep::derivative_bounds`] (always, except in the test that shows that neither
-    /// changes anything).
+    /// Whether that test runs, the same test per joint, and [`Sweep::joint_derivatives`]
+    /// (only for joints that pass it) stands in for [`Sweep::derivative_bounds`] (always,
+    /// except in the test that shows that none of this changes anything).
     shortcuts: bool,
     /// Segments skipped whole that way.
     skipped: usize,
@@ -273,8 +278,9 @@ fn quadratic_range(f0: f64, fm: f64, f1: f64) -> (f64, f64) {
 
 impl<P: Path> Sweep<'_, P> {
     /// Bounds one segment `[t0, t1]` (τ relative to the cubic's origin) that lies within one
-    /// piece of the path; `time` is the law's time at τ = 0.
-    fn segment(&mut self, span: &Span) {
+    /// piece of the path; `time` is the law's time at τ = 0. With `cells`, the joints are
+    /// first tested on the bounds of the segment's path cell ([`Cells::cell`]).
+    fn segment(&mut self, span: &Span, cells: bool) {
         let Span {
             ref cub,
             t0,
@@ -284,12 +290,12 @@ impl<P: Path> Sweep<'_, P> {
         } = *span;
         self.piece = piece;
         match self.degree {
-            Some(1) => self.poly_segment::<1>(cub, t0, t1, time),
-            Some(2) => self.poly_segment::<2>(cub, t0, t1, time),
-            Some(3) => self.poly_segment::<3>(cub, t0, t1, time),
-            Some(4) => self.poly_segment::<4>(cub, t0, t1, time),
-            Some(5) => self.poly_segment::<5>(cub, t0, t1, time),
-            Some(_) => self.poly_segment::<6>(cub, t0, t1, time),
+            Some(1) => self.poly_segment::<1>(cub, t0, t1, time, cells),
+            Some(2) => self.poly_segment::<2>(cub, t0, t1, time, cells),
+            Some(3) => self.poly_segment::<3>(cub, t0, t1, time, cells),
+            Some(4) => self.poly_segment::<4>(cub, t0, t1, time, cells),
+            Some(5) => self.poly_segment::<5>(cub, t0, t1, time, cells),
+            Some(_) => self.poly_segment::<6>(cub, t0, t1, time, cells),
             None => self.sampled_segment(cub, t0, t1, time),
         }
     }
@@ -310,8 +316,21 @@ impl<P: Path> Sweep<'_, P> {
         }
     }
 
-    /// [`Sweep::segment`] on a path of degree ≤ `D`.
-    fn poly_segment<const D: usize>(&mut self, cub: &Cubic, t0: f64, t1: f64, time: f64) {
+    /// [`Sweep::segment`] on a path of degree ≤ `D`. With the shortcuts, joint by joint:
+    /// a joint whose cheap bound from the path cell cannot raise the factor is skipped before
+    /// its own derivative bounds are formed (they could not raise it either: [`Cells`]), the
+    /// others get them one joint at a time ([`Sweep::joint_derivatives`]); without, every
+    /// joint's at once ([`Sweep::derivative_bounds`]). Same values, same decisions, in joint
+    /// order.
+    fn poly_segment<const D: usize>(
+        &mut self,
+        cub: &Cubic,
+        t0: f64,
+        t1: f64,
+        time: f64,
+        cells: bool,
+    ) {
+        let h = t1 - t0;
         let Shape {
             tm,
             sd,
@@ -327,11 +346,10 @@ impl<P: Path> Sweep<'_, P> {
         let mut wts = [[0.0f64; MAX_DEGREE + 1]; 5];
         for (wt, &d) in wts.iter_mut().zip(&offsets) {
             wt[0] = 1.0;
-            for i in 1..=D {
+            for i in 1..D + 1 {
                 wt[i] = wt[i - 1] * d / i as f64;
             }
         }
-        let h = t1 - t0;
         let seg = Segment {
             wts,
             sd,
@@ -341,15 +359,78 @@ impl<P: Path> Sweep<'_, P> {
             rem: h * h * h / (72.0 * 3f64.sqrt()),
             at: time + tm,
         };
-        match (self.shortcuts, self.dim) {
-            (true, 6) => self.derivative_bounds_fixed::<D, 6>(&seg.wts),
-            (true, 7) => self.derivative_bounds_fixed::<D, 7>(&seg.wts),
-            _ => self.derivative_bounds::<D>(&seg.wts),
-        }
         let mut bells = None;
-        for j in 0..self.dim {
-            self.poly_joint::<D>(&seg, j, &mut bells);
+        let dim = self.dim;
+        let cell = cells
+            .then(|| self.cells.cell(self.piece, sm, reach))
+            .flatten();
+        if !self.shortcuts {
+            self.derivative_bounds::<D>(&seg.wts);
+            for j in 0..dim {
+                let md = std::array::from_fn(|m| self.md[m * dim + j]);
+                let sb = std::array::from_fn(|k| self.sb[k * dim + j]);
+                self.poly_joint::<D>(&seg, j, &md, &sb, &mut bells);
+            }
+            return;
         }
+        // Joints the cell test leaves (the thresholds only grow: a joint it skips now stays
+        // skippable; the others are decided on their own bounds, as without it).
+        let open = match (cell, dim) {
+            (Some(c), 6) => self.cell_open::<6>(c, x),
+            (Some(c), 7) => self.cell_open::<7>(c, x),
+            _ => u64::MAX,
+        };
+        for j in 0..dim {
+            if j < 64 && open & (1 << j) == 0 {
+                continue;
+            }
+            if let (Some(c), true) = (cell, open == u64::MAX) {
+                let pb = &self.cells.bounds[c * 3 * dim..(c + 1) * 3 * dim];
+                let cheap = self.cheap(j, [pb[j], pb[dim + j], pb[2 * dim + j]], x);
+                if (0..3).all(|o| cheap[o] <= self.threshold[o]) {
+                    continue;
+                }
+            }
+            let (md, sb) = self.joint_derivatives::<D>(&seg.wts, j);
+            self.poly_joint::<D>(&seg, j, &md, &sb, &mut bells);
+        }
+    }
+
+    /// σ⁽ᵐ⁾ of joint `j` at the segment's middle and bounds of |σ⁽ᵏ⁾| on the segment
+    /// (index m, k): the sums of [`Sweep::derivative_bounds`] for one joint, in the same
+    /// order (bitwise the same values).
+    #[inline]
+    fn joint_derivatives<const D: usize>(
+        &self,
+        wts: &[[f64; MAX_DEGREE + 1]; 5],
+        j: usize,
+    ) -> ([f64; MAX_DEGREE + 1], [f64; MAX_DEGREE + 1]) {
+        let dim = self.dim;
+        let base = self.piece * (D + 1) * dim + j;
+        let rd: [f64; MAX_DEGREE + 1] = std::array::from_fn(|m| {
+            if m <= D {
+                self.ref_der[base + m * dim]
+            } else {
+                0.0
+            }
+        });
+        let mut md = [0.0f64; MAX_DEGREE + 1];
+        for m in 1..D + 1 {
+            let mut acc = 0.0;
+            for mm in m..D + 1 {
+                acc += rd[mm] * wts[0][mm - m];
+            }
+            md[m] = acc;
+        }
+        let mut sb = [0.0f64; MAX_DEGREE + 1];
+        for k in 1..D + 1 {
+            let mut acc = 0.0;
+            for m in k..D + 1 {
+                acc += md[m].abs() * wts[4][m - k];
+            }
+            sb[k] = acc;
+        }
+        (md, sb)
     }
 
     /// σ⁽ᵐ⁾ at the segment's middle from the piece's reference point (exact for a
@@ -384,72 +465,34 @@ impl<P: Path> Sweep<'_, P> {
         }
     }
 
-    /// [`Sweep::derivative_bounds`] for exactly `N` joints: the same sums in the same order
-    /// (bitwise the same `md` and `sb`), in stack arrays of fixed size, so that the loops over
-    /// joints unroll.
-    #[inline]
-    fn derivative_bounds_fixed<const D: usize, const N: usize>(
-        &mut self,
-        wts: &[[f64; MAX_DEGREE + 1]; 5],
-    ) {
-        let base = self.piece * (D + 1) * N;
-        let rd = &self.ref_der[base..base + (D + 1) * N];
-        let row = |m: usize| -> [f64; N] {
-            let mut r = [0.0; N];
-            r.copy_from_slice(&rd[m * N..(m + 1) * N]);
-            r
-        };
-        let mut md = [[0.0f64; N]; MAX_DEGREE + 1];
-        for m in 1..=D {
-            for mm in m..=D {
-                let (w, r) = (wts[0][mm - m], row(mm));
-                for j in 0..N {
-                    md[m][j] += r[j] * w;
-                }
-            }
-        }
-        let mut sb = [[0.0f64; N]; MAX_DEGREE + 1];
-        for k in 1..=D {
-            for m in k..=D {
-                let w = wts[4][m - k];
-                for j in 0..N {
-                    sb[k][j] += md[m][j].abs() * w;
-                }
-            }
-        }
-        for m in 0..=D {
-            self.md[m * N..(m + 1) * N].copy_from_slice(&md[m]);
-            self.sb[m * N..(m + 1) * N].copy_from_slice(&sb[m]);
-        }
-    }
-
-    /// One joint `j` of [`Sweep::poly_segment`] (after [`Sweep::derivative_bounds`]): a
-    /// cheap interval bound that skips the joint when it cannot raise the factor, else the
-    /// quadratic range plus the certified remainder per order.
+    /// One joint `j` of [`Sweep::poly_segment`], from its σ⁽ᵐ⁾ at the middle `md` and
+    /// bounds `sb` of |σ⁽ᵏ⁾| on the segment: a cheap interval bound that skips the joint when
+    /// it cannot raise the factor, else the quadratic range plus the certified remainder per
+    /// order (values formed only up to the highest order that needs them).
     /// `bells` (the segment's Bell polynomials) is computed on first need.
     #[inline]
     fn poly_joint<const D: usize>(
         &mut self,
         seg: &Segment,
         j: usize,
+        md: &[f64; MAX_DEGREE + 1],
+        sb: &[f64; MAX_DEGREE + 1],
         bells: &mut Option<[[f64; 7]; 3]>,
     ) {
-        let dim = self.dim;
         let wts = &seg.wts;
         let [x1, x2, x3] = seg.x;
-        let sb: [f64; MAX_DEGREE + 1] = std::array::from_fn(|k| self.sb[k * dim + j]);
-        // Interval bounds of |q̇|, |q̈|, |q⃛|: skip the joint when none can matter.
+        // Interval bounds of |q̇|, |q̈|, |q⃛|: skip the joint when none can matter (NaN does).
         let cheap = self.cheap(j, [sb[1], sb[2], sb[3]], seg.x);
-        if (0..3).all(|o| cheap[o] <= self.threshold[o]) {
+        let needed = |o: usize| cheap[o] > self.threshold[o] || cheap[o].is_nan();
+        let Some(top) = (0..3).rev().find(|&o| needed(o)) else {
             return;
-        }
-        let md: [f64; MAX_DEGREE + 1] = std::array::from_fn(|m| self.md[m * dim + j]);
+        };
         let value = |p: usize| -> [f64; 3] {
             let wt = &wts[p + 1];
             let mut d = [0.0f64; 3];
-            for k in 0..3 {
-                for m in (k + 1)..=D {
-                    d[k] += md[m] * wt[m - k - 1];
+            for (k, dk) in d.iter_mut().enumerate().take(top + 1) {
+                for m in (k + 1)..D + 1 {
+                    *dk += md[m] * wt[m - k - 1];
                 }
             }
             let (v, a) = (seg.sd[p], seg.sdd[p]);
@@ -467,7 +510,7 @@ impl<P: Path> Sweep<'_, P> {
                 bell(6, x1, x2, x3),
             ]
         });
-        for o in 0..3 {
+        for o in 0..=top {
             if cheap[o] <= self.threshold[o] {
                 continue;
             }
@@ -476,7 +519,7 @@ impl<P: Path> Sweep<'_, P> {
             self.sampled(o, r);
             let b = &bells[o];
             let mut m3 = 0.0;
-            for k in 2..=D.min(o + 4) {
+            for k in 2..D.min(o + 4) + 1 {
                 m3 += sb[k] * b[k];
             }
             let e = m3 * seg.rem;
@@ -488,6 +531,27 @@ impl<P: Path> Sweep<'_, P> {
                 self.at[o] = (seg.at, j);
             }
         }
+    }
+
+    /// The joints (bit j) of `N` whose cheap bound ([`Sweep::cheap`], the same arithmetic)
+    /// from the bounds of path cell `c` exceeds a running threshold in some order: the cell
+    /// test of [`Sweep::poly_segment`] for every joint at once, in fixed-size arrays.
+    #[inline]
+    fn cell_open<const N: usize>(&self, c: usize, [x1, x2, x3]: [f64; 3]) -> u64 {
+        let pb = &self.cells.bounds[c * 3 * N..(c + 1) * 3 * N];
+        let row = |v: &[f64]| -> [f64; N] { std::array::from_fn(|j| v[j]) };
+        let (b0, b1, b2) = (row(&pb[..N]), row(&pb[N..2 * N]), row(&pb[2 * N..]));
+        let sym = [0, 1, 2].map(|o| row(&self.inv.sym[o]));
+        let t = self.threshold;
+        let mut open = 0u64;
+        for j in 0..N {
+            let c0 = b0[j] * x1 * sym[0][j];
+            let c1 = (b1[j] * x1 * x1 + b0[j] * x2) * sym[1][j];
+            let c2 = (b2[j] * x1 * x1 * x1 + 3.0 * b1[j] * x1 * x2 + b0[j] * x3) * sym[2][j];
+            let skip = (c0 <= t[0]) & (c1 <= t[1]) & (c2 <= t[2]);
+            open |= u64::from(!skip) << j;
+        }
+        open
     }
 
     /// Interval bounds of |q̇ⱼ|, |q̈ⱼ|, |q⃛ⱼ| as fractions of the limit, from bounds `b` of
@@ -665,10 +729,19 @@ impl<'a, P: Path> Sweep<'a, P> {
         let spans = std::mem::take(&mut self.spans);
         self.segments += spans.len();
         if !(self.shortcuts && self.degree.is_some()) {
-            spans.iter().for_each(|sp| self.segment(sp));
+            for sp in &spans {
+                self.segment(sp, false);
+            }
             return;
         }
-        let reach: Vec<[f64; 3]> = spans.iter().map(|sp| self.cell_reach(sp)).collect();
+        // Each segment's cell (found once for the reach and the bound) and cell reach.
+        let reach: Vec<[f64; 3]> = spans
+            .iter()
+            .map(|sp| {
+                let sh = Shape::new(&sp.cub, sp.t0, sp.t1);
+                self.cell_reach(&sh, self.cells.cell(sp.piece, sh.s[1], sh.reach))
+            })
+            .collect();
         // Seeds: the largest first-order estimates of the factor the cell reaches allow
         // (√x ≤ (1 + x)/2 and ∛x ≤ (2 + x)/3, tight near 1 where factors are); segments that
         // fit no cell are visited in time order anyway.
@@ -708,16 +781,15 @@ impl<'a, P: Path> Sweep<'a, P> {
         if (0..3).all(|o| c[o] <= self.threshold[o]) {
             self.skipped += 1;
         } else {
-            self.segment(sp);
+            self.segment(sp, true);
         }
     }
 
     /// Per order, the largest cheap bound ([`Sweep::cheap`]) of any joint of the segment from
-    /// the bounds of its path cell (each at least the segment's own, see [`Cells`]); infinite
-    /// when its Taylor range fits in no cell or a bound is NaN.
-    fn cell_reach(&self, sp: &Span) -> [f64; 3] {
-        let sh = Shape::new(&sp.cub, sp.t0, sp.t1);
-        let Some(cell) = self.cells.cell(sp.piece, sh.s[1], sh.reach) else {
+    /// the bounds of its path cell `cell` (each at least the segment's own, see [`Cells`]);
+    /// infinite when its Taylor range fits in no cell (`None`) or a bound is NaN.
+    fn cell_reach(&self, sh: &Shape, cell: Option<usize>) -> [f64; 3] {
+        let Some(cell) = cell else {
             return [f64::INFINITY; 3];
         };
         let dim = self.dim;
@@ -766,119 +838,12 @@ impl<'a, P: Path> Sweep<'a, P> {
     }
 }
 
-/// Each path piece cut into equal cells (about four TOPP-RA grid intervals of s each) and,
-/// per cell and joint, bounds of |σ⁽ᵏ⁾| (k = 1, 2, 3) on the cell: from σ⁽ᵐ⁾ at the cell's
-/// middle c (Taylor from the piece's reference point, as [`Sweep::derivative_bounds`]),
-/// Σₘ |σ⁽ᵐ⁾(c)|·rᵐ⁻ᵏ/(m − k)! with r a little over the half width.
-///
-/// A segment bound `sb[k]` (Taylor from the segment's middle, at distance δ from c, over
-/// the segment's reach e, δ + e ≤ r) is at most this: expanding each |σ⁽ᵐ⁾| at the segment's
-/// middle from c and summing gives Σₙ |σ⁽ⁿ⁾(c)|(δ + e)ⁿ⁻ᵏ/(n − k)! (the binomial theorem).
-/// For rounding, r is widened by 1e-6 relative, the bound raised by 1e-9 relative and by
-/// 1e-12 of the whole piece's bound (the scale of the rounding of σ⁽ᵐ⁾ at points of the
-/// piece computed from its reference point).
-#[derive(Default)]
-struct Cells {
-    /// Per piece: its start in s, its first cell's index, its cell count and cell width.
-    start: Vec<f64>,
-    first: Vec<usize>,
-    count: Vec<usize>,
-    width: Vec<f64>,
-    /// Index (cell·3 + k − 1)·dim + j.
-    bounds: Vec<f64>,
-}
-
-impl Cells {
-    fn new(
-        breaks: &[f64],
-        ref_s: &[f64],
-        ref_der: &[f64],
-        d: usize,
-        dim: usize,
-        law: &FilteredProfile,
-    ) -> Self {
-        let gs = law.profile().gridpoints();
-        let span = (gs[gs.len() - 1] - gs[0]).abs();
-        let target = 4.0 * span / gs.len().max(2) as f64;
-        let mut cells = Cells::default();
-        let mut sigma = vec![0.0; (d + 1) * dim];
-        let mut b = vec![0.0; 3 * dim];
-        for (p, pair) in breaks.windows(2).enumerate() {
-            let len = pair[1] - pair[0];
-            let n = if target > 0.0 && len > 0.0 {
-                ((len / target).ceil() as usize).clamp(1, 1 << 16)
-            } else {
-                1
-            };
-            let width = len / n as f64;
-            cells.start.push(pair[0]);
-            cells.first.push(cells.bounds.len() / (3 * dim));
-            cells.count.push(n);
-            cells.width.push(width);
-            let rd = &ref_der[p * (d + 1) * dim..(p + 1) * (d + 1) * dim];
-            let mut whole = vec![0.0; 3 * dim];
-            Self::bound(rd, 0.5 * len * (1.0 + 1e-6), d, dim, &mut whole);
-            cells.bounds.reserve(n * 3 * dim);
-            let r = 0.5 * width * (1.0 + 1e-6);
-            for q in 0..n {
-                let c = pair[0] + (q as f64 + 0.5) * width;
-                let delta = c - ref_s[p];
-                sigma.fill(0.0);
-                for m in 1..=d {
-                    let mut w = 1.0;
-                    for nn in m..=d {
-                        for j in 0..dim {
-                            sigma[m * dim + j] += rd[nn * dim + j] * w;
-                        }
-                        w *= delta / (nn - m + 1) as f64;
-                    }
-                }
-                Self::bound(&sigma, r, d, dim, &mut b);
-                cells.bounds.extend(
-                    b.iter()
-                        .zip(&whole)
-                        .map(|(b, w)| b * (1.0 + 1e-9) + 1e-12 * w),
-                );
-            }
-        }
-        cells
-    }
-
-    /// Σₘ |der[m]|·rᵐ⁻ᵏ/(m − k)! for k = 1, 2, 3 and every joint (index (k − 1)·dim + j; 0
-    /// for k above the degree `d`) into `out` (length 3·dim).
-    fn bound(der: &[f64], r: f64, d: usize, dim: usize, out: &mut [f64]) {
-        out.fill(0.0);
-        for k in 1..=3.min(d) {
-            for j in 0..dim {
-                let (mut b, mut w) = (0.0, 1.0);
-                for m in k..=d {
-                    b += der[m * dim + j].abs() * w;
-                    w *= r / (m - k + 1) as f64;
-                }
-                out[(k - 1) * dim + j] = b;
-            }
-        }
-    }
-
-    /// The cell of `piece` that holds `[sm − reach, sm + reach]`, if one does.
-    #[inline]
-    fn cell(&self, piece: usize, sm: f64, reach: f64) -> Option<usize> {
-        let (n, width) = (*self.count.get(piece)?, self.width[piece]);
-        let lo = self.start[piece];
-        let q = ((sm - lo) / width).floor();
-        if !(q >= 0.0 && q < n as f64 && reach.is_finite()) {
-            return None;
-        }
-        let c = lo + (q + 0.5) * width;
-        ((sm - c).abs() + reach <= 0.5 * width).then_some(self.first[piece] + q as usize)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// [`scale_bound`] with the whole-segment skip and the fixed-size bounds on or off, and
+    /// [`scale_bound`] with the whole-segment and per-joint cell skips and the per-joint
+    /// bounds on or off, and
     /// the segments skipped.
     fn scale_bound_skipping<P: Path>(
         path: &P,
@@ -893,26 +858,29 @@ mod tests {
     }
 
     /// Skipping whole segments by the bounds of their cell (seeded order included), and the
-    /// fixed-size derivative bounds, change nothing, bit for bit, on seeded random 7-joint
-    /// Panda paths at the Panda's limits and at low jerk limits, and do skip many segments
+    /// per-joint cell skip and derivative bounds, change nothing, bit for bit, on seeded random
+    /// Panda paths (7 joints, the first 6, the first 3) at the Panda's limits and at low jerk
+    /// limits, and do skip many segments
     /// (about half here: few at the Panda's limits, where the factor is near 1, most at low
     /// jerk limits).
     #[test]
     fn skipping_whole_segments_changes_nothing() {
         use crate::topp::messy::{plan_waypoints, PlanOptions};
-        let panda = Limits::preset("panda").unwrap();
-        let mut low = panda.joints().to_vec();
-        low.iter_mut().for_each(|j| j.jerk *= 0.01);
-        let low = Limits::new(low).unwrap();
         let mut rng = crate::rng::SplitMix64::new(5);
         let (mut total, mut skipped) = (0, 0);
-        for case in 0..6 {
+        // 7 and 6 joints: the cell test of all joints at once; 3: one joint at a time.
+        for (case, dim) in [7, 7, 7, 7, 7, 7, 6, 6, 3, 3].into_iter().enumerate() {
+            let panda =
+                Limits::new(Limits::preset("panda").unwrap().joints()[..dim].to_vec()).unwrap();
+            let mut low = panda.joints().to_vec();
+            low.iter_mut().for_each(|j| j.jerk *= 0.01);
+            let low = Limits::new(low).unwrap();
             let w: Vec<f64> = (0..5)
                 .flat_map(|_| panda.joints().to_vec())
                 .map(|j| rng.uniform(j.position_min + 0.2, j.position_max - 0.2))
                 .collect();
             let limits = if case % 2 == 0 { &panda } else { &low };
-            let raw = plan_waypoints(&w, 7, limits, &PlanOptions::default()).unwrap();
+            let raw = plan_waypoints(&w, dim, limits, &PlanOptions::default()).unwrap();
             for piece in raw.pieces() {
                 let win = filter_window(piece.law(), piece.path(), limits, 0.5)
                     .unwrap()

@@ -48,6 +48,7 @@ use crate::traj::find_piece;
 use crate::{Limits, Order, Path};
 
 pub mod bound;
+mod cells;
 mod segments;
 pub use bound::{scale_bound, ScaleBound};
 
