@@ -529,6 +529,17 @@ impl Workspace {
         let breaks = anchor_breaks(path);
         let mut anchor = std::mem::take(&mut self.anchor);
         anchor.reset(path.dim());
+        // On paths of degree 4 or 5 the full Taylor data at every gridpoint are kept: the
+        // intervals starting there take them (see `between::Pieces`).
+        let keep = !breaks.is_empty() && path.piecewise_degree().is_some_and(|d| d > 3);
+        let full = 6 * path.dim();
+        let pieces = &mut self.pieces;
+        pieces.grid_piece.clear();
+        pieces.at_grid.clear();
+        if keep {
+            pieces.grid_piece.reserve(grid.len());
+            pieces.at_grid.reserve(full * grid.len());
+        }
         let mut b = 0;
         for &s in grid {
             while b < breaks.len() && breaks[b] <= s {
@@ -536,7 +547,26 @@ impl Workspace {
             }
             let inside = b >= 1 && b < breaks.len() && breaks[b - 1] < s;
             let out = [&mut self.q[..], &mut self.dq[..], &mut self.ddq[..]];
-            if !(inside && anchor.eval(path, &breaks, b, s, need_q, out)) {
+            let anchored = inside
+                && if keep {
+                    let at = pieces.at_grid.len();
+                    pieces.at_grid.resize(at + full, 0.0);
+                    let full = &mut pieces.at_grid[at..];
+                    let ok = anchor.eval_full(path, &breaks, b, s, need_q, out, full);
+                    // Data that are not all finite are left to the intervals' own expansion
+                    // (which finds them so and leaves the interval to the sampled check).
+                    pieces
+                        .grid_piece
+                        .push(if ok == Some(true) { b } else { usize::MAX });
+                    ok.is_some()
+                } else {
+                    anchor.eval(path, &breaks, b, s, need_q, out)
+                };
+            if keep && !inside {
+                pieces.at_grid.resize(pieces.at_grid.len() + full, 0.0);
+                pieces.grid_piece.push(usize::MAX);
+            }
+            if !anchored {
                 if need_q {
                     path.eval(s, 0, &mut self.q);
                 }
