@@ -62,7 +62,10 @@ enum Interval {
 /// start, from inside (`6·dim` numbers per interval; σ⁗ and σ⁽⁵⁾ zero on paths of degree ≤ 3),
 /// for intervals where the exact check applies. On quintic paths the path is evaluated once per
 /// path piece, at the piece's midpoint (so that no convention about which piece a breakpoint
-/// belongs to matters), and the expansion moved to each interval's start ([`PieceAnchor`]). On
+/// belongs to matters), and the expansion moved to each interval's start ([`PieceAnchor`]):
+/// once per gridpoint, by the pass over the gridpoints, which keeps the six derivatives for the
+/// interval starting there (the same numbers the interval's own shift would give; only
+/// intervals starting at a breakpoint are shifted here). On
 /// paths of degree ≤ 3, between ordinary gridpoints one cubic covers both ends: the gridpoint
 /// values give σ, σ′, σ″ and (σ″(s_{i+1}) − σ″(s_i))/Δ gives σ‴; at a breakpoint the path is
 /// evaluated at the interval's midpoint and the expansion moved to the start.
@@ -86,10 +89,13 @@ pub(super) struct Pieces {
     /// gridpoints on paths of degree 4 or 5 (see [`PieceAnchor::eval_full`]); zeros elsewhere.
     /// The interval starting at such a gridpoint takes its data from here: the same numbers
     /// the interval's own expansion would give.
-    pub(super) at_grid: Vec<f64>,
+    at_grid: Vec<f64>,
     /// Per gridpoint: the index `b` of the piece (ending at `breaks[b]`) whose anchor gave
     /// `at_grid`, `usize::MAX` where none did.
-    pub(super) grid_piece: Vec<usize>,
+    grid_piece: Vec<usize>,
+    /// Whether the pass over the gridpoints keeps `at_grid`, and whether it evaluates σ.
+    keep: bool,
+    need_q: bool,
     /// Scratch: Taylor data at the midpoint of one path piece.
     anchor: PieceAnchor,
     dim: usize,
@@ -103,6 +109,61 @@ impl Pieces {
             + std::mem::size_of::<usize>() * (self.loc.capacity() + self.grid_piece.capacity())
             + self.exact.capacity()
             + self.at_break.capacity()
+    }
+
+    /// Starts the pass over the gridpoints of a new grid of `points` gridpoints
+    /// ([`Pieces::eval_gridpoint`]); `anchored`: whether the pass moves Taylor data from
+    /// path pieces at all. Returns whether it keeps the full data (paths of degree 4 or 5):
+    /// the intervals then need no values at the gridpoints.
+    pub(super) fn start_gridpoints<P: Path>(
+        &mut self,
+        path: &P,
+        need_q: bool,
+        anchored: bool,
+        points: usize,
+    ) -> bool {
+        self.keep = anchored && path.piecewise_degree().is_some_and(|d| d > 3);
+        self.need_q = need_q;
+        self.grid_piece.clear();
+        self.at_grid.clear();
+        if self.keep {
+            self.grid_piece.reserve(points);
+            self.at_grid.reserve(6 * path.dim() * points);
+        }
+        self.keep
+    }
+
+    /// σ (when needed), σ′ and σ″ at the next gridpoint `s`, from the Taylor data of the
+    /// path piece ending at `breaks[b]` when `inside` it (`at = (inside, b)`). On paths of
+    /// degree 4 or 5 the full data are kept for the interval starting there, and returned
+    /// (`6·dim` numbers, σ in them only when needed) when all finite; otherwise σ, σ′, σ″ are
+    /// written into `out`. Returns whether the values come from the piece, and the full data.
+    pub(super) fn eval_gridpoint<P: Path>(
+        &mut self,
+        anchor: &mut PieceAnchor,
+        path: &P,
+        breaks: &[f64],
+        (inside, b): (bool, usize),
+        s: f64,
+        out: [&mut [f64]; 3],
+    ) -> (bool, Option<&[f64]>) {
+        if !self.keep {
+            let ok = inside && anchor.eval(path, breaks, b, s, self.need_q, out);
+            return (ok, None);
+        }
+        let at = self.at_grid.len();
+        self.at_grid.resize(at + 6 * path.dim(), 0.0);
+        if !inside {
+            self.grid_piece.push(usize::MAX);
+            return (false, None);
+        }
+        let full = &mut self.at_grid[at..];
+        let ok = anchor.eval_full(path, breaks, b, s, self.need_q, out, full);
+        // Data that are not all finite are left to the intervals' own expansion (which finds
+        // them so and leaves the interval to the sampled check).
+        let finite = ok == Some(true);
+        self.grid_piece.push(if finite { b } else { usize::MAX });
+        (ok.is_some(), finite.then_some(&self.at_grid[at..]))
     }
 
     fn build<P: Path>(&mut self, path: &P, grid: &[f64], need_q: bool, at_points: &[f64]) {
@@ -304,10 +365,11 @@ impl PieceAnchor {
         true
     }
 
-    /// [`PieceAnchor::eval`], also writing σ, σ′, …, σ⁽⁵⁾ at `s` into `full` (`6·dim`
-    /// numbers, block k the k-th derivative; σ moved from the anchor's, zeros there unless
-    /// `need_q`): the Taylor data of an interval starting at `s`. Returns `None` (nothing
-    /// written) when the piece's data are not finite, else whether all of `full` is finite.
+    /// σ, σ′, …, σ⁽⁵⁾ at `s` into `full` (`6·dim` numbers, block k the k-th derivative; σ
+    /// moved from the anchor's, zeros there unless `need_q`): the Taylor data of an interval
+    /// starting at `s`. Returns `None` (nothing written) when the piece's data are not finite,
+    /// else whether all of `full` is finite; when not, σ (if `need_q`), σ′ and σ″ are also
+    /// written into `out`, as [`PieceAnchor::eval`] would.
     #[allow(clippy::too_many_arguments)]
     pub(super) fn eval_full<P: Path>(
         &mut self,
@@ -323,12 +385,6 @@ impl PieceAnchor {
         let dim = a.len() / 6;
         let full = &mut full[..6 * dim];
         shift_taylor(a, s - sm, full);
-        let [q, dq, ddq] = out;
-        if need_q {
-            q.copy_from_slice(&full[..dim]);
-        }
-        dq.copy_from_slice(&full[dim..2 * dim]);
-        ddq.copy_from_slice(&full[2 * dim..3 * dim]);
         // x·0 is 0 for finite x and NaN otherwise: eight running sums, no branch.
         let mut probe = [0.0; 8];
         for chunk in full.chunks(8) {
@@ -336,7 +392,16 @@ impl PieceAnchor {
                 *p += v * 0.0;
             }
         }
-        Some(probe.iter().all(|&p| p == 0.0))
+        if probe.iter().all(|&p| p == 0.0) {
+            return Some(true);
+        }
+        let [q, dq, ddq] = out;
+        if need_q {
+            q.copy_from_slice(&full[..dim]);
+        }
+        dq.copy_from_slice(&full[dim..2 * dim]);
+        ddq.copy_from_slice(&full[2 * dim..3 * dim]);
+        Some(false)
     }
 }
 
@@ -819,6 +884,36 @@ mod tests {
     use super::*;
     use crate::rng::SplitMix64;
     use crate::spline::PiecewisePolynomial;
+
+    /// The Taylor shift on lanes of joints gives every joint exactly (bit for bit) what the
+    /// one-joint shift gives, for every joint count (lanes of four, two and one).
+    #[test]
+    fn lane_shift_equals_joint_shift() {
+        let mut rng = SplitMix64::new(3);
+        for dim in 1..=11usize {
+            for _ in 0..50 {
+                let src: Vec<f64> = (0..6 * dim).map(|_| rng.uniform(-3.0, 3.0)).collect();
+                let t = rng.uniform(-0.7, 0.7);
+                let mut moved = vec![0.0; 6 * dim];
+                shift_taylor(&src, t, &mut moved);
+                let mut three = vec![0.0; 3 * dim];
+                shift_orders::<3>(&src, t, &mut three);
+                for j in 0..dim {
+                    let m = shift_one(std::array::from_fn(|k| src[k * dim + j]), t);
+                    for k in 0..6 {
+                        assert_eq!(
+                            moved[k * dim + j].to_bits(),
+                            m[k].to_bits(),
+                            "{dim} {j} {k}"
+                        );
+                        if k < 3 {
+                            assert_eq!(three[k * dim + j].to_bits(), m[k].to_bits());
+                        }
+                    }
+                }
+            }
+        }
+    }
 
     /// σ, σ′, σ″ from a piece's Taylor data (what the solver uses at gridpoints inside a
     /// piece) equal the path's own evaluation up to rounding, on random piecewise polynomials

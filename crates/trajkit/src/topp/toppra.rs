@@ -6,7 +6,8 @@
 //! 1. evaluates the path and all constraints at every gridpoint (on paths that are
 //!    polynomials of degree ≤ 5 between breakpoints, the path once per piece: σ, σ′, σ″ at the
 //!    gridpoints inside a piece come from its Taylor expansion at the piece's midpoint, exact
-//!    up to rounding);
+//!    up to rounding; on pieces of degree 4 or 5 the six derivatives moved to a gridpoint are
+//!    kept for the interval starting there, so each gridpoint costs one shift);
 //! 2. **backward pass**: from the end set K_N = {ṡ_end²}, computes the controllable sets
 //!    K_i = [min, max] of the x from which some admissible u reaches K_{i+1} — two exact
 //!    two-variable linear programs per stage (`topp/lp.rs`);
@@ -531,15 +532,9 @@ impl Workspace {
         anchor.reset(path.dim());
         // On paths of degree 4 or 5 the full Taylor data at every gridpoint are kept: the
         // intervals starting there take them (see `between::Pieces`).
-        let keep = !breaks.is_empty() && path.piecewise_degree().is_some_and(|d| d > 3);
-        let full = 6 * path.dim();
         let pieces = &mut self.pieces;
-        pieces.grid_piece.clear();
-        pieces.at_grid.clear();
-        if keep {
-            pieces.grid_piece.reserve(grid.len());
-            pieces.at_grid.reserve(full * grid.len());
-        }
+        let keep = pieces.start_gridpoints(path, need_q, !breaks.is_empty(), grid.len());
+        let dim = path.dim();
         let mut b = 0;
         for &s in grid {
             while b < breaks.len() && breaks[b] <= s {
@@ -547,41 +542,38 @@ impl Workspace {
             }
             let inside = b >= 1 && b < breaks.len() && breaks[b - 1] < s;
             let out = [&mut self.q[..], &mut self.dq[..], &mut self.ddq[..]];
-            let anchored = inside
-                && if keep {
-                    let at = pieces.at_grid.len();
-                    pieces.at_grid.resize(at + full, 0.0);
-                    let full = &mut pieces.at_grid[at..];
-                    let ok = anchor.eval_full(path, &breaks, b, s, need_q, out, full);
-                    // Data that are not all finite are left to the intervals' own expansion
-                    // (which finds them so and leaves the interval to the sampled check).
-                    pieces
-                        .grid_piece
-                        .push(if ok == Some(true) { b } else { usize::MAX });
-                    ok.is_some()
-                } else {
-                    anchor.eval(path, &breaks, b, s, need_q, out)
-                };
-            if keep && !inside {
-                pieces.at_grid.resize(pieces.at_grid.len() + full, 0.0);
-                pieces.grid_piece.push(usize::MAX);
-            }
+            let at = (inside, b);
+            let (anchored, full) = pieces.eval_gridpoint(&mut anchor, path, &breaks, at, s, out);
             if !anchored {
                 if need_q {
                     path.eval(s, 0, &mut self.q);
                 }
                 path.eval_derivatives(s, &mut self.dq, &mut self.ddq);
             }
-            check_path_values(s, &self.q, &self.dq, &self.ddq)?;
-            self.at_points.extend_from_slice(&self.q);
-            self.at_points.extend_from_slice(&self.dq);
-            self.at_points.extend_from_slice(&self.ddq);
-            let p = PathPoint {
-                s,
-                q: &self.q,
-                dq: &self.dq,
-                ddq: &self.ddq,
+            let p = match full {
+                // Finite full Taylor data (σ in them only when read): no other check, no copy.
+                Some(d) => PathPoint {
+                    s,
+                    q: if need_q { &d[..dim] } else { &self.q },
+                    dq: &d[dim..2 * dim],
+                    ddq: &d[2 * dim..3 * dim],
+                },
+                None => {
+                    check_path_values(s, &self.q, &self.dq, &self.ddq)?;
+                    PathPoint {
+                        s,
+                        q: &self.q,
+                        dq: &self.dq,
+                        ddq: &self.ddq,
+                    }
+                }
             };
+            if !keep {
+                // Read by the cubic pieces' data only (see `between::Pieces`).
+                self.at_points.extend_from_slice(p.q);
+                self.at_points.extend_from_slice(p.dq);
+                self.at_points.extend_from_slice(p.ddq);
+            }
             let (mut lo, mut hi, mut by) = (0.0f64, f64::INFINITY, usize::MAX);
             let first = self.cr.rows.len();
             for (k, c) in cons.iter().enumerate() {
@@ -848,8 +840,17 @@ impl Workspace {
 }
 
 pub(crate) fn check_path_values(s: f64, q: &[f64], dq: &[f64], ddq: &[f64]) -> Result<()> {
-    // x·0 is 0 for finite x and NaN otherwise: one branch-free pass in the common case.
-    let probe = |v: &[f64]| v.iter().fold(0.0, |acc, &x| acc + x * 0.0);
+    // x·0 is 0 for finite x and NaN otherwise: one branch-free pass in the common case, on
+    // four running sums.
+    let probe = |v: &[f64]| {
+        let mut acc = [0.0; 4];
+        for chunk in v.chunks(4) {
+            for (a, &x) in acc.iter_mut().zip(chunk) {
+                *a += x * 0.0;
+            }
+        }
+        acc[0] + acc[1] + acc[2] + acc[3]
+    };
     if probe(q) + probe(dq) + probe(ddq) == 0.0 {
         return Ok(());
     }
