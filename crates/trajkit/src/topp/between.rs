@@ -271,10 +271,15 @@ impl Pieces {
     /// The piece of interval i for constraint `c`: none where the path is not a polynomial
     /// of degree ≤ 5 there, or where it may have degree 4 or 5 and `c` handles cubics only.
     fn piece_for(&self, grid: &[f64], i: usize, c: &dyn Constraint) -> Option<CubicPiece<'_>> {
-        if self.quintic && !c.handles_quintic() {
+        if !self.has_piece_for(i, c) {
             return None;
         }
         self.piece(grid, i)
+    }
+
+    /// Whether [`Pieces::piece_for`] gives a piece.
+    fn has_piece_for(&self, i: usize, c: &dyn Constraint) -> bool {
+        self.exact[i] && !(self.quintic && !c.handles_quintic())
     }
 }
 
@@ -700,11 +705,11 @@ impl Workspace {
         self.sample.clear();
         let proved_here = disc == Discretization::Interpolation && !pieces.at_break[i];
         for (k, c) in cons.iter().enumerate() {
-            let piece = pieces.piece_for(grid, i, &**c);
-            if proved_here && piece.is_some() && self.proved.get(k) == Some(&true) {
+            if proved_here && pieces.has_piece_for(i, &**c) && self.proved.get(k) == Some(&true) {
                 self.sample.push(false);
                 continue;
             }
+            let piece = pieces.piece_for(grid, i, &**c);
             match piece.and_then(|p| c.excess_on_cubic(&p, u, x[i])) {
                 Some((e, s)) => {
                     self.sample.push(false);

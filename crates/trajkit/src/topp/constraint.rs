@@ -325,6 +325,11 @@ impl ConstraintRows {
                 }
                 continue;
             }
+            if h < f64::INFINITY && l > f64::NEG_INFINITY {
+                // Both sides (the usual case): one append.
+                self.rows.extend_from_slice(&[[aj, bj, h], [-aj, -bj, -l]]);
+                continue;
+            }
             if h < f64::INFINITY {
                 self.rows.push([aj, bj, h]);
             }
