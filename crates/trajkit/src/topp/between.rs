@@ -279,7 +279,7 @@ impl Pieces {
 
     /// Whether [`Pieces::piece_for`] gives a piece.
     fn has_piece_for(&self, i: usize, c: &dyn Constraint) -> bool {
-        self.exact[i] && !(self.quintic && !c.handles_quintic())
+        self.exact[i] && (!self.quintic || c.handles_quintic())
     }
 }
 
