@@ -524,17 +524,16 @@ impl Workspace {
     ) -> Result<()> {
         let nc = cons.len();
         let need_q = cons.iter().any(|c| c.uses_position());
+        let dim = path.dim();
         self.q.iter_mut().for_each(|v| *v = 0.0);
         self.at_points.clear();
-        self.at_points.reserve(3 * path.dim() * grid.len());
+        self.at_points.reserve(3 * dim * grid.len());
         let breaks = anchor_breaks(path);
         let mut anchor = std::mem::take(&mut self.anchor);
-        anchor.reset(path.dim());
-        // On paths of degree 4 or 5 the full Taylor data at every gridpoint are kept: the
-        // intervals starting there take them (see `between::Pieces`).
+        anchor.reset(dim);
+        // Paths of degree 4 or 5: the full Taylor data at the gridpoints serve the intervals.
         let pieces = &mut self.pieces;
         let keep = pieces.start_gridpoints(path, need_q, !breaks.is_empty(), grid.len());
-        let dim = path.dim();
         let mut b = 0;
         for &s in grid {
             while b < breaks.len() && breaks[b] <= s {
@@ -552,12 +551,7 @@ impl Workspace {
             }
             let p = match full {
                 // Finite full Taylor data (σ in them only when read): no other check, no copy.
-                Some(d) => PathPoint {
-                    s,
-                    q: if need_q { &d[..dim] } else { &self.q },
-                    dq: &d[dim..2 * dim],
-                    ddq: &d[2 * dim..3 * dim],
-                },
+                Some(d) => point_in(s, d, if need_q { &d[..dim] } else { &self.q }),
                 None => {
                     check_path_values(s, &self.q, &self.dq, &self.ddq)?;
                     PathPoint {
@@ -836,6 +830,18 @@ impl Workspace {
             }
         }
         Ok(())
+    }
+}
+
+/// The path point at `s` with σ = `q` and σ′, σ″ from the Taylor data `d` (`6·dim` numbers,
+/// block k the k-th derivative).
+fn point_in<'a>(s: f64, d: &'a [f64], q: &'a [f64]) -> PathPoint<'a> {
+    let dim = q.len();
+    PathPoint {
+        s,
+        q,
+        dq: &d[dim..2 * dim],
+        ddq: &d[2 * dim..3 * dim],
     }
 }
 
