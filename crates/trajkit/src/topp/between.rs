@@ -362,11 +362,7 @@ impl PieceAnchor {
         let mut moved = [0.0; 3 * EVAL_DIM];
         let moved = &mut moved[..3 * dim];
         shift_orders::<3>(a, t, moved);
-        if need_q {
-            q.copy_from_slice(&moved[..dim]);
-        }
-        dq.copy_from_slice(&moved[dim..2 * dim]);
-        ddq.copy_from_slice(&moved[2 * dim..]);
+        copy_values(moved, dim, need_q, [q, dq, ddq]);
         true
     }
 
@@ -400,14 +396,19 @@ impl PieceAnchor {
         if probe.iter().all(|&p| p == 0.0) {
             return Some(true);
         }
-        let [q, dq, ddq] = out;
-        if need_q {
-            q.copy_from_slice(&full[..dim]);
-        }
-        dq.copy_from_slice(&full[dim..2 * dim]);
-        ddq.copy_from_slice(&full[2 * dim..3 * dim]);
+        copy_values(full, dim, need_q, out);
         Some(false)
     }
+}
+
+/// Copies σ (when `need_q`), σ′ and σ″ of `dim` joints from Taylor data in blocks (`moved`,
+/// block k the k-th derivative) into `out`.
+fn copy_values(moved: &[f64], dim: usize, need_q: bool, [q, dq, ddq]: [&mut [f64]; 3]) {
+    if need_q {
+        q.copy_from_slice(&moved[..dim]);
+    }
+    dq.copy_from_slice(&moved[dim..2 * dim]);
+    ddq.copy_from_slice(&moved[2 * dim..3 * dim]);
 }
 
 /// The cubic Taylor data (σ, σ′, σ″, σ‴ at s0) of interval i = \[s0, s1\] of a cubic path
