@@ -97,6 +97,7 @@ pub struct CubicPiece<'a> {
 
 impl CubicPiece<'_> {
     /// Whether the piece is a polynomial of degree ≤ 3 (`d4` and `d5` all zero).
+    #[inline]
     pub fn is_cubic(&self) -> bool {
         self.d4.iter().chain(self.d5).all(|&v| v == 0.0)
     }
@@ -121,6 +122,7 @@ impl CubicPiece<'_> {
     }
 
     /// The acceleration quartic's coefficients (in t) as rows in (u, x0): c_k = α_k·u + β_k·x0.
+    #[inline]
     fn acceleration_rows(&self, j: usize) -> ([f64; 5], [f64; 5]) {
         let p = [
             self.d1[j],
@@ -143,6 +145,7 @@ impl CubicPiece<'_> {
     /// Joint j's σ′ as a quartic in θ = (s − s0)/(s1 − s0) ∈ [0, 1], in Bernstein form
     /// `[b0, …, b4]` (σ′ = Σ C(4,k)·b_k·θ^k(1 − θ)^(4−k); it lies between the least and the
     /// largest of them).
+    #[inline]
     pub fn first_bernstein4(&self, j: usize) -> [f64; 5] {
         let h = self.s1 - self.s0;
         let p = [
@@ -275,6 +278,7 @@ impl ConstraintRows {
     }
 
     /// Adds `α·u + β·x ≤ γ`.
+    #[inline]
     pub fn half_plane(&mut self, alpha: f64, beta: f64, gamma: f64) {
         if alpha.is_nan() || beta.is_nan() || gamma.is_nan() {
             self.broken = Some("produced a NaN coefficient");
@@ -293,6 +297,7 @@ impl ConstraintRows {
     }
 
     /// Adds `lo ≤ a·u + b·x + c ≤ hi` (either side may be infinite).
+    #[inline]
     pub fn interval(&mut self, a: f64, b: f64, c: f64, lo: f64, hi: f64) {
         if hi < f64::INFINITY {
             self.half_plane(a, b, hi - c);
@@ -318,6 +323,11 @@ impl ConstraintRows {
                 if h < 0.0 || l > 0.0 {
                     self.broken = Some("cannot hold at any velocity");
                 }
+                continue;
+            }
+            if h < f64::INFINITY && l > f64::NEG_INFINITY {
+                // Both sides (the usual case): one append.
+                self.rows.extend_from_slice(&[[aj, bj, h], [-aj, -bj, -l]]);
                 continue;
             }
             if h < f64::INFINITY {

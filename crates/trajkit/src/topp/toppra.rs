@@ -6,7 +6,8 @@
 //! 1. evaluates the path and all constraints at every gridpoint (on paths that are
 //!    polynomials of degree ≤ 5 between breakpoints, the path once per piece: σ, σ′, σ″ at the
 //!    gridpoints inside a piece come from its Taylor expansion at the piece's midpoint, exact
-//!    up to rounding);
+//!    up to rounding; on pieces of degree 4 or 5 the six derivatives moved to a gridpoint are
+//!    kept for the interval starting there, so each gridpoint costs one shift);
 //! 2. **backward pass**: from the end set K_N = {ṡ_end²}, computes the controllable sets
 //!    K_i = [min, max] of the x from which some admissible u reaches K_{i+1} — two exact
 //!    two-variable linear programs per stage (`topp/lp.rs`);
@@ -523,12 +524,16 @@ impl Workspace {
     ) -> Result<()> {
         let nc = cons.len();
         let need_q = cons.iter().any(|c| c.uses_position());
+        let dim = path.dim();
         self.q.iter_mut().for_each(|v| *v = 0.0);
         self.at_points.clear();
-        self.at_points.reserve(3 * path.dim() * grid.len());
+        self.at_points.reserve(3 * dim * grid.len());
         let breaks = anchor_breaks(path);
         let mut anchor = std::mem::take(&mut self.anchor);
-        anchor.reset(path.dim());
+        anchor.reset(dim);
+        // Paths of degree 4 or 5: the full Taylor data at the gridpoints serve the intervals.
+        let pieces = &mut self.pieces;
+        let keep = pieces.start_gridpoints(path, need_q, !breaks.is_empty(), grid.len());
         let mut b = 0;
         for &s in grid {
             while b < breaks.len() && breaks[b] <= s {
@@ -536,22 +541,33 @@ impl Workspace {
             }
             let inside = b >= 1 && b < breaks.len() && breaks[b - 1] < s;
             let out = [&mut self.q[..], &mut self.dq[..], &mut self.ddq[..]];
-            if !(inside && anchor.eval(path, &breaks, b, s, need_q, out)) {
+            let at = (inside, b);
+            let (anchored, full) = pieces.eval_gridpoint(&mut anchor, path, &breaks, at, s, out);
+            if !anchored {
                 if need_q {
                     path.eval(s, 0, &mut self.q);
                 }
                 path.eval_derivatives(s, &mut self.dq, &mut self.ddq);
             }
-            check_path_values(s, &self.q, &self.dq, &self.ddq)?;
-            self.at_points.extend_from_slice(&self.q);
-            self.at_points.extend_from_slice(&self.dq);
-            self.at_points.extend_from_slice(&self.ddq);
-            let p = PathPoint {
-                s,
-                q: &self.q,
-                dq: &self.dq,
-                ddq: &self.ddq,
+            let p = match full {
+                // Finite full Taylor data (σ in them only when read): no other check, no copy.
+                Some(d) => point_in(s, d, if need_q { &d[..dim] } else { &self.q }),
+                None => {
+                    check_path_values(s, &self.q, &self.dq, &self.ddq)?;
+                    PathPoint {
+                        s,
+                        q: &self.q,
+                        dq: &self.dq,
+                        ddq: &self.ddq,
+                    }
+                }
             };
+            if !keep {
+                // Read by the cubic pieces' data only (see `between::Pieces`).
+                self.at_points.extend_from_slice(p.q);
+                self.at_points.extend_from_slice(p.dq);
+                self.at_points.extend_from_slice(p.ddq);
+            }
             let (mut lo, mut hi, mut by) = (0.0f64, f64::INFINITY, usize::MAX);
             let first = self.cr.rows.len();
             for (k, c) in cons.iter().enumerate() {
@@ -817,9 +833,30 @@ impl Workspace {
     }
 }
 
+/// The path point at `s` with σ = `q` and σ′, σ″ from the Taylor data `d` (`6·dim` numbers,
+/// block k the k-th derivative).
+fn point_in<'a>(s: f64, d: &'a [f64], q: &'a [f64]) -> PathPoint<'a> {
+    let dim = q.len();
+    PathPoint {
+        s,
+        q,
+        dq: &d[dim..2 * dim],
+        ddq: &d[2 * dim..3 * dim],
+    }
+}
+
 pub(crate) fn check_path_values(s: f64, q: &[f64], dq: &[f64], ddq: &[f64]) -> Result<()> {
-    // x·0 is 0 for finite x and NaN otherwise: one branch-free pass in the common case.
-    let probe = |v: &[f64]| v.iter().fold(0.0, |acc, &x| acc + x * 0.0);
+    // x·0 is 0 for finite x and NaN otherwise: one branch-free pass in the common case, on
+    // four running sums.
+    let probe = |v: &[f64]| {
+        let mut acc = [0.0; 4];
+        for chunk in v.chunks(4) {
+            for (a, &x) in acc.iter_mut().zip(chunk) {
+                *a += x * 0.0;
+            }
+        }
+        acc[0] + acc[1] + acc[2] + acc[3]
+    };
     if probe(q) + probe(dq) + probe(ddq) == 0.0 {
         return Ok(());
     }

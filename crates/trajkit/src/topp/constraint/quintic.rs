@@ -12,6 +12,7 @@ use super::{ConstraintRows, CubicPiece, JointAcceleration, JointVelocity};
 
 /// Bernstein coefficients of a quartic on [0, 1] from its power coefficients (lowest first):
 /// b_i = Σ_{k ≤ i} C(i, k)/C(4, k)·p_k.
+#[inline]
 pub(super) fn power_to_bernstein4(p: [f64; 5]) -> [f64; 5] {
     [
         p[0],
@@ -24,6 +25,7 @@ pub(super) fn power_to_bernstein4(p: [f64; 5]) -> [f64; 5] {
 
 /// Bernstein coefficients (degree 8) of the square of a quartic given by its own:
 /// w_k = Σ_{i+l=k} C(4, i)·C(4, l)·c_i·c_l / C(8, k).
+#[inline]
 pub(super) fn square_bernstein4(c: [f64; 5]) -> [f64; 9] {
     const C4: [f64; 5] = [1.0, 4.0, 6.0, 4.0, 1.0];
     const C8: [f64; 9] = [1.0, 8.0, 28.0, 56.0, 70.0, 56.0, 28.0, 8.0, 1.0];
@@ -40,6 +42,7 @@ pub(super) fn square_bernstein4(c: [f64; 5]) -> [f64; 9] {
 }
 
 /// [`velocity_bound`] for a quartic σ′_j given by its Bernstein coefficients.
+#[inline]
 pub(super) fn velocity_bound4(c: &[f64; 5], lo: f64, hi: f64) -> f64 {
     if c.iter().all(|&v| v >= 0.0) {
         hi
@@ -146,6 +149,7 @@ impl JointVelocity {
 impl JointAcceleration {
     /// The joint acceleration's Bernstein coefficients (degree 4 in θ = (s − s0)/Δ) as rows in
     /// (u, x0): b_k = α_k·u + β_k·x0.
+    #[inline]
     pub(super) fn bernstein_rows(piece: &CubicPiece<'_>, j: usize) -> ([f64; 5], [f64; 5]) {
         let h = piece.s1 - piece.s0;
         let (mut a, mut b) = piece.acceleration_rows(j);
