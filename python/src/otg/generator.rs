@@ -292,7 +292,8 @@ impl PyRuckig {
             Ok(r) => r,
             Err(e) => {
                 // No valid trajectory within the budget: the budget cut the calculation.
-                out.inner.output.was_calculation_interrupted = matches!(e, OtgError::Interrupted { .. });
+                out.inner.output.was_calculation_interrupted =
+                    matches!(e, OtgError::Interrupted { .. });
                 return Err(otg_err(e));
             }
         };
