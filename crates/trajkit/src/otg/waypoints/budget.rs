@@ -36,6 +36,11 @@ impl Clock {
         }
     }
 
+    /// The budget in microseconds.
+    pub(super) fn budget_us(&self) -> f64 {
+        self.us
+    }
+
     /// Microseconds since the start.
     pub(super) fn elapsed_us(&self) -> f64 {
         self.start.elapsed().as_secs_f64() * 1e6
