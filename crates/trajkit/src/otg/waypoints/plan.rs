@@ -12,10 +12,12 @@
 //! round-off), so the result is never longer than the search believed; the final check
 //! against stopping at every waypoint uses the built durations.
 //!
-//! With a calculation budget (`budget.rs`) the reference sections are kept as built, the
-//! search checks the clock before every rating and stops when what is left would not pay for
-//! the final build, and a build that runs out of time (or comes out longer) gives way to the
-//! kept reference: the result is the best valid motion found in time.
+//! With a calculation budget (`budget.rs`) the reference sections are kept as built, every
+//! section solve is timed, the search checks the clock before every rating and stops when
+//! what is left would not pay for the final build (estimated from those times) and the tail,
+//! each build section's own deadline leaves what the later ones need, and a build that runs
+//! out of time (or comes out longer) gives way to the kept reference: the result is the best
+//! valid motion found in time.
 
 use super::budget::Clock;
 use super::trajectory::WaypointTrajectory;
