@@ -154,9 +154,12 @@ impl<'a> Planner<'a> {
     }
 
     /// The search's rating of section `s` with the current waypoint velocities: its duration
-    /// from the bounded synchronization (at least the full solve's), ∞ when that cannot plan it.
+    /// from the bounded synchronization (at least the full solve's), ∞ when that cannot plan it
+    /// (or its own deadline cut it: then the result is marked interrupted).
     fn rate(&mut self, s: usize) -> f64 {
-        self.run(s, Search::Bounded).unwrap_or(f64::INFINITY)
+        let r = self.run(s, Search::Bounded);
+        self.interrupted |= matches!(r, Err(OtgError::Interrupted { .. }));
+        r.unwrap_or(f64::INFINITY)
     }
 
     /// Section `s` through the synchronization in mode `search`, with what is left of the
