@@ -131,7 +131,7 @@
 //! the 3000 µs builds gave way to stopping at every waypoint in at least half of the calls:
 //! median duration
 //! 1.00× against 0.62–0.66× now). `tests/otg_budget.rs` checks every call on six 30-waypoint
-//! paths under three budgets (the least of two unpreempted repeats ≤ 1.1× the budget). An
+//! paths under three budgets (the least of three unpreempted repeats ≤ 1.1× the budget). An
 //! ample budget changes nothing (same motion, bit for bit).
 
 mod budget;
