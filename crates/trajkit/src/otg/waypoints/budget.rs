@@ -3,11 +3,13 @@
 //! validation.
 //!
 //! The planner is an anytime algorithm (`plan.rs`): stopping at every waypoint is solved
-//! first and kept, then the search improves on it. With a budget every section solve gets
-//! what is left of it (so the synchronization's own bisection stops at the same deadline),
-//! the search stops when what is left would not pay for building its result (twice the time
-//! the reference took, measured), and a build that does not finish in time falls back to the
-//! reference. Only a reference that does not fit is [`OtgError::Interrupted`].
+//! first and kept, then the search improves on it. With a budget every section solve is timed
+//! and gets a deadline of its own (so the synchronization's own search and bisection stop in
+//! time): all that is left for the reference; for a rating or a section of the final build,
+//! what is left less a tail of 5 % of the budget and the measured estimate of what must follow
+//! (see the module docs of `otg::waypoints`). The search stops when what is left would not pay
+//! for its next step and the build, and a build that does not finish in time falls back to
+//! the reference. Only a reference that does not fit is [`OtgError::Interrupted`].
 
 use crate::otg::result::OtgError;
 use std::time::{Duration, Instant};
@@ -34,6 +36,11 @@ impl Clock {
             deadline,
             us,
         }
+    }
+
+    /// The budget in microseconds.
+    pub(super) fn budget_us(&self) -> f64 {
+        self.us
     }
 
     /// Microseconds since the start.

@@ -12,10 +12,12 @@
 //! round-off), so the result is never longer than the search believed; the final check
 //! against stopping at every waypoint uses the built durations.
 //!
-//! With a calculation budget (`budget.rs`) the reference sections are kept as built, the
-//! search checks the clock before every rating and stops when what is left would not pay for
-//! the final build, and a build that runs out of time (or comes out longer) gives way to the
-//! kept reference: the result is the best valid motion found in time.
+//! With a calculation budget (`budget.rs`) the reference sections are kept as built, every
+//! section solve is timed, the search checks the clock before every rating and stops when
+//! what is left would not pay for the final build (estimated from those times) and the tail,
+//! each build section's own deadline leaves what the later ones need, and a build that runs
+//! out of time (or comes out longer) gives way to the kept reference: the result is the best
+//! valid motion found in time.
 
 use super::budget::Clock;
 use super::trajectory::WaypointTrajectory;
@@ -36,6 +38,14 @@ const WINDOW: f64 = 0.3;
 const SCALE_CAP: f64 = 4.0;
 /// The inverse golden ratio.
 const INV_PHI: f64 = 0.618_033_988_749_894_8;
+/// What the final build is expected to cost, relative to the latest measured solve of each
+/// section (the search's ratings give no duration past the first success and build only the
+/// profiles that decide it; a full solve builds every profile and bisects).
+const BUILD_FACTOR: f64 = 2.0;
+/// The share of the budget the search and the final build leave unused (with a budget): the
+/// planner's own work after its deadline (one section's closed-form step 1 and step-2 attempt,
+/// the end of a bisection, assembling the kept motion) must fit in it.
+const TAIL: f64 = 0.05;
 
 /// The limits, minimum duration and options of section `s` (the input's, with the section's
 /// own limits where given); the boundary states are the input's.
@@ -77,9 +87,15 @@ pub(super) struct Planner<'a> {
     dur: Vec<f64>,
     /// The calculation budget, when one is given.
     clock: Option<Clock>,
-    /// Twice the microseconds the reference took: what the search leaves for the final build
-    /// (its sections move through the waypoints and cost more than the reference's).
-    reserve_us: f64,
+    /// Microseconds of the latest solve or rating of every section (with a budget): the
+    /// estimate of what the final build costs.
+    cost: Vec<f64>,
+    /// Microseconds per section that the reference spent outside the generator (keeping the
+    /// section's trajectory): the final build spends them too.
+    keep_us: f64,
+    /// While building (with a budget): the microseconds the sections after the one being
+    /// solved are expected to need, kept out of its own budget.
+    later_us: Option<f64>,
     /// The longest section solve so far in microseconds (with a budget): what the search
     /// expects its next step to cost.
     step_us: f64,
@@ -112,7 +128,9 @@ impl<'a> Planner<'a> {
             scale: vec![0.0; m],
             dur: vec![0.0; m + 1],
             clock,
-            reserve_us: 0.0,
+            cost: vec![0.0; m + 1],
+            keep_us: 0.0,
+            later_us: None,
             step_us: 0.0,
             interrupted: false,
         }
@@ -136,21 +154,39 @@ impl<'a> Planner<'a> {
     }
 
     /// The search's rating of section `s` with the current waypoint velocities: its duration
-    /// from the bounded synchronization (at least the full solve's), ∞ when that cannot plan it.
+    /// from the bounded synchronization (at least the full solve's), ∞ when that cannot plan it
+    /// (or its own deadline cut it: then the result is marked interrupted).
     fn rate(&mut self, s: usize) -> f64 {
-        self.run(s, Search::Bounded).unwrap_or(f64::INFINITY)
+        let r = self.run(s, Search::Bounded);
+        self.interrupted |= matches!(r, Err(OtgError::Interrupted { .. }));
+        r.unwrap_or(f64::INFINITY)
     }
 
-    /// Section `s` through the synchronization in mode `search` (with what is left of the
-    /// budget as its own budget).
+    /// Section `s` through the synchronization in mode `search`, with what is left of the
+    /// budget as its own budget: for the reference all of it; for a rating or a section of the
+    /// final build less the tail and what comes after it (the build, or its later sections),
+    /// but at least this section's latest measured cost.
     fn run(&mut self, s: usize, search: Search) -> Result<f64, OtgError> {
         let Some(clock) = self.clock else {
             return self.run_in(s, search);
         };
-        self.secs[s].options.interrupt_calculation_duration = Some(clock.left_us()?);
+        let left = clock.left_us()?;
+        let after = match self.later_us {
+            Some(later) => Some(later),
+            None if search == Search::Bounded => Some(self.build_us()),
+            None => None,
+        };
+        let own = after.map_or(left, |after| {
+            (left - after - self.tail_us(clock))
+                .max(self.cost[s])
+                .min(left)
+        });
+        self.secs[s].options.interrupt_calculation_duration = Some(own);
         let t0 = clock.elapsed_us();
         let r = self.run_in(s, search);
-        self.step_us = self.step_us.max(clock.elapsed_us() - t0);
+        let took = clock.elapsed_us() - t0;
+        self.cost[s] = took;
+        self.step_us = self.step_us.max(took);
         // A section that ran out of what was left of the budget: the budget ran out.
         r.map_err(|e| match e {
             OtgError::Interrupted { .. } => clock.interrupted(),
@@ -182,11 +218,30 @@ impl<'a> Planner<'a> {
         Ok(c.duration)
     }
 
+    /// What solving and keeping sections `from..` in the final build is expected to cost in
+    /// microseconds ([`BUILD_FACTOR`] times their latest measured solves, and what keeping a
+    /// section took in the reference).
+    fn build_us_from(&self, from: usize) -> f64 {
+        let rest = &self.cost[from.min(self.m + 1)..];
+        BUILD_FACTOR * rest.iter().sum::<f64>() + self.keep_us * rest.len() as f64
+    }
+
+    /// What the whole final build is expected to cost in microseconds.
+    fn build_us(&self) -> f64 {
+        self.build_us_from(0)
+    }
+
+    /// The microseconds of the budget the search and the build leave unused ([`TAIL`]).
+    fn tail_us(&self, clock: Clock) -> f64 {
+        TAIL * clock.budget_us()
+    }
+
     /// Whether the budget leaves too little for the search's next step (at most two section
-    /// ratings) and the final build (then the search stops and the result is marked
-    /// interrupted).
+    /// ratings), the final build ([`BUILD_FACTOR`] times the latest measured cost of every
+    /// section) and the tail (then the search stops and the result is marked interrupted).
     fn out_of_time(&mut self) -> bool {
-        let need = self.reserve_us + 2.0 * self.step_us;
+        let tail = self.clock.map_or(0.0, |c| self.tail_us(c));
+        let need = self.build_us() + tail + 2.0 * self.step_us;
         let late = self
             .clock
             .is_some_and(|c| c.left_us().map_or(true, |left| left < need));
@@ -219,7 +274,10 @@ impl<'a> Planner<'a> {
                 reference.push(self.section(self.dur[s]));
             }
         }
-        self.reserve_us = 2.0 * self.clock.map_or(0.0, |c| c.elapsed_us());
+        if let Some(c) = self.clock {
+            let solving: f64 = self.cost.iter().sum();
+            self.keep_us = ((c.elapsed_us() - solving) / (self.m + 1) as f64).max(0.0);
+        }
         let stop: Vec<f64> = self.dur.clone();
         let stop_total: f64 = stop.iter().sum();
         if self.m > 0 && !self.out_of_time() {
@@ -399,11 +457,17 @@ impl<'a> Planner<'a> {
         self.set_scale(w, best.0);
     }
 
-    /// Solves every section once more into its own trajectory.
+    /// Solves every section once more into its own trajectory (with a budget, each section's
+    /// own search leaves what the later ones are expected to need: see [`Planner::run`]).
     fn build(&mut self, stop_total: f64) -> Result<WaypointTrajectory, OtgError> {
         let mut sections = Vec::with_capacity(self.m + 1);
         for s in 0..=self.m {
-            let d = self.solve(s).map_err(|e| self.section_error(s, e))?;
+            if self.clock.is_some() {
+                self.later_us = Some(self.build_us_from(s + 1));
+            }
+            let d = self.solve(s);
+            self.later_us = None;
+            let d = d.map_err(|e| self.section_error(s, e))?;
             sections.push(self.section(d));
         }
         Ok(self.assemble(sections, stop_total))
