@@ -173,7 +173,7 @@ impl Run {
 /// `otg::waypoints::online`).
 ///
 /// Without waypoints (an empty list and no per-section fields) it plans one section through
-/// [`super::plan_waypoints`], with its restrictions; [`super::DynOtg`] is the generator for
+/// [`super::plan_waypoints`], with its restrictions; [`crate::otg::DynOtg`] is the generator for
 /// such inputs.
 #[derive(Debug, Clone)]
 pub struct WaypointOtg {
