@@ -790,7 +790,7 @@ fn jerk_piece(
     };
     Ok(match optimal {
         Some(o) if o.duration() < filtered.duration() => JerkPiece::ThirdOrder(Box::new(o)),
-        _ => JerkPiece::Filtered(filtered),
+        _ => JerkPiece::Filtered(Box::new(filtered)),
     })
 }
 
@@ -821,8 +821,8 @@ fn piece_kinds(pieces: &[JerkPiece]) -> String {
 
 /// One rest-to-rest piece after the jerk stage.
 pub(crate) enum JerkPiece {
-    /// Filtered and rescaled.
-    Filtered(crate::topp::jerk::JerkLimited<PiecePath>),
+    /// Filtered and rescaled (boxed: its law carries per-interval tables).
+    Filtered(Box<crate::topp::jerk::JerkLimited<PiecePath>>),
     /// A straight segment at its exact 1-D optimum (boxed: its profile is large).
     Line(Box<LineMotion>),
     /// The third-order time-optimal planner's result, with [`third_order_margin`].

@@ -39,9 +39,10 @@
 //! of them on the standard 7-waypoint problem at the Panda's limits, where almost no segment
 //! is skipped whole), and the values at the three points only up to the highest order that
 //! still needs them. To make the running lower bound large early, the
-//! segments whose cell bounds are largest are bounded first (`SEEDS` of them), then the rest
-//! in time order: only which segments are skipped depends on the order, and a skipped segment
-//! cannot change the result. Where the factor is close to 1 (the limits bind almost
+//! segments whose cell bounds are largest among every fourth one are bounded first (`SEEDS`
+//! of them), then the rest in time order, each segment's law shape, cell and cell test
+//! computed once: only which segments are skipped depends on the order, and a skipped
+//! segment cannot change the result. Where the factor is close to 1 (the limits bind almost
 //! everywhere along a time-optimal law) few segments can be skipped; with low jerk limits
 //! most are.
 
@@ -57,6 +58,10 @@ pub const SAMPLED_POINTS: usize = 9;
 /// Segments bounded first, those with the largest bounds from their path cells (see
 /// `Sweep::bound_spans`).
 const SEEDS: usize = 32;
+
+/// Seeds are chosen among every `SEED_STRIDE`-th segment (neighbours have nearly the same
+/// bounds), so that finding them costs a fraction of the sweep.
+const SEED_STRIDE: usize = 4;
 
 /// Highest path degree the certified bound handles (s⁽ⁿ⁾ and σ⁽ⁿ⁾ up to n = 6 appear).
 const MAX_DEGREE: usize = 6;
@@ -259,6 +264,17 @@ fn bell(n: usize, x1: f64, x2: f64, x3: f64) -> [f64; 7] {
     }
 }
 
+/// Raises each of `acc` to `x` where `x` is larger; NaN propagates (a NaN in `x` is kept, and
+/// a NaN in `acc` stays).
+#[inline]
+fn max_nan(acc: &mut [f64; 3], x: [f64; 3]) {
+    for (a, x) in acc.iter_mut().zip(x) {
+        if x.is_nan() || x > *a {
+            *a = x;
+        }
+    }
+}
+
 /// Range of the quadratic through (0, f0), (½, fm), (1, f1) on [0, 1].
 #[inline]
 fn quadratic_range(f0: f64, fm: f64, f1: f64) -> (f64, f64) {
@@ -278,9 +294,11 @@ fn quadratic_range(f0: f64, fm: f64, f1: f64) -> (f64, f64) {
 
 impl<P: Path> Sweep<'_, P> {
     /// Bounds one segment `[t0, t1]` (τ relative to the cubic's origin) that lies within one
-    /// piece of the path; `time` is the law's time at τ = 0. With `cells`, the joints are
-    /// first tested on the bounds of the segment's path cell ([`Cells::cell`]).
-    fn segment(&mut self, span: &Span, cells: bool) {
+    /// piece of the path; `time` is the law's time at τ = 0; `sh`: the law's [`Shape`] on it.
+    /// With a `cell` (the segment's path cell, [`Cells::cell`]), the joints are first tested
+    /// on its bounds; `open`: the joints (bit j) that test leaves, `u64::MAX` when it has
+    /// not run ([`Sweep::cell_test`]).
+    fn segment(&mut self, span: &Span, sh: &Shape, cell: Option<usize>, open: u64) {
         let Span {
             ref cub,
             t0,
@@ -290,12 +308,12 @@ impl<P: Path> Sweep<'_, P> {
         } = *span;
         self.piece = piece;
         match self.degree {
-            Some(1) => self.poly_segment::<1>(cub, t0, t1, time, cells),
-            Some(2) => self.poly_segment::<2>(cub, t0, t1, time, cells),
-            Some(3) => self.poly_segment::<3>(cub, t0, t1, time, cells),
-            Some(4) => self.poly_segment::<4>(cub, t0, t1, time, cells),
-            Some(5) => self.poly_segment::<5>(cub, t0, t1, time, cells),
-            Some(_) => self.poly_segment::<6>(cub, t0, t1, time, cells),
+            Some(1) => self.poly_segment::<1>(span, sh, cell, open),
+            Some(2) => self.poly_segment::<2>(span, sh, cell, open),
+            Some(3) => self.poly_segment::<3>(span, sh, cell, open),
+            Some(4) => self.poly_segment::<4>(span, sh, cell, open),
+            Some(5) => self.poly_segment::<5>(span, sh, cell, open),
+            Some(_) => self.poly_segment::<6>(span, sh, cell, open),
             None => self.sampled_segment(cub, t0, t1, time),
         }
     }
@@ -324,21 +342,27 @@ impl<P: Path> Sweep<'_, P> {
     /// order.
     fn poly_segment<const D: usize>(
         &mut self,
-        cub: &Cubic,
-        t0: f64,
-        t1: f64,
-        time: f64,
-        cells: bool,
+        span: &Span,
+        sh: &Shape,
+        cell: Option<usize>,
+        open: u64,
     ) {
+        let Span {
+            ref cub,
+            t0,
+            t1,
+            time,
+            ..
+        } = *span;
         let h = t1 - t0;
-        let Shape {
+        let &Shape {
             tm,
             sd,
             sdd,
             x,
             s: [s0, sm, s1],
             reach,
-        } = Shape::new(cub, t0, t1);
+        } = sh;
         let sddd = cub.c[3];
         // Taylor weights dⁱ/i! of: the middle's offset from the piece's reference point, the
         // three points' offsets from the middle, and the largest of those.
@@ -361,9 +385,6 @@ impl<P: Path> Sweep<'_, P> {
         };
         let mut bells = None;
         let dim = self.dim;
-        let cell = cells
-            .then(|| self.cells.cell(self.piece, sm, reach))
-            .flatten();
         if !self.shortcuts {
             self.derivative_bounds::<D>(&seg.wts);
             for j in 0..dim {
@@ -375,11 +396,6 @@ impl<P: Path> Sweep<'_, P> {
         }
         // Joints the cell test leaves (the thresholds only grow: a joint it skips now stays
         // skippable; the others are decided on their own bounds, as without it).
-        let open = match (cell, dim) {
-            (Some(c), 6) => self.cell_open::<6>(c, x),
-            (Some(c), 7) => self.cell_open::<7>(c, x),
-            _ => u64::MAX,
-        };
         for j in 0..dim {
             if j < 64 && open & (1 << j) == 0 {
                 continue;
@@ -533,25 +549,58 @@ impl<P: Path> Sweep<'_, P> {
         }
     }
 
-    /// The joints (bit j) of `N` whose cheap bound ([`Sweep::cheap`], the same arithmetic)
-    /// from the bounds of path cell `c` exceeds a running threshold in some order: the cell
-    /// test of [`Sweep::poly_segment`] for every joint at once, in fixed-size arrays.
+    /// The cell test of a segment with law shape `sh` in path cell `cell`: per order the
+    /// largest cheap bound ([`Sweep::cheap`]) of any joint from the cell's bounds (each at
+    /// least the segment's own, see [`Cells`]; infinite when there is no cell or a bound is
+    /// NaN), and the joints (bit j) whose cheap bound exceeds a running threshold in some order
+    /// (`u64::MAX`: no cell, or not 6 or 7 joints; [`Sweep::poly_segment`] then tests joint by
+    /// joint, the same arithmetic).
     #[inline]
-    fn cell_open<const N: usize>(&self, c: usize, [x1, x2, x3]: [f64; 3]) -> u64 {
+    fn cell_test(&self, sh: &Shape, cell: Option<usize>) -> ([f64; 3], u64) {
+        let Some(c) = cell else {
+            return ([f64::INFINITY; 3], u64::MAX);
+        };
+        let (reach, open) = match self.dim {
+            6 => self.cell_test_n::<6>(c, sh.x),
+            7 => self.cell_test_n::<7>(c, sh.x),
+            dim => {
+                let pb = &self.cells.bounds[c * 3 * dim..(c + 1) * 3 * dim];
+                let mut reach = [0.0f64; 3];
+                for j in 0..dim {
+                    let cheap = self.cheap(j, [pb[j], pb[dim + j], pb[2 * dim + j]], sh.x);
+                    max_nan(&mut reach, cheap);
+                }
+                (reach, u64::MAX)
+            }
+        };
+        if reach.iter().any(|v| v.is_nan()) {
+            ([f64::INFINITY; 3], open)
+        } else {
+            (reach, open)
+        }
+    }
+
+    /// [`Sweep::cell_test`] of cell `c` for `N` joints in fixed-size arrays, before its NaN
+    /// test (the arithmetic of [`Sweep::cheap`]: the same values as joint by joint).
+    #[inline(always)]
+    fn cell_test_n<const N: usize>(&self, c: usize, [x1, x2, x3]: [f64; 3]) -> ([f64; 3], u64) {
         let pb = &self.cells.bounds[c * 3 * N..(c + 1) * 3 * N];
         let row = |v: &[f64]| -> [f64; N] { std::array::from_fn(|j| v[j]) };
         let (b0, b1, b2) = (row(&pb[..N]), row(&pb[N..2 * N]), row(&pb[2 * N..]));
-        let sym = [0, 1, 2].map(|o| row(&self.inv.sym[o]));
+        let sym: [[f64; N]; 3] = std::array::from_fn(|o| row(&self.inv.sym[o]));
         let t = self.threshold;
-        let mut open = 0u64;
+        let (mut reach, mut open) = ([0.0f64; 3], 0u64);
         for j in 0..N {
-            let c0 = b0[j] * x1 * sym[0][j];
-            let c1 = (b1[j] * x1 * x1 + b0[j] * x2) * sym[1][j];
-            let c2 = (b2[j] * x1 * x1 * x1 + 3.0 * b1[j] * x1 * x2 + b0[j] * x3) * sym[2][j];
-            let skip = (c0 <= t[0]) & (c1 <= t[1]) & (c2 <= t[2]);
+            let cheap = [
+                b0[j] * x1 * sym[0][j],
+                (b1[j] * x1 * x1 + b0[j] * x2) * sym[1][j],
+                (b2[j] * x1 * x1 * x1 + 3.0 * b1[j] * x1 * x2 + b0[j] * x3) * sym[2][j],
+            ];
+            let skip = (cheap[0] <= t[0]) & (cheap[1] <= t[1]) & (cheap[2] <= t[2]);
             open |= u64::from(!skip) << j;
+            max_nan(&mut reach, cheap);
         }
-        open
+        (reach, open)
     }
 
     /// Interval bounds of |q̇ⱼ|, |q̈ⱼ|, |q⃛ⱼ| as fractions of the limit, from bounds `b` of
@@ -660,6 +709,8 @@ impl<'a, P: Path> Sweep<'a, P> {
         let raw = RawLaw::new(law);
         let (gs, n, w) = (raw.p.gridpoints(), raw.n, raw.w);
         let end = raw.p.times()[n] + w;
+        // At most two kinks per gridpoint, plus the path breakpoints crossed.
+        self.spans.reserve(2 * n + self.breaks.len() + 4);
         let (mut i, mut k) = (0isize, -1isize);
         let mut a = 0.0;
         let mut s_at_a = gs[0];
@@ -717,12 +768,12 @@ impl<'a, P: Path> Sweep<'a, P> {
     }
 
     /// Bounds the segments found by [`Sweep::sweep`]. With the shortcuts on a piecewise
-    /// polynomial, each segment first gets the largest cheap bound ([`Sweep::cheap`]) that
-    /// any joint could reach from the bounds of its path cell ([`Sweep::cell_reach`]); the
-    /// [`SEEDS`] segments with the largest of these are bounded first, so the running lower
-    /// bound of the factor is near its final value before the others are visited, and then
-    /// every other segment in time order, skipped whole when no order's cell reach exceeds
-    /// the running threshold ([`Sweep::segment_unless_skipped`]).
+    /// polynomial, the [`SEEDS`] segments with the largest cheap bounds ([`Sweep::cheap`])
+    /// that any joint could reach from the bounds of their path cells
+    /// ([`Sweep::cell_test`]), among every [`SEED_STRIDE`]-th segment, are bounded first, so
+    /// the running lower bound of the factor is near its final value before the others are
+    /// visited; then every other segment in time order, skipped whole when no order's cell
+    /// reach exceeds the running threshold ([`Sweep::visit`]).
     /// Only skip decisions change with the order, never a value: the factor is the same, bit
     /// for bit, as in time order without any skip.
     fn bound_spans(&mut self) {
@@ -730,18 +781,10 @@ impl<'a, P: Path> Sweep<'a, P> {
         self.segments += spans.len();
         if !(self.shortcuts && self.degree.is_some()) {
             for sp in &spans {
-                self.segment(sp, false);
+                self.segment(sp, &Shape::new(&sp.cub, sp.t0, sp.t1), None, u64::MAX);
             }
             return;
         }
-        // Each segment's cell (found once for the reach and the bound) and cell reach.
-        let reach: Vec<[f64; 3]> = spans
-            .iter()
-            .map(|sp| {
-                let sh = Shape::new(&sp.cub, sp.t0, sp.t1);
-                self.cell_reach(&sh, self.cells.cell(sp.piece, sh.s[1], sh.reach))
-            })
-            .collect();
         // Seeds: the largest first-order estimates of the factor the cell reaches allow
         // (√x ≤ (1 + x)/2 and ∛x ≤ (2 + x)/3, tight near 1 where factors are); segments that
         // fit no cell are visited in time order anyway.
@@ -752,10 +795,14 @@ impl<'a, P: Path> Sweep<'a, P> {
                 f64::NEG_INFINITY
             }
         };
-        let mut order: Vec<(f64, usize)> = reach
-            .iter()
-            .enumerate()
-            .map(|(i, c)| (estimate(c), i))
+        let mut order: Vec<(f64, usize)> = (0..spans.len())
+            .step_by(SEED_STRIDE)
+            .map(|i| {
+                let sp = &spans[i];
+                let sh = Shape::new(&sp.cub, sp.t0, sp.t1);
+                let cell = self.cells.cell(sp.piece, sh.s[1], sh.reach);
+                (estimate(&self.cell_test(&sh, cell).0), i)
+            })
             .collect();
         let seeds = SEEDS.min(order.len());
         if seeds > 0 && seeds < order.len() {
@@ -764,50 +811,27 @@ impl<'a, P: Path> Sweep<'a, P> {
         let mut seeded = vec![false; spans.len()];
         for &(_, i) in &order[..seeds] {
             seeded[i] = true;
-            self.segment_unless_skipped(&spans[i], &reach[i]);
+            self.visit(&spans[i]);
         }
-        for ((sp, c), done) in spans.iter().zip(&reach).zip(seeded) {
+        for (sp, done) in spans.iter().zip(seeded) {
             if !done {
-                self.segment_unless_skipped(sp, c);
+                self.visit(sp);
             }
         }
     }
 
-    /// Bounds the segment unless, with its cell reach `c` ([`Sweep::cell_reach`]), no joint's
-    /// cheap bound exceeds the running thresholds: then every joint of the segment would be
-    /// skipped by [`Sweep::poly_joint`] too, and the segment changes nothing.
+    /// Bounds the segment unless, by its cell test ([`Sweep::cell_test`]), no joint's cheap
+    /// bound exceeds the running thresholds: then every joint of the segment would be skipped
+    /// by [`Sweep::poly_joint`] too, and the segment changes nothing.
     #[inline]
-    fn segment_unless_skipped(&mut self, sp: &Span, c: &[f64; 3]) {
+    fn visit(&mut self, sp: &Span) {
+        let sh = Shape::new(&sp.cub, sp.t0, sp.t1);
+        let cell = self.cells.cell(sp.piece, sh.s[1], sh.reach);
+        let (c, open) = self.cell_test(&sh, cell);
         if (0..3).all(|o| c[o] <= self.threshold[o]) {
             self.skipped += 1;
         } else {
-            self.segment(sp, true);
-        }
-    }
-
-    /// Per order, the largest cheap bound ([`Sweep::cheap`]) of any joint of the segment from
-    /// the bounds of its path cell `cell` (each at least the segment's own, see [`Cells`]);
-    /// infinite when its Taylor range fits in no cell (`None`) or a bound is NaN.
-    fn cell_reach(&self, sh: &Shape, cell: Option<usize>) -> [f64; 3] {
-        let Some(cell) = cell else {
-            return [f64::INFINITY; 3];
-        };
-        let dim = self.dim;
-        let pb = &self.cells.bounds[cell * 3 * dim..(cell + 1) * 3 * dim];
-        let mut c = [0.0f64; 3];
-        for j in 0..dim {
-            let cheap = self.cheap(j, [pb[j], pb[dim + j], pb[2 * dim + j]], sh.x);
-            for o in 0..3 {
-                // NaN propagates.
-                if cheap[o].is_nan() || cheap[o] > c[o] {
-                    c[o] = cheap[o];
-                }
-            }
-        }
-        if c.iter().any(|v| v.is_nan()) {
-            [f64::INFINITY; 3]
-        } else {
-            c
+            self.segment(sp, &sh, cell, open);
         }
     }
 

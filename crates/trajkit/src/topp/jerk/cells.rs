@@ -114,10 +114,13 @@ impl Cells {
     pub(super) fn cell(&self, piece: usize, sm: f64, reach: f64) -> Option<usize> {
         let (n, width) = (*self.count.get(piece)?, self.width[piece]);
         let lo = self.start[piece];
-        let q = ((sm - lo) / width).floor();
-        if !(q >= 0.0 && q < n as f64 && reach.is_finite()) {
+        // ⌊x⌋ ∈ [0, n) exactly when x ∈ [0, n) (n is an integer, NaN fails both), and there
+        // ⌊x⌋ is the truncation: no call to `floor`.
+        let x = (sm - lo) / width;
+        if !(x >= 0.0 && x < n as f64 && reach.is_finite()) {
             return None;
         }
+        let q = (x as usize) as f64;
         let c = lo + (q + 0.5) * width;
         ((sm - c).abs() + reach <= 0.5 * width).then_some(self.first[piece] + q as usize)
     }

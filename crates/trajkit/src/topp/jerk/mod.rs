@@ -77,6 +77,10 @@ impl Default for JerkOptions {
 pub struct FilteredProfile {
     profile: Profile,
     window: f64,
+    /// Per interval i of the profile, the terms of its whole integral that do not depend on
+    /// the reference position (see [`FilteredProfile::integral`]): its length hᵢ, ṡᵢhᵢ²/2 and
+    /// s̈ᵢhᵢ³/6, each rounded exactly as the partial-interval formula rounds it.
+    whole: Vec<[f64; 3]>,
 }
 
 impl FilteredProfile {
@@ -95,7 +99,27 @@ impl FilteredProfile {
                 reason: "is not zero: jerk filtering needs a rest-to-rest profile",
             });
         }
-        Ok(FilteredProfile { profile, window })
+        let (times, v, u) = (
+            profile.times(),
+            profile.velocities(),
+            profile.accelerations(),
+        );
+        let whole = (0..u.len())
+            .map(|i| {
+                // The partial-interval formula's terms with x0 = 0 and x1 = hᵢ.
+                let (x0, x1) = (0.0, times[i + 1] - times[i]);
+                [
+                    x1 - x0,
+                    0.5 * v[i] * (x1 * x1 - x0 * x0),
+                    u[i] * (x1 * x1 * x1 - x0 * x0 * x0) / 6.0,
+                ]
+            })
+            .collect();
+        Ok(FilteredProfile {
+            profile,
+            window,
+            whole,
+        })
     }
 
     /// The filter window in seconds.
@@ -150,7 +174,9 @@ impl FilteredProfile {
     }
 
     /// ∫ (s*(τ) − s_ref) dτ over `[a, b]`, piece by piece, relative to `s_ref` to avoid
-    /// cancellation; the first piece is searched from `hint`.
+    /// cancellation; the first piece is searched from `hint`. An interval covered whole takes
+    /// its terms from `whole` (the same values: its τ-range is exactly `[0, hᵢ]`), so only the
+    /// term of `s_ref` is computed per call.
     fn integral(&self, a: f64, b: f64, s_ref: f64, hint: usize) -> f64 {
         let p = &self.profile;
         let (s, times) = (p.gridpoints(), p.times());
@@ -171,6 +197,13 @@ impl FilteredProfile {
         let mut i = self.piece_from(lo, hint);
         let mut t0 = lo;
         while t0 < hi && i < n {
+            if t0 == times[i] && times[i + 1] <= hi {
+                let [h, quad, cubic] = self.whole[i];
+                total += (s[i] - s_ref) * h + quad + cubic;
+                t0 = times[i + 1];
+                i += 1;
+                continue;
+            }
             let t1 = hi.min(times[i + 1]);
             // s(τ) = s_i + v τ + u τ²/2 with τ = t − t_i: integrate from τ0 to τ1.
             let (v, u) = (p.velocities()[i], p.accelerations()[i]);
