@@ -8,9 +8,12 @@
 //! polynomial (degree ≤ 6) per direction and plateau variant of the two changes (see
 //! [`super::families`]); the bracketing solver of [`super::roots`] on the residual in v_c
 //! remains the fallback and serves second order. Then the hold families (a zero-jerk hold at
-//! the peak or the valley of a₀ ↗ α₁ ↘ α₂ ↗ a_f, bracketed). When no cruise profile fits, the step-1 candidate profiles
-//! whose duration equals T are used (the caller tries those first). First order: the constant
-//! velocity D/T. Velocity interface: the acceleration ramps to a level α, holds it, and ramps
+//! the peak or the valley of a₀ ↗ α₁ ↘ α₂ ↗ a_f, bracketed on the one interval of the free
+//! level where the shape is valid, known in closed form: a valid range narrower than the
+//! bracketing grid's step was missed before, and a synchronized duration with it), then
+//! four ramps, split ramps and a peak followed by a hold. When no cruise profile fits, the
+//! step-1 candidate profiles whose duration equals T are used (the caller tries those first).
+//! First order: the constant velocity D/T. Velocity interface: the acceleration ramps to a level α, holds it, and ramps
 //! to the target acceleration; the residual is the velocity change, free parameter α.
 //!
 //! Every profile is verified by integration exactly like step 1, plus |duration − T| ≤ 1e−12·T.
@@ -367,7 +370,7 @@ fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile>
 /// Hold families (third order): a₀ ↗ α₁ ↘ α₂ ↗ a_f with a zero-jerk hold at the peak α₁
 /// (`at_valley` false) or at the valley α₂ (true); the negative direction by mirroring. The
 /// duration and velocity equations give the other level in closed form; free parameter: the
-/// level that holds.
+/// level that holds, bracketed on its valid interval ([`hold_window`]).
 fn hold(
     dof: &Dof1,
     t: f64,
@@ -433,8 +436,69 @@ fn hold(
     let sgn = if mirror { -1.0 } else { 1.0 };
     let f = |x: f64| segs(x).map(|s| sgn * (segments_end_p(start, &s, mirror) - dof.pf) + 0.0 * d);
     let (lo, hi) = if at_valley { (-a2, af) } else { (a0, amax) };
+    // The shape is valid on one interval of the free parameter, known in closed form: the
+    // bracketing works there (a valid range narrower than its grid's spacing was missed).
+    let dep = if at_valley {
+        (a0 - tol, amax + tol)
+    } else {
+        (-af - tol, a2 + tol)
+    };
+    let k = j * t + a0 - af;
+    let c = j * dv - (af * af - a0 * a0) / 2.0;
+    let (lo, hi) = match hold_window(k, c, at_valley, dep, tol) {
+        Some((wlo, whi)) => (lo.max(wlo), hi.min(whi)),
+        None => (lo, hi),
+    };
     let cuts = [lo, hi, 0.0, if at_valley { a0.min(af) } else { af.max(a0) }];
     first_root(cuts, f, &build, ok)
+}
+
+/// The range of a hold family's free parameter x on which its shape is valid, widened by
+/// `margin` plus a few rounding units (the bracketing then finds the exact edges from invalid
+/// samples); `None` when the family is degenerate (k ≤ 0 or non-finite values: the caller
+/// keeps its bounds), an empty range (lo > hi) when no x is valid.
+///
+/// With k = jT + a₀ − a_f and c = jΔv − (a_f² − a₀²)/2, the radicand of the velocity equation
+/// is linear in x: r = c − kx at the valley (x = α₂, α₁ = x + √r), r = kx − c at the peak
+/// (x = α₁, α₂ = x − √r). In s = √r the hold lasts T − (2s − a₀ + a_f)/j, so s ∈ [0, k/2],
+/// and the level that x does not fix, as dep(s) = d/k + s − s²/k (dep = α₁ and d = c at the
+/// valley, dep = −α₂ and d = −c at the peak), rises on [0, k/2]. Its bounds `dep` therefore
+/// cut out one interval of s, and x = (c ∓ s²)/k is monotone in s: one interval of x.
+fn hold_window(
+    k: f64,
+    c: f64,
+    at_valley: bool,
+    dep: (f64, f64),
+    margin: f64,
+) -> Option<(f64, f64)> {
+    if !(k > 0.0 && k.is_finite() && c.is_finite()) {
+        return None;
+    }
+    let d = if at_valley { c } else { -c };
+    let (dep0, dep1) = (d / k, d / k + k / 4.0);
+    if dep.1 < dep0 || dep.0 > dep1 {
+        return Some((f64::INFINITY, f64::NEG_INFINITY));
+    }
+    // The smaller root of s² − ks + (level·k − d) = 0, in the form without cancellation.
+    let s_at = |level: f64| {
+        if level <= dep0 {
+            0.0
+        } else if level >= dep1 {
+            k / 2.0
+        } else {
+            let q = level * k - d;
+            let disc = (k * k - 4.0 * q).max(0.0);
+            (2.0 * q / (k + disc.sqrt())).clamp(0.0, k / 2.0)
+        }
+    };
+    let (s0, s1) = (s_at(dep.0), s_at(dep.1));
+    let (a, b) = if at_valley {
+        ((c - s1 * s1) / k, (c - s0 * s0) / k)
+    } else {
+        ((c + s0 * s0) / k, (c + s1 * s1) / k)
+    };
+    let m = margin + 4.0 * f64::EPSILON * (a.abs() + b.abs());
+    Some((a - m, b + m))
 }
 
 /// The profile of constant-jerk segments `(duration, jerk)` from `start`, mirrored (every
