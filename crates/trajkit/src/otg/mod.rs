@@ -54,6 +54,17 @@
 //! allocation-free when it does not calculate); Ruckig Pro's per-section minimum velocity and acceleration and per-section position
 //! limits are refused by the JSON reader.
 //!
+//! # The update loops
+//! [`Otg::update`], [`DynOtg::update`] and [`WaypointOtg::update`] follow Ruckig's
+//! `Ruckig::update`: the time advances by `delta_time` after any calculation, the state
+//! written is the trajectory's at that time, and the result is `Finished` only when that time
+//! is past the duration (`time > duration`): the cycle landing exactly on the duration writes
+//! the target state and is still `Working`, the next one is `Finished`. The outputs'
+//! `calculation_duration_us` is Ruckig's `calculation_duration`: the wall-clock time of the
+//! whole `update` up to the new state (the calculation included when there is one, so a
+//! cycle that only follows reports the sampling's cost); an error leaves it, like the
+//! state, unchanged (as Ruckig does).
+//!
 //! # Files (one per step)
 //! `json.rs` the Ruckig-style JSON reader (public: [`json`]) · `input.rs` the input types
 //! and their validation · `problem.rs` one DOF's problem · `profile.rs` the segment list of
