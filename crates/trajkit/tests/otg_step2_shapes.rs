@@ -118,7 +118,7 @@ fn shape(r: &mut SplitMix64, amax: f64, j: f64, kind: usize) -> (f64, Steps) {
 fn step2_shapes_are_planned_at_their_duration() {
     let otg = Otg::<1>::new(0.001);
     let mut r = SplitMix64::new(20261129);
-    let mut missed = Vec::new();
+    let (mut missed, mut tried) = (Vec::new(), 0);
     for case in 0..20000 {
         let j = 10f64.powf(uni(&mut r, -1.0, 2.0));
         let amax = 10f64.powf(uni(&mut r, -1.0, 1.0));
@@ -128,6 +128,11 @@ fn step2_shapes_are_planned_at_their_duration() {
         let v0 = uni(&mut r, -2.0, 2.0);
         let ((p, v, a), vpeak) = run(v0, a0, &phases);
         let t: f64 = phases.iter().map(|x| x.0).sum();
+        if vpeak > 100.0 || p.abs() > 1e4 {
+            // Outside the absolute position accuracy's useful range (1e-8 on 1e4).
+            continue;
+        }
+        tried += 1;
         let sign = if r.next_f64() < 0.5 { 1.0 } else { -1.0 };
         let mut inp = trajkit::otg::InputParameter::<1>::new();
         inp.current_position = [sign * 1.0];
@@ -155,5 +160,6 @@ fn step2_shapes_are_planned_at_their_duration() {
     for m in &missed {
         eprintln!("{m}");
     }
-    assert!(missed.is_empty(), "{} missed", missed.len());
+    assert!(missed.is_empty(), "{} missed of {tried}", missed.len());
+    assert!(tried >= 15000, "{tried}");
 }

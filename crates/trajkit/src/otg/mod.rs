@@ -72,7 +72,8 @@
 //! pre-profile · `zero.rs` zero limits · `step1/` time-optimal profile families (the
 //! collector, verification, the rest-to-rest closed form, the closed-form and fallback
 //! families) · `families.rs` + `families_gen.rs` the families' position polynomials ·
-//! `step2.rs` profiles of a given duration · `bracket.rs` the bracketed solve of the families
+//! `step2.rs` profiles of a given duration (`step2/windows.rs` where its bracketed families
+//! are valid) · `bracket.rs` the bracketed solve of the families
 //! without a closed form (both steps) · `sync.rs` the common duration (`sync/bound.rs` its
 //! closed-form duration bounds) · `phase.rs`
 //! Ruckig's phase synchronization and the straight-line mode · `result.rs`, `trajectory.rs`,

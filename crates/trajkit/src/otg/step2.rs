@@ -8,10 +8,10 @@
 //! polynomial (degree ≤ 6) per direction and plateau variant of the two changes (see
 //! [`super::families`]); the bracketing solver of [`super::roots`] on the residual in v_c
 //! remains the fallback and serves second order. Then the hold families (a zero-jerk hold at
-//! the peak or the valley of a₀ ↗ α₁ ↘ α₂ ↗ a_f, bracketed on the one interval of the free
-//! level where the shape is valid, known in closed form: a valid range narrower than the
-//! bracketing grid's step was missed before, and a synchronized duration with it), then
-//! four ramps, split ramps and a peak followed by a hold. When no cruise profile fits, the
+//! the peak or the valley of a₀ ↗ α₁ ↘ α₂ ↗ a_f), four ramps, split ramps and a peak
+//! followed by a hold, each bracketed in its free level on pieces that are valid or invalid
+//! as a whole (`step2/windows.rs`: the edges in closed form; a valid range narrower than the
+//! bracketing grid's step was missed before, and a synchronized duration with it). When no cruise profile fits, the
 //! step-1 candidate profiles whose duration equals T are used (the caller tries those first).
 //! First order: the constant velocity D/T. Velocity interface: the acceleration ramps to a level α, holds it, and ramps
 //! to the target acceleration; the residual is the velocity change, free parameter α.
@@ -24,6 +24,9 @@ use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{integrate, Profile, State1};
 use super::step1::{velocity_cap, velocity_window, verify, RestShape};
 use super::velocity_change::{fastest, kink, push_change, via_velocity, VelChange};
+
+mod windows;
+use windows::{four_ramps_cuts, hold_window, peak_then_hold_cuts, split_ramp_cuts};
 
 /// A verified profile for `dof` (whose start state is safe) lasting `t` seconds, if one of the
 /// step-2 families has one.
@@ -453,54 +456,6 @@ fn hold(
     first_root(cuts, f, &build, ok)
 }
 
-/// The range of a hold family's free parameter x on which its shape is valid, widened by
-/// `margin` plus a few rounding units (the bracketing then finds the exact edges from invalid
-/// samples); `None` when the family is degenerate (k ≤ 0 or non-finite values: the caller
-/// keeps its bounds), an empty range (lo > hi) when no x is valid.
-///
-/// With k = jT + a₀ − a_f and c = jΔv − (a_f² − a₀²)/2, the radicand of the velocity equation
-/// is linear in x: r = c − kx at the valley (x = α₂, α₁ = x + √r), r = kx − c at the peak
-/// (x = α₁, α₂ = x − √r). In s = √r the hold lasts T − (2s − a₀ + a_f)/j, so s ∈ [0, k/2],
-/// and the level that x does not fix, as dep(s) = d/k + s − s²/k (dep = α₁ and d = c at the
-/// valley, dep = −α₂ and d = −c at the peak), rises on [0, k/2]. Its bounds `dep` therefore
-/// cut out one interval of s, and x = (c ∓ s²)/k is monotone in s: one interval of x.
-fn hold_window(
-    k: f64,
-    c: f64,
-    at_valley: bool,
-    dep: (f64, f64),
-    margin: f64,
-) -> Option<(f64, f64)> {
-    if !(k > 0.0 && k.is_finite() && c.is_finite()) {
-        return None;
-    }
-    let d = if at_valley { c } else { -c };
-    let (dep0, dep1) = (d / k, d / k + k / 4.0);
-    if dep.1 < dep0 || dep.0 > dep1 {
-        return Some((f64::INFINITY, f64::NEG_INFINITY));
-    }
-    // The smaller root of s² − ks + (level·k − d) = 0, in the form without cancellation.
-    let s_at = |level: f64| {
-        if level <= dep0 {
-            0.0
-        } else if level >= dep1 {
-            k / 2.0
-        } else {
-            let q = level * k - d;
-            let disc = (k * k - 4.0 * q).max(0.0);
-            (2.0 * q / (k + disc.sqrt())).clamp(0.0, k / 2.0)
-        }
-    };
-    let (s0, s1) = (s_at(dep.0), s_at(dep.1));
-    let (a, b) = if at_valley {
-        ((c - s1 * s1) / k, (c - s0 * s0) / k)
-    } else {
-        ((c + s0 * s0) / k, (c + s1 * s1) / k)
-    };
-    let m = margin + 4.0 * f64::EPSILON * (a.abs() + b.abs());
-    Some((a - m, b + m))
-}
-
 /// The profile of constant-jerk segments `(duration, jerk)` from `start`, mirrored (every
 /// state and jerk negated) when `mirror`: the shape of a bracketed family at one value of its
 /// free parameter. A segment that [`Profile::push`] refuses (a negative or non-finite
@@ -599,7 +554,7 @@ fn four_ramps(dof: &Dof1, t: f64, mirror: bool, ok: &impl Fn(&Profile) -> bool) 
         let b = |x: f64| segs(x, first_low).map(|s| segments_profile(start, &s, mirror));
         let f =
             |x: f64| segs(x, first_low).map(|s| sgn * (segments_end_p(start, &s, mirror) - dof.pf));
-        if let r @ Some(_) = first_root([q.amin, q.amax, 0.0, a0, af], f, &b, ok) {
+        if let r @ Some(_) = first_root(four_ramps_cuts(&q, t), f, &b, ok) {
             return r;
         }
     }
@@ -665,12 +620,7 @@ fn split_ramp(
     let build = |x: f64| segs(x).map(|s| segments_profile(start, &s, mirror));
     let sgn = if mirror { -1.0 } else { 1.0 };
     let f = |x: f64| segs(x).map(|s| sgn * (segments_end_p(start, &s, mirror) - dof.pf));
-    first_root(
-        [m, a0, 0.0, af.max(m.min(a0)).min(a0.max(m))],
-        f,
-        &build,
-        ok,
-    )
+    first_root(split_ramp_cuts(&q, t, plateau), f, &build, ok)
 }
 
 /// A peak, then a hold on the way down (third order): a₀ ↗ α₁ ↘ α₂ (hold τ) ↘ a_f under full
@@ -726,9 +676,7 @@ fn peak_then_hold(
     let build = |x: f64| segs(x).map(|s| segments_profile(start, &s, mirror));
     let sgn = if mirror { -1.0 } else { 1.0 };
     let f = |x: f64| segs(x).map(|s| sgn * (segments_end_p(start, &s, mirror) - dof.pf));
-    let lo = if plateau { af } else { a0.max(af) };
-    let hi = amax.max(lo);
-    first_root([lo, hi, 0.0f64.max(lo).min(hi)], f, &build, ok)
+    first_root(peak_then_hold_cuts(&q, t, plateau), f, &build, ok)
 }
 
 /// Velocity interface, third order, in closed form and in Ruckig's order of preference (so
