@@ -122,6 +122,29 @@ def test_api_matches_ruckig_on_the_readme_problem():
     assert np.allclose(r["final"], t["final"], atol=1e-9)
 
 
+def test_update_finishes_after_the_cycle_landing_on_the_duration():
+    # 5 s at dt = 0.25 s (exact sums): Working up to cycle 20 at time 5.0 (on the target),
+    # Finished at cycle 21; every cycle reports its wall-clock time, calculating or not.
+    seen = {}
+    for mod in (ruckig, tk):
+        otg, inp, o = mod.Ruckig(1, 0.25), mod.InputParameter(1), mod.OutputParameter(1)
+        inp.target_position = [1.0]
+        inp.max_velocity, inp.max_acceleration, inp.max_jerk = [1.0], [1.0], [1.0]
+        inp.minimum_duration = 5.0
+        cycles = []
+        for _ in range(30):
+            res = otg.update(inp, o)
+            cycles.append((res, o.time, o.new_position[0], o.calculation_duration))
+            o.pass_to_input(inp)
+            if res != mod.Result.Working:
+                break
+        assert len(cycles) == 21 and cycles[-1][0] == mod.Result.Finished
+        assert cycles[19][1] == 5.0 and abs(cycles[19][2] - 1.0) < 1e-9
+        assert all(c[3] > 0.0 for c in cycles)
+        seen[mod.__name__] = [(c[1], c[2]) for c in cycles]
+    assert np.allclose(seen["ruckig"], seen["trajkit.otg"], atol=1e-9)
+
+
 def test_invalid_input_raises_ruckig_error_with_trajkit_message():
     otg = tk.Ruckig(1, 0.01)
     inp = tk.InputParameter(1)

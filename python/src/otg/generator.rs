@@ -103,7 +103,10 @@ impl PyOutput {
         self.inner.output.was_calculation_interrupted
     }
 
-    /// Wall-clock duration of the calculation in microseconds.
+    /// Wall-clock duration of the last `update` in microseconds, as Ruckig's: the whole
+    /// cycle up to the new state, the calculation included when there was one (a cycle that
+    /// only follows the trajectory reports the cost of sampling it); an error leaves it
+    /// unchanged.
     #[getter]
     fn calculation_duration(&self) -> f64 {
         self.inner.output.calculation_duration_us
@@ -272,8 +275,9 @@ impl PyRuckig {
 
     /// One control cycle (the library's `DynOtg::update`; with waypoints, the same steps on
     /// the motion through them): calculate if `input` changed, advance by `delta_time`, write
-    /// the new state (and section) into `output`. Returns `Result.Working` or
-    /// `Result.Finished`.
+    /// the new state (and section) into `output`. Returns `Result.Working`, or
+    /// `Result.Finished` once the new time is past the duration (Ruckig's rule: the cycle
+    /// landing exactly on the duration is still `Working`).
     fn update(
         &mut self,
         py: Python<'_>,

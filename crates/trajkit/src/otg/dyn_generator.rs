@@ -32,7 +32,11 @@ pub struct DynOutputParameter {
     /// (`interrupt_calculation_duration`): the trajectory is valid but may be longer than the
     /// shortest (see [`DynTrajectory::was_interrupted`]). False when nothing was calculated.
     pub was_calculation_interrupted: bool,
-    /// Wall-clock time of the calculation in microseconds (0 when none was needed).
+    /// Wall-clock time of this `update` in microseconds, Ruckig's `calculation_duration`:
+    /// from the call to the new state written (before it is copied into the generator's
+    /// input), the calculation included when there was one; so a cycle that only follows
+    /// the trajectory reports the cost of sampling it. An error leaves it unchanged, as in
+    /// Ruckig.
     pub calculation_duration_us: f64,
     /// Duration of the current trajectory.
     pub duration: f64,
@@ -144,7 +148,8 @@ impl DynOtg {
     /// back into its copy of the input, so feeding the output back as the next current state
     /// does not re-plan), advance by `delta_time`, write the new state into `out` (resized to
     /// the input's number of degrees of freedom). Returns `Working`, `Finished` (the new time is
-    /// at or past the end) or the error of the calculation (then `out` keeps its previous
+    /// past the end, Ruckig's rule: the cycle that lands exactly on the duration is `Working`)
+    /// or the error of the calculation (then `out` keeps its previous
     /// state and the next update calculates again). No allocation once the sizes fit.
     pub fn update(
         &mut self,
@@ -153,9 +158,8 @@ impl DynOtg {
     ) -> Result<OtgResult, OtgError> {
         out.new_calculation = false;
         out.was_calculation_interrupted = false;
-        out.calculation_duration_us = 0.0;
+        let start = Instant::now();
         if !self.has_last || self.last != *input {
-            let start = Instant::now();
             let r = calculate_with(
                 input,
                 self.delta_time,
@@ -163,7 +167,6 @@ impl DynOtg {
                 &mut self.scratch,
                 &mut self.spare,
             );
-            out.calculation_duration_us = start.elapsed().as_secs_f64() * 1e6;
             if let Err(e) = r {
                 self.has_last = false;
                 return Err(e);
@@ -185,6 +188,7 @@ impl DynOtg {
         );
         out.time = self.time;
         out.duration = self.traj.duration;
+        out.calculation_duration_us = start.elapsed().as_secs_f64() * 1e6;
         out.pass_to_input(&mut self.last);
         Ok(r)
     }

@@ -31,7 +31,11 @@ pub struct OutputParameter<const DOF: usize> {
     /// (`interrupt_calculation_duration`): the trajectory is valid but may be longer than the
     /// shortest (see [`OtgTrajectory::was_interrupted`]). False when nothing was calculated.
     pub was_calculation_interrupted: bool,
-    /// Wall-clock time of the calculation in microseconds (0 when none was needed).
+    /// Wall-clock time of this `update` in microseconds, Ruckig's `calculation_duration`:
+    /// from the call to the new state written (before it is copied into the generator's
+    /// input), the calculation included when there was one; so a cycle that only follows
+    /// the trajectory reports the cost of sampling it. An error leaves it unchanged, as in
+    /// Ruckig.
     pub calculation_duration_us: f64,
     /// Duration of the current trajectory.
     pub duration: f64,
@@ -171,7 +175,8 @@ impl<const DOF: usize> Otg<DOF> {
     }
 
     /// One control cycle: re-plan if the input changed, advance by `delta_time`, write the new
-    /// state. Returns `Working`, `Finished` (the new time is at or past the end) or the error
+    /// state. Returns `Working`, `Finished` (the new time is past the end, Ruckig's rule: the cycle
+    /// that lands exactly on the duration is `Working`) or the error
     /// of the calculation (then `out` keeps its previous state and the next update calculates
     /// again).
     pub fn update(
@@ -181,9 +186,8 @@ impl<const DOF: usize> Otg<DOF> {
     ) -> Result<OtgResult, OtgError> {
         out.new_calculation = false;
         out.was_calculation_interrupted = false;
-        out.calculation_duration_us = 0.0;
+        let start = Instant::now();
         if self.last.as_ref() != Some(input) {
-            let start = Instant::now();
             let r = calculate_status(
                 &input.view(),
                 self.delta_time,
@@ -191,7 +195,6 @@ impl<const DOF: usize> Otg<DOF> {
                 &mut self.scratch,
                 &mut self.spare,
             );
-            out.calculation_duration_us = start.elapsed().as_secs_f64() * 1e6;
             match r {
                 Ok(c) => {
                     self.traj.duration = c.duration;
@@ -217,6 +220,7 @@ impl<const DOF: usize> Otg<DOF> {
         );
         out.time = self.time;
         out.duration = self.traj.duration;
+        out.calculation_duration_us = start.elapsed().as_secs_f64() * 1e6;
         if let Some(last) = self.last.as_mut() {
             out.pass_to_input(last);
         }

@@ -54,6 +54,17 @@
 //! allocation-free when it does not calculate); Ruckig Pro's per-section minimum velocity and acceleration and per-section position
 //! limits are refused by the JSON reader.
 //!
+//! # The update loops
+//! [`Otg::update`], [`DynOtg::update`] and [`WaypointOtg::update`] follow Ruckig's
+//! `Ruckig::update`: the time advances by `delta_time` after any calculation, the state
+//! written is the trajectory's at that time, and the result is `Finished` only when that time
+//! is past the duration (`time > duration`): the cycle landing exactly on the duration writes
+//! the target state and is still `Working`, the next one is `Finished`. The outputs'
+//! `calculation_duration_us` is Ruckig's `calculation_duration`: the wall-clock time of the
+//! whole `update` up to the new state (the calculation included when there is one, so a
+//! cycle that only follows reports the sampling's cost); an error leaves it, like the
+//! state, unchanged (as Ruckig does).
+//!
 //! # Files (one per step)
 //! `json.rs` the Ruckig-style JSON reader (public: [`json`]) · `input.rs` the input types
 //! and their validation · `problem.rs` one DOF's problem · `profile.rs` the segment list of
@@ -61,7 +72,8 @@
 //! pre-profile · `zero.rs` zero limits · `step1/` time-optimal profile families (the
 //! collector, verification, the rest-to-rest closed form, the closed-form and fallback
 //! families) · `families.rs` + `families_gen.rs` the families' position polynomials ·
-//! `step2.rs` profiles of a given duration · `bracket.rs` the bracketed solve of the families
+//! `step2.rs` profiles of a given duration (`step2/windows.rs` where its bracketed families
+//! are valid) · `bracket.rs` the bracketed solve of the families
 //! without a closed form (both steps) · `sync.rs` the common duration (`sync/bound.rs` its
 //! closed-form duration bounds) · `phase.rs`
 //! Ruckig's phase synchronization and the straight-line mode · `result.rs`, `trajectory.rs`,

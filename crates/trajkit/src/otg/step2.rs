@@ -8,9 +8,12 @@
 //! polynomial (degree ≤ 6) per direction and plateau variant of the two changes (see
 //! [`super::families`]); the bracketing solver of [`super::roots`] on the residual in v_c
 //! remains the fallback and serves second order. Then the hold families (a zero-jerk hold at
-//! the peak or the valley of a₀ ↗ α₁ ↘ α₂ ↗ a_f, bracketed). When no cruise profile fits, the step-1 candidate profiles
-//! whose duration equals T are used (the caller tries those first). First order: the constant
-//! velocity D/T. Velocity interface: the acceleration ramps to a level α, holds it, and ramps
+//! the peak or the valley of a₀ ↗ α₁ ↘ α₂ ↗ a_f), four ramps, split ramps and a peak
+//! followed by a hold, each bracketed in its free level on pieces that are valid or invalid
+//! as a whole (`step2/windows.rs`: the edges in closed form; a valid range narrower than the
+//! bracketing grid's step was missed before, and a synchronized duration with it). When no cruise profile fits, the
+//! step-1 candidate profiles whose duration equals T are used (the caller tries those first).
+//! First order: the constant velocity D/T. Velocity interface: the acceleration ramps to a level α, holds it, and ramps
 //! to the target acceleration; the residual is the velocity change, free parameter α.
 //!
 //! Every profile is verified by integration exactly like step 1, plus |duration − T| ≤ 1e−12·T.
@@ -21,6 +24,9 @@ use super::problem::{ControlInterface, Dof1, ProfileOrder};
 use super::profile::{integrate, Profile, State1};
 use super::step1::{velocity_cap, velocity_window, verify, RestShape};
 use super::velocity_change::{fastest, kink, push_change, via_velocity, VelChange};
+
+mod windows;
+use windows::{four_ramps_cuts, hold_window, peak_then_hold_cuts, split_ramp_cuts};
 
 /// A verified profile for `dof` (whose start state is safe) lasting `t` seconds, if one of the
 /// step-2 families has one.
@@ -367,7 +373,7 @@ fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile>
 /// Hold families (third order): a₀ ↗ α₁ ↘ α₂ ↗ a_f with a zero-jerk hold at the peak α₁
 /// (`at_valley` false) or at the valley α₂ (true); the negative direction by mirroring. The
 /// duration and velocity equations give the other level in closed form; free parameter: the
-/// level that holds.
+/// level that holds, bracketed on its valid interval ([`hold_window`]).
 fn hold(
     dof: &Dof1,
     t: f64,
@@ -433,6 +439,19 @@ fn hold(
     let sgn = if mirror { -1.0 } else { 1.0 };
     let f = |x: f64| segs(x).map(|s| sgn * (segments_end_p(start, &s, mirror) - dof.pf) + 0.0 * d);
     let (lo, hi) = if at_valley { (-a2, af) } else { (a0, amax) };
+    // The shape is valid on one interval of the free parameter, known in closed form: the
+    // bracketing works there (a valid range narrower than its grid's spacing was missed).
+    let dep = if at_valley {
+        (a0 - tol, amax + tol)
+    } else {
+        (-af - tol, a2 + tol)
+    };
+    let k = j * t + a0 - af;
+    let c = j * dv - (af * af - a0 * a0) / 2.0;
+    let (lo, hi) = match hold_window(k, c, at_valley, dep, tol) {
+        Some((wlo, whi)) => (lo.max(wlo), hi.min(whi)),
+        None => (lo, hi),
+    };
     let cuts = [lo, hi, 0.0, if at_valley { a0.min(af) } else { af.max(a0) }];
     first_root(cuts, f, &build, ok)
 }
@@ -535,7 +554,7 @@ fn four_ramps(dof: &Dof1, t: f64, mirror: bool, ok: &impl Fn(&Profile) -> bool) 
         let b = |x: f64| segs(x, first_low).map(|s| segments_profile(start, &s, mirror));
         let f =
             |x: f64| segs(x, first_low).map(|s| sgn * (segments_end_p(start, &s, mirror) - dof.pf));
-        if let r @ Some(_) = first_root([q.amin, q.amax, 0.0, a0, af], f, &b, ok) {
+        if let r @ Some(_) = first_root(four_ramps_cuts(&q, t), f, &b, ok) {
             return r;
         }
     }
@@ -601,12 +620,7 @@ fn split_ramp(
     let build = |x: f64| segs(x).map(|s| segments_profile(start, &s, mirror));
     let sgn = if mirror { -1.0 } else { 1.0 };
     let f = |x: f64| segs(x).map(|s| sgn * (segments_end_p(start, &s, mirror) - dof.pf));
-    first_root(
-        [m, a0, 0.0, af.max(m.min(a0)).min(a0.max(m))],
-        f,
-        &build,
-        ok,
-    )
+    first_root(split_ramp_cuts(&q, t, plateau), f, &build, ok)
 }
 
 /// A peak, then a hold on the way down (third order): a₀ ↗ α₁ ↘ α₂ (hold τ) ↘ a_f under full
@@ -662,9 +676,7 @@ fn peak_then_hold(
     let build = |x: f64| segs(x).map(|s| segments_profile(start, &s, mirror));
     let sgn = if mirror { -1.0 } else { 1.0 };
     let f = |x: f64| segs(x).map(|s| sgn * (segments_end_p(start, &s, mirror) - dof.pf));
-    let lo = if plateau { af } else { a0.max(af) };
-    let hi = amax.max(lo);
-    first_root([lo, hi, 0.0f64.max(lo).min(hi)], f, &build, ok)
+    first_root(peak_then_hold_cuts(&q, t, plateau), f, &build, ok)
 }
 
 /// Velocity interface, third order, in closed form and in Ruckig's order of preference (so

@@ -168,7 +168,8 @@ impl<S: AsRef<[DofTrajectory]>> OtgTrajectory<S> {
 
     /// One control cycle along the trajectory (the common step of both generators'
     /// `update`): advances `time` by `dt`, writes the state there, and says whether the
-    /// motion has finished (the new time is at or past the end).
+    /// motion has finished: the new time is past the end (Ruckig's `time > duration`; a cycle
+    /// landing exactly on the duration writes the target state and is still `Working`).
     pub(crate) fn step(
         &self,
         time: &mut f64,
@@ -180,7 +181,7 @@ impl<S: AsRef<[DofTrajectory]>> OtgTrajectory<S> {
     ) -> OtgResult {
         *time += dt;
         self.at_time_with_jerk(*time, p, v, a, j);
-        if *time >= self.duration {
+        if *time > self.duration {
             OtgResult::Finished
         } else {
             OtgResult::Working

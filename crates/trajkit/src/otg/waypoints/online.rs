@@ -67,7 +67,8 @@
 //! (`tests/otg_waypoints_no_alloc.rs`). A cycle that calculates costs one
 //! [`super::plan_waypoints`] (and allocates, as that does); with an interrupted motion every
 //! cycle calculates until a planning completes in time. `calculation_duration_us` is the
-//! wall-clock time of the whole `update` (Ruckig's), calculating or not.
+//! wall-clock time of the whole `update` up to the new state (Ruckig's, as in
+//! [`crate::otg::DynOtg::update`]), calculating or not; an error leaves it unchanged.
 
 use super::{plan_waypoints, WaypointTrajectory, Waypoints};
 use crate::otg::dyn_generator::DynOutputParameter;
@@ -275,8 +276,8 @@ impl WaypointOtg {
         self.section = section;
         o.time = t;
         o.duration = traj.duration();
+        o.calculation_duration_us = start.elapsed().as_secs_f64() * 1e6;
         out.pass_to_input(&mut run.input, &mut run.waypoints);
-        out.output.calculation_duration_us = start.elapsed().as_secs_f64() * 1e6;
         Ok(if t > out.output.duration {
             OtgResult::Finished
         } else {
