@@ -430,6 +430,36 @@ fn default_grid_is_within_its_duration_tolerance_all_problems() {
     repaired_auto_suite(200_000);
 }
 
+/// One long path piece and four short ones (the graded grid starts with equal counts per
+/// piece, so the short pieces begin over-resolved and the long one under-resolved): within the
+/// tolerance of a fine grid, every breakpoint kept.
+#[test]
+fn default_grid_is_within_its_duration_tolerance_on_unequal_pieces() {
+    let lim = Limits::preset("panda").unwrap();
+    let (_, vmax) = panda_ranges(&lim, Order::Velocity);
+    let (amin, amax) = panda_ranges(&lim, Order::Acceleration);
+    let wp = random_waypoints(4242, 6, &lim);
+    let ss = [0.0, 0.92, 0.94, 0.96, 0.98, 1.0];
+    let path = CubicSpline::natural(&ss, &wp, 7).unwrap();
+    check_auto(
+        "one long, four short pieces",
+        &path,
+        (&vmax, &amin, &amax),
+        50_000,
+    );
+    let vmin: Vec<f64> = vmax.iter().map(|v| -v).collect();
+    let auto = Toppra::new(&path)
+        .constraint(JointVelocity::new(&vmin, &vmax).unwrap())
+        .unwrap()
+        .constraint(JointAcceleration::new(&amin, &amax).unwrap())
+        .unwrap()
+        .solve_profile()
+        .unwrap();
+    for b in path.breakpoints() {
+        assert!(auto.gridpoints().contains(&b), "breakpoint {b} missing");
+    }
+}
+
 /// The pieces `plan` times on the standard problem (range-repaired splines with quintic
 /// pieces), where the default grid is graded: at most 1e-4 above `reference` equal intervals.
 fn repaired_auto_suite(reference: usize) {

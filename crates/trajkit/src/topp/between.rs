@@ -863,19 +863,7 @@ impl Workspace {
     /// The grid with interval i cut into `split[i]` equal parts. Interior rows are dropped (the
     /// caller prepares the new grid's).
     fn cut(&mut self, grid: &[f64], split: &[usize]) -> Vec<f64> {
-        let n = grid.len() - 1;
-        let mut next = Vec::with_capacity(grid.len() * 2);
-        for i in 0..n {
-            next.push(grid[i]);
-            let m = split[i];
-            for k in 1..m {
-                let s = grid[i] + (grid[i + 1] - grid[i]) * (k as f64 / m as f64);
-                if s > next[next.len() - 1] && s < grid[i + 1] {
-                    next.push(s);
-                }
-            }
-        }
-        next.push(grid[n]);
+        let next = super::grid::subdivide(grid, split);
         self.mid.clear();
         self.mid_off.clear();
         self.mid_add.clear();
