@@ -4,9 +4,9 @@
 
 use super::super::families_gen::{s1_acc0, s1_acc01, s1_acc1, s1_none};
 use super::super::problem::{Dof1, ProfileOrder};
-use super::super::profile::State1;
+use super::super::profile::{integrate, State1};
 use super::super::velocity_change::push_change;
-use super::verify::velocity_window;
+use super::verify::{velocity_window, TOL_POSITION};
 use super::Collector;
 use crate::roots::MAX_POLY;
 
@@ -191,7 +191,7 @@ impl Closed<'_> {
             let r = none.get_or_insert_with(|| s1_none(a0, af, q.v0, q.vf, self.d, j));
             let n = r.roots(lo, hi, roots);
             for &x in &roots[..n] {
-                let al2 = r.w_at(x);
+                let (x, al2) = self.polish_none(x, r.w_at(x), k);
                 if al2 > x + tol || al2 > af + tol || al2 < amin - tol {
                     continue;
                 }
@@ -202,6 +202,58 @@ impl Closed<'_> {
                 self.emit(&s, col);
             }
         }
+    }
+
+    /// The displacement of a₀ ↗ α₁ ↘ α₂ ↗ a_f minus the target's (durations unclamped).
+    #[inline]
+    fn none_miss(&self, al1: f64, al2: f64) -> f64 {
+        let q = self.q;
+        let j = q.jmax;
+        let (p, v, a) = integrate(0.0, q.v0, q.a0, j, (al1 - q.a0) / j);
+        let (p, v, a) = integrate(p, v, a, -j, (al1 - al2) / j);
+        integrate(p, v, a, j, (q.af - al2) / j).0 - self.d
+    }
+
+    /// Polishes a root of the none family whose position misses the target by more than a
+    /// quarter of the tolerance. Near α₂ = 0 the parameter α₁ is ill-conditioned (α₂ =
+    /// ±√(α₁² − K) moves by α₁/α₂ times as much, so one rounding unit of α₁ can move the end
+    /// by more than 1e-8 on a long motion); the middle ramp's duration t = (α₁ − α₂)/j is not:
+    /// with α₁ + α₂ = K/(j t) from the velocity equation, a few Newton steps on the position
+    /// residual in t (central-difference derivative) keep the best of the levels seen.
+    fn polish_none(&self, x: f64, al2: f64, k: f64) -> (f64, f64) {
+        let j = self.q.jmax;
+        let tol = 0.25 * TOL_POSITION.min(1e-5 * self.d.abs());
+        let mut best = (x, al2, self.none_miss(x, al2).abs());
+        if !(best.2 > tol) {
+            return (x, al2);
+        }
+        let levels = |t: f64| {
+            let s = k / (j * t);
+            ((j * t + s) / 2.0, (s - j * t) / 2.0)
+        };
+        let mut t = (x - al2) / j;
+        for _ in 0..4 {
+            if !(t > 0.0 && t.is_finite()) {
+                break;
+            }
+            let (a1, a2) = levels(t);
+            let f = self.none_miss(a1, a2);
+            if f.abs() < best.2 {
+                best = (a1, a2, f.abs());
+            }
+            if best.2 <= 0.01 * tol {
+                break;
+            }
+            let h = 1e-6 * t;
+            let (p1, p2) = levels(t + h);
+            let (m1, m2) = levels(t - h);
+            let df = (self.none_miss(p1, p2) - self.none_miss(m1, m2)) / (2.0 * h);
+            if !(df.abs() > 0.0) {
+                break;
+            }
+            t -= f / df;
+        }
+        (best.0, best.1)
     }
 
     /// acc0: s = α₂, plateau τ₁ at a_max. For α₂ < 0 the peak is v_f + (2α₂² − a_f²)/(2j).
