@@ -212,13 +212,20 @@ impl Closed<'_> {
                 if al2 > x + tol || al2 > af + tol || al2 < amin - tol {
                     continue;
                 }
-                let mut s = Seq::new();
-                s.add((x - a0) / j, j);
-                s.add((x - al2) / j, -j);
-                s.add((af - al2) / j, j);
-                self.emit(&s, col);
+                self.emit_none(x, al2, col);
             }
         }
+    }
+
+    /// Offers a₀ ↗ α₁ ↘ α₂ ↗ a_f.
+    #[inline]
+    fn emit_none(&self, al1: f64, al2: f64, col: &mut Collector<'_>) {
+        let (a0, af, j) = (self.q.a0, self.q.af, self.q.jmax);
+        let mut s = Seq::new();
+        s.add((al1 - a0) / j, j);
+        s.add((al1 - al2) / j, -j);
+        s.add((af - al2) / j, j);
+        self.emit(&s, col);
     }
 
     /// none for K ≥ 0 (|α₂| ≤ |α₁|), parameterized by the second level: the time-reversed,
@@ -243,11 +250,7 @@ impl Closed<'_> {
                 if x < a0 - tol || x > amax + tol || al2 > x + tol {
                     continue;
                 }
-                let mut s = Seq::new();
-                s.add((x - a0) / j, j);
-                s.add((x - al2) / j, -j);
-                s.add((af - al2) / j, j);
-                self.emit(&s, col);
+                self.emit_none(x, al2, col);
             }
         }
     }
