@@ -9,45 +9,13 @@
 //! picks.
 
 mod otg_common;
-use otg_common::uni;
+use otg_common::{integrate_phases, level_phases, uni};
 use trajkit::otg::Otg;
 use trajkit::rng::SplitMix64;
-
-/// Phases `(duration, jerk)` from `(v0, a0)`, integrated exactly; returns the end state
-/// `(p, v, a)` and the largest |v| on the way (at the phase ends and where a crosses zero).
-fn run(v0: f64, a0: f64, phases: &[(f64, f64)]) -> ((f64, f64, f64), f64) {
-    let (mut p, mut v, mut a) = (0.0, v0, a0);
-    let mut vpeak = v0.abs();
-    for &(d, j) in phases {
-        if j != 0.0 && (a / j) < 0.0 && -a / j < d {
-            let s = -a / j;
-            vpeak = vpeak.max((v + a * s + j * s * s / 2.0).abs());
-        }
-        p += d * (v + d * (a / 2.0 + d * j / 6.0));
-        v += d * (a + d * j / 2.0);
-        a += d * j;
-        vpeak = vpeak.max(v.abs());
-    }
-    ((p, v, a), vpeak)
-}
 
 /// Levels of a shape: each step ramps (full jerk) to the level, then holds it for the given
 /// time (0: no hold).
 type Steps = Vec<(f64, f64)>;
-
-/// The phases `(duration, jerk)` of `steps` from the acceleration `a0`.
-fn phases(a0: f64, steps: &[(f64, f64)], j: f64) -> Vec<(f64, f64)> {
-    let mut out = Vec::new();
-    let mut a = a0;
-    for &(level, hold) in steps {
-        out.push(((level - a).abs() / j, j.copysign(level - a)));
-        if hold > 0.0 {
-            out.push((hold, 0.0));
-        }
-        a = level;
-    }
-    out
-}
 
 /// The step-2 shapes (the negative direction by mirroring the whole problem).
 const SHAPES: [&str; 7] = [
@@ -124,9 +92,9 @@ fn step2_shapes_are_planned_at_their_duration() {
         let amax = 10f64.powf(uni(&mut r, -1.0, 1.0));
         let kind = case % SHAPES.len();
         let (a0, steps) = shape(&mut r, amax, j, kind);
-        let phases = phases(a0, &steps, j);
+        let phases = level_phases(a0, &steps, j);
         let v0 = uni(&mut r, -2.0, 2.0);
-        let ((p, v, a), vpeak) = run(v0, a0, &phases);
+        let ((p, v, a), vpeak) = integrate_phases(v0, a0, &phases);
         let t: f64 = phases.iter().map(|x| x.0).sum();
         if vpeak > 100.0 || p.abs() > 1e4 {
             // Outside the absolute position accuracy's useful range (1e-8 on 1e4).

@@ -38,6 +38,34 @@ impl Resid {
         poly_roots(&self.p[..self.np], lo, hi, out)
     }
 
+    /// [`Self::roots`], and an end of the window where P vanishes to round-off (below 1e-12
+    /// of its terms' magnitude) counts as a root too: a family's valid range can end there
+    /// at a double root (a ramp of length zero where P touches zero), which the isolation
+    /// may not report. (Step 1's closed families: every candidate is verified.)
+    #[inline]
+    pub fn roots_with_ends(&self, lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -> usize {
+        let p = &self.p[..self.np];
+        let mut n = poly_roots(p, lo, hi, out);
+        for e in [lo, hi] {
+            if n == MAX_POLY || !e.is_finite() {
+                break;
+            }
+            let (v, mag) = p
+                .iter()
+                .rev()
+                .fold((0.0, 0.0), |(v, m), &c| (v * e + c, m * e.abs() + c.abs()));
+            let seen = out[..n]
+                .iter()
+                .any(|&r| (r - e).abs() <= 1e-12 * (1.0 + e.abs()));
+            if v.abs() <= 1e-12 * mag && !seen {
+                out[n] = e;
+                n += 1;
+                out[..n].sort_unstable_by(f64::total_cmp);
+            }
+        }
+        n
+    }
+
     /// The second level w at a root s: ±√W(s), the sign that makes A + w·B vanish.
     #[inline]
     pub fn w_at(&self, s: f64) -> f64 {

@@ -377,3 +377,36 @@ pub fn ruckig_states<const N: usize>(
         .collect();
     Some((d, states))
 }
+
+/// Phases `(duration, jerk)` from `(v0, a0)`, integrated exactly; returns the end state
+/// `(p, v, a)` and the largest |v| on the way (at the phase ends and where a crosses zero).
+pub fn integrate_phases(v0: f64, a0: f64, phases: &[(f64, f64)]) -> ((f64, f64, f64), f64) {
+    let (mut p, mut v, mut a) = (0.0, v0, a0);
+    let mut vpeak = v0.abs();
+    for &(d, j) in phases {
+        if j != 0.0 && (a / j) < 0.0 && -a / j < d {
+            let s = -a / j;
+            vpeak = vpeak.max((v + a * s + j * s * s / 2.0).abs());
+        }
+        p += d * (v + d * (a / 2.0 + d * j / 6.0));
+        v += d * (a + d * j / 2.0);
+        a += d * j;
+        vpeak = vpeak.max(v.abs());
+    }
+    ((p, v, a), vpeak)
+}
+
+/// The phases `(duration, jerk)` that ramp (full jerk) from `a0` through each level of
+/// `steps` and hold it for the given time (0: no hold).
+pub fn level_phases(a0: f64, steps: &[(f64, f64)], j: f64) -> Vec<(f64, f64)> {
+    let mut out = Vec::new();
+    let mut a = a0;
+    for &(level, hold) in steps {
+        out.push(((level - a).abs() / j, j.copysign(level - a)));
+        if hold > 0.0 {
+            out.push((hold, 0.0));
+        }
+        a = level;
+    }
+    out
+}

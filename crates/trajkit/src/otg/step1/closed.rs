@@ -4,9 +4,9 @@
 
 use super::super::families_gen::{s1_acc0, s1_acc01, s1_acc1, s1_none};
 use super::super::problem::{Dof1, ProfileOrder};
-use super::super::profile::State1;
+use super::super::profile::{integrate, State1};
 use super::super::velocity_change::push_change;
-use super::verify::velocity_window;
+use super::verify::{velocity_window, TOL_POSITION};
 use super::Collector;
 use crate::roots::MAX_POLY;
 
@@ -175,33 +175,136 @@ impl Closed<'_> {
         t < -1e-12 * self.dscale.max(1e-300) - 1e-9 * size
     }
 
-    /// none: s = α₁, α₂ = w. (Coefficients only when a window is not empty.)
+    /// none: s = α₁, α₂ = w when K < 0 (|α₁| < |α₂|); otherwise [`Self::none_by_second`].
+    /// The parameter is the level of smaller magnitude: the other one, ±√(s² ∓ K), then moves
+    /// less than it, whereas the larger level as parameter amplifies its rounding error by the
+    /// ratio of the levels (1e4 on the `step1_property` reproducer: one rounding unit of α₁
+    /// missed the target by 1.7e-8 and the fastest profile was dropped). (Coefficients only
+    /// when a window is not empty.)
     #[inline]
     fn none(&self, col: &mut Collector<'_>, roots: &mut [f64; MAX_POLY]) {
         let q = self.q;
         let (j, a0, af, amin, tol) = (q.jmax, q.a0, q.af, q.amin, self.tol);
+        let k = j * self.dv + (a0 * a0 - af * af) / 2.0;
+        if k.abs() <= 1e-12 * (j * self.dv.abs() + a0 * a0 + af * af) && af >= a0 {
+            // K = 0: the branch α₂ = α₁ is the single ramp a₀ ↗ a_f for every α₁, so P
+            // vanishes identically along it and has no isolated root there. The ramp is a
+            // candidate of its own.
+            let mut s = Seq::new();
+            s.add((af - a0) / j, j);
+            self.emit(&s, col);
+        }
+        if k >= 0.0 {
+            return self.none_by_second(col, roots, k);
+        }
         let mut none = None;
         // α₂² = α₁² − K with α₂ ∈ [a_min, a_f]:
         // α₁² ∈ [K (+a_f² when a_f < 0), K + max(a_f², a_min²)].
-        let k = j * self.dv + (a0 * a0 - af * af) / 2.0;
         let l = k + if af < 0.0 { af * af } else { 0.0 };
         let af_pos = if af >= 0.0 { af * af } else { 0.0 };
         let u = k + af_pos.max(amin * amin);
         for (lo, hi) in square_window(l.max(0.0), u, a0.min(q.amax), q.amax, true, tol) {
             let r = none.get_or_insert_with(|| s1_none(a0, af, q.v0, q.vf, self.d, j));
-            let n = r.roots(lo, hi, roots);
+            let n = r.roots_with_ends(lo, hi, roots);
             for &x in &roots[..n] {
-                let al2 = r.w_at(x);
+                let (x, al2) = self.polish_none(x, r.w_at(x), k);
+                let (x, al2) = snap_level(x, al2, k, af, amin, tol);
                 if al2 > x + tol || al2 > af + tol || al2 < amin - tol {
                     continue;
                 }
-                let mut s = Seq::new();
-                s.add((x - a0) / j, j);
-                s.add((x - al2) / j, -j);
-                s.add((af - al2) / j, j);
-                self.emit(&s, col);
+                self.emit_none(x, al2, col);
             }
         }
+    }
+
+    /// Offers a₀ ↗ α₁ ↘ α₂ ↗ a_f.
+    #[inline]
+    fn emit_none(&self, al1: f64, al2: f64, col: &mut Collector<'_>) {
+        let (a0, af, j) = (self.q.a0, self.q.af, self.q.jmax);
+        let mut s = Seq::new();
+        s.add((al1 - a0) / j, j);
+        s.add((al1 - al2) / j, -j);
+        s.add((af - al2) / j, j);
+        self.emit(&s, col);
+    }
+
+    /// none for K ≥ 0 (|α₂| ≤ |α₁|), parameterized by the second level: the time-reversed,
+    /// mirrored problem ((−p_f, v_f, −a_f) to (−p₀, v₀, −a₀), same displacement) has the same
+    /// family with first level s = −α₂ and second level −α₁, so its polynomial is the same
+    /// generated one with the boundary states swapped.
+    fn none_by_second(&self, col: &mut Collector<'_>, roots: &mut [f64; MAX_POLY], k: f64) {
+        let q = self.q;
+        let (j, a0, af, amax, amin, tol) = (q.jmax, q.a0, q.af, q.amax, q.amin, self.tol);
+        let mut none = None;
+        // α₁² = K + α₂² with α₁ ∈ [a₀, a_max]:
+        // α₂² ∈ [a₀² − K when a₀ > 0 (else 0), max(a₀², a_max²) − K].
+        let l = if a0 > 0.0 { a0 * a0 - k } else { 0.0 };
+        let u = (a0 * a0).max(amax * amax) - k;
+        // The ends a_min and a_f are common roots (a plateau's or the last ramp's length zero):
+        // the window includes them with the levels' tolerance.
+        for (lo, hi) in square_window(l.max(0.0), u, amin - tol, af + tol, true, tol) {
+            let r = none.get_or_insert_with(|| s1_none(-af, -a0, q.vf, q.v0, self.d, j));
+            let n = r.roots_with_ends(-hi, -lo, roots);
+            for &s in &roots[..n] {
+                let (x, al2) = self.polish_none(-r.w_at(s), -s, k);
+                if x < a0 - tol || x > amax + tol || al2 > x + tol {
+                    continue;
+                }
+                self.emit_none(x, al2, col);
+            }
+        }
+    }
+
+    /// The displacement of a₀ ↗ α₁ ↘ α₂ ↗ a_f minus the target's (durations unclamped).
+    #[inline]
+    fn none_miss(&self, al1: f64, al2: f64) -> f64 {
+        let q = self.q;
+        let j = q.jmax;
+        let (p, v, a) = integrate(0.0, q.v0, q.a0, j, (al1 - q.a0) / j);
+        let (p, v, a) = integrate(p, v, a, -j, (al1 - al2) / j);
+        integrate(p, v, a, j, (q.af - al2) / j).0 - self.d
+    }
+
+    /// Polishes a root of the none family whose position misses the target by more than a
+    /// quarter of the tolerance. Near α₂ = 0 the parameter α₁ is ill-conditioned (α₂ =
+    /// ±√(α₁² − K) moves by α₁/α₂ times as much, so one rounding unit of α₁ can move the end
+    /// by more than 1e-8 on a long motion); the middle ramp's duration t = (α₁ − α₂)/j is not:
+    /// with α₁ + α₂ = K/(j t) from the velocity equation, a few Newton steps on the position
+    /// residual in t (central-difference derivative) keep the best of the levels seen.
+    fn polish_none(&self, x: f64, al2: f64, k: f64) -> (f64, f64) {
+        let j = self.q.jmax;
+        let tol = 0.25 * TOL_POSITION.min(1e-5 * self.d.abs());
+        let mut best = (x, al2, self.none_miss(x, al2).abs());
+        if best.2.is_nan() || best.2 <= tol {
+            return (x, al2);
+        }
+        let levels = |t: f64| {
+            let s = k / (j * t);
+            ((j * t + s) / 2.0, (s - j * t) / 2.0)
+        };
+        let mut t = (x - al2) / j;
+        for _ in 0..4 {
+            if !(t > 0.0 && t.is_finite()) {
+                break;
+            }
+            let (a1, a2) = levels(t);
+            let f = self.none_miss(a1, a2);
+            if f.abs() < best.2 {
+                best = (a1, a2, f.abs());
+            }
+            if best.2 <= 0.01 * tol {
+                break;
+            }
+            let h = 1e-6 * t;
+            let (p1, p2) = levels(t + h);
+            let (m1, m2) = levels(t - h);
+            let df = (self.none_miss(p1, p2) - self.none_miss(m1, m2)) / (2.0 * h);
+            if df == 0.0 || !df.is_finite() {
+                break;
+            }
+            t -= f / df;
+        }
+        (best.0, best.1)
     }
 
     /// acc0: s = α₂, plateau τ₁ at a_max. For α₂ < 0 the peak is v_f + (2α₂² − a_f²)/(2j).
@@ -219,7 +322,7 @@ impl Closed<'_> {
         {
             0
         } else {
-            s1_acc0(a0, af, q.v0, q.vf, self.d, j, amax).roots(xlo, xhi, roots)
+            s1_acc0(a0, af, q.v0, q.vf, self.d, j, amax).roots_with_ends(xlo, xhi, roots)
         };
         for &x in &roots[..n] {
             let t1 = (x * x - c0) / (j * amax);
@@ -254,7 +357,7 @@ impl Closed<'_> {
         {
             0
         } else {
-            s1_acc1(a0, af, q.v0, q.vf, self.d, j, amin).roots(xlo, xhi, roots)
+            s1_acc1(a0, af, q.v0, q.vf, self.d, j, amin).roots_with_ends(xlo, xhi, roots)
         };
         for &x in &roots[..n] {
             let t2 = t2_of(x);
@@ -286,7 +389,7 @@ impl Closed<'_> {
         let n = if t1_hi < 0.0 || self.hopeless(t2_at(t1_hi), size) {
             0
         } else {
-            s1_acc01(a0, af, q.v0, q.vf, self.d, j, amax, amin).roots(0.0, t1_hi, roots)
+            s1_acc01(a0, af, q.v0, q.vf, self.d, j, amax, amin).roots_with_ends(0.0, t1_hi, roots)
         };
         for &x in &roots[..n] {
             let t2 = ((2.0 * amax * amax - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j)
@@ -305,6 +408,28 @@ impl Closed<'_> {
             self.emit(&s, col);
         }
     }
+}
+
+/// Snaps the none family's second level α₂ to the bound a_f (or a_min) it passes by a little,
+/// with α₁ = ±√(K + α₂²) from the velocity equation. Near α₂ = 0, α₂ = ±√(α₁² − K) carries
+/// α₁/α₂ times α₁'s rounding error (and K's cancellation), far more than the levels' tolerance
+/// `tol`: a root whose last ramp should be a few 1e-11 long came out a few 1e-11 negative and
+/// was dropped. "A little" is 1e-4 of the levels' scale: the snapped candidate still has to
+/// pass verification by integration, so a wider net costs a verification, never a limit.
+fn snap_level(x: f64, al2: f64, k: f64, af: f64, amin: f64, tol: f64) -> (f64, f64) {
+    let net = tol + 1e-4 * (x.abs() + al2.abs());
+    let to = if al2 > af + tol && al2 <= af + net && af <= x {
+        af
+    } else if al2 < amin - tol && al2 >= amin - net {
+        amin
+    } else {
+        return (x, al2);
+    };
+    let w = k + to * to;
+    if w < 0.0 {
+        return (x, al2);
+    }
+    (w.sqrt().copysign(x), to)
 }
 
 /// The parts of `[lo, hi]` where x² ∈ [l, u]: up to two intervals (the negative one only

@@ -15,7 +15,14 @@
 //!
 //! In each family the velocity equation gives the second unknown in closed form; the position
 //! equation is then a polynomial of degree ≤ 4 in a suitable parameter (see
-//! [`super::families`]), solved by [`crate::roots::poly_roots`]. The up-down-up-down shapes
+//! [`super::families`]), solved by [`crate::roots::poly_roots`]. In the none family
+//! (α₁² − α₂² = K) the parameter is the level of smaller magnitude (α₂, through the
+//! time-reversed problem, when K ≥ 0), since the other level carries the parameter's rounding
+//! error amplified by their ratio; a root that still misses the target by more than a quarter
+//! of the tolerance is polished by Newton steps in the middle ramp's duration, and α₂ just
+//! past a_f or a_min is snapped to it. At K = 0 the single ramp a₀ ↗ a_f is a candidate (the
+//! polynomial vanishes identically on that branch), and a window end where a closed family's
+//! polynomial vanishes to round-off counts as a root (a double root at a zero-length ramp). The up-down-up-down shapes
 //! (two velocity changes in the same direction through a velocity extremum with zero
 //! acceleration) come from the same polynomials, tried only in the one direction where the
 //! extremum can lie between the two kinks. When the closed forms give no valid profile, the

@@ -1,0 +1,202 @@
+//! Step 1 never misses a profile of one of its own families.
+//!
+//! Seeded property test of the mechanism behind the `step1_property` reproducer (a none-family
+//! root whose second acceleration level lay next to zero, ill-conditioned in the family's
+//! parameter, missed the target by 1.7e-8 and was dropped, so step 1 returned a profile 0.3 %
+//! slower than Ruckig's). Each case builds a profile of a step-1 family (none, acc0, acc1,
+//! acc0_acc1, cruise at the velocity limit) forward from a random state with random levels and
+//! plateau durations inside the limits, often next to each other or to zero, where the valid
+//! parameter ranges are narrow. Its end state becomes the target: the minimum duration that
+//! step 1 finds must not exceed the constructed profile's (× (1 + 1e-9)). Half the problems
+//! are mirrored (the negative direction).
+//!
+//! Not yet met everywhere: 26 of the default run's ~16 800 cases are still missed
+//! ([`KNOWN_MISSES`], pinned so that any change shows), mostly levels within 1e-7 of each
+//! other or of a limit on motions of milliseconds and less; in 23 of them Ruckig 0.19.4 is as
+//! long or longer.
+
+mod otg_common;
+use otg_common::{integrate_phases, level_phases, uni};
+use trajkit::otg::Otg;
+use trajkit::rng::SplitMix64;
+
+/// The step-1 families (the negative direction by mirroring the whole problem).
+const FAMILIES: [&str; 5] = ["none", "acc0", "acc1", "acc0_acc1", "vel"];
+
+/// A level in `[lo, hi]`: uniform, next to one end (10⁻⁷ to 10⁻¹ of the range away) or, when
+/// the range holds it, next to zero (10⁻⁷ to 10⁻¹ of the range), a third of the time each.
+fn pick(r: &mut SplitMix64, lo: f64, hi: f64) -> f64 {
+    let w = hi - lo;
+    let off = w * 10f64.powf(uni(r, -7.0, -1.0));
+    let u = r.next_f64();
+    let x = if u < 1.0 / 3.0 {
+        uni(r, lo, hi)
+    } else if u < 2.0 / 3.0 {
+        if r.next_f64() < 0.5 {
+            lo + off
+        } else {
+            hi - off
+        }
+    } else if lo < 0.0 && hi > 0.0 {
+        off.copysign(uni(r, -1.0, 1.0))
+    } else {
+        uni(r, lo, hi)
+    };
+    x.clamp(lo, hi)
+}
+
+/// A random profile of family `kind` of [`FAMILIES`] with levels inside ±a_max; returns
+/// (a₀, steps). In the cruise family the level 0 held is the cruise.
+fn family(r: &mut SplitMix64, amax: f64, j: f64, kind: usize) -> (f64, Vec<(f64, f64)>) {
+    let hold = |r: &mut SplitMix64| amax / j * 10f64.powf(uni(r, -4.0, 1.0));
+    match kind {
+        0 => {
+            // a₀ ↗ α₁ ↘ α₂ ↗ a_f.
+            let al1 = pick(r, -amax, amax);
+            let a0 = pick(r, -amax, al1);
+            let al2 = pick(r, -amax, al1);
+            let af = pick(r, al2, amax);
+            (a0, vec![(al1, 0.0), (al2, 0.0), (af, 0.0)])
+        }
+        1 => {
+            // a₀ ↗ a_max (hold) ↘ α₂ ↗ a_f.
+            let a0 = pick(r, -amax, amax);
+            let al2 = pick(r, -amax, amax);
+            let af = pick(r, al2, amax);
+            (a0, vec![(amax, hold(r)), (al2, 0.0), (af, 0.0)])
+        }
+        2 => {
+            // a₀ ↗ α₁ ↘ −a_max (hold) ↗ a_f.
+            let al1 = pick(r, -amax, amax);
+            let a0 = pick(r, -amax, al1);
+            let af = pick(r, -amax, amax);
+            (a0, vec![(al1, 0.0), (-amax, hold(r)), (af, 0.0)])
+        }
+        3 => {
+            // a₀ ↗ a_max (hold) ↘ −a_max (hold) ↗ a_f.
+            let a0 = pick(r, -amax, amax);
+            let af = pick(r, -amax, amax);
+            (a0, vec![(amax, hold(r)), (-amax, hold(r)), (af, 0.0)])
+        }
+        _ => {
+            // a₀ ↗ α₁ (plateau at a_max, or none) ↘ 0, cruise, ↘ α₂ (plateau at −a_max, or
+            // none) ↗ a_f.
+            let a0 = pick(r, -amax, amax);
+            let plateau1 = r.next_f64() < 0.5;
+            let al1 = if plateau1 {
+                amax
+            } else {
+                pick(r, a0.max(0.0), amax)
+            };
+            let plateau2 = r.next_f64() < 0.5;
+            let al2 = if plateau2 { -amax } else { pick(r, -amax, 0.0) };
+            let af = pick(r, al2, amax);
+            let h1 = if plateau1 { hold(r) } else { 0.0 };
+            let h2 = if plateau2 { hold(r) } else { 0.0 };
+            (a0, vec![(al1, h1), (0.0, hold(r)), (al2, h2), (af, 0.0)])
+        }
+    }
+}
+
+/// Runs `count` cases from `seed`; returns the misses (case number, one line each) and the
+/// number tried.
+fn sweep(seed: u64, count: usize) -> (Vec<(usize, String)>, usize) {
+    let otg = Otg::<1>::new(0.001);
+    let mut r = SplitMix64::new(seed);
+    let (mut missed, mut tried) = (Vec::new(), 0);
+    for case in 0..count {
+        let j = 10f64.powf(uni(&mut r, -1.5, 2.0));
+        let amax = 10f64.powf(uni(&mut r, -1.0, 1.0));
+        let kind = case % FAMILIES.len();
+        let (a0, steps) = family(&mut r, amax, j, kind);
+        let phases = level_phases(a0, &steps, j);
+        let v0 = uni(&mut r, -2.0, 2.0);
+        let ((p, v, a), vpeak) = integrate_phases(v0, a0, &phases);
+        let t: f64 = phases.iter().map(|x| x.0).sum();
+        let vmax = if kind == 4 {
+            // The cruise is at the velocity limit: nothing else may pass it.
+            let n1 = phases.len() - if steps[2].1 > 0.0 { 4 } else { 3 };
+            let vc = integrate_phases(v0, a0, &phases[..n1]).0 .1;
+            if !(vc > 0.0 && vpeak <= vc * (1.0 + 1e-13)) {
+                continue;
+            }
+            vc * (1.0 + 1e-13)
+        } else {
+            // Room for the braking of the start and target states too.
+            let stop = (a0 * a0).max(a * a) / (2.0 * j);
+            (vpeak + stop) * uni(&mut r, 1.0, 2.0) + 1e-3
+        };
+        if vpeak > 300.0 || p.abs() > 1e4 {
+            // Outside the absolute position accuracy's useful range (1e-8 on 1e4).
+            continue;
+        }
+        tried += 1;
+        let sign = if r.next_f64() < 0.5 { 1.0 } else { -1.0 };
+        let p0 = uni(&mut r, -100.0, 100.0);
+        let mut inp = trajkit::otg::InputParameter::<1>::new();
+        inp.current_position = [sign * p0];
+        inp.current_velocity = [sign * v0];
+        inp.current_acceleration = [sign * a0];
+        inp.target_position = [sign * (p0 + p)];
+        inp.target_velocity = [sign * v];
+        inp.target_acceleration = [sign * a];
+        inp.max_velocity = [vmax];
+        inp.max_acceleration = [amax];
+        inp.max_jerk = [j];
+        match otg.calculate(&inp) {
+            Ok(tr) if tr.duration() <= t * (1.0 + 1e-9) => {}
+            Ok(tr) => missed.push((
+                case,
+                format!(
+                    "case {case} ({}): {} > {t}: {inp:?}",
+                    FAMILIES[kind],
+                    tr.duration()
+                ),
+            )),
+            Err(e) => missed.push((
+                case,
+                format!("case {case} ({}): {e}: {inp:?}", FAMILIES[kind]),
+            )),
+        }
+    }
+    (missed, tried)
+}
+
+/// The cases of the default run that step 1 still misses (see the module docs), so that a
+/// new miss fails the test and so does a fixed one (the list then shrinks). By class:
+/// - durations below 5e-5 s, at most 3.4e-7 longer, where Ruckig 0.19.4 is not: 3700, 9825,
+///   15540;
+/// - at most 1e-7 longer on durations below 2.2e-4 s (or 7e-9 below 1.5e-3 s), Ruckig as long
+///   or longer: 425, 3960, 4165, 6265, 6790, 12022, 13205, 16955, 18130, 18170, 18987;
+/// - far longer (up to 6e7 times, a slower family chosen), Ruckig returning the same longer
+///   duration: 2810, 4050, 6210, 8895, 14330, 15425, 15905, 16850, 18080, 18430, 19982,
+///   19995.
+const KNOWN_MISSES: [usize; 26] = [
+    425, 2810, 3700, 3960, 4050, 4165, 6210, 6265, 6790, 8895, 9825, 12022, 13205, 14330, 15425,
+    15540, 15905, 16850, 16955, 18080, 18130, 18170, 18430, 18987, 19982, 19995,
+];
+
+#[test]
+fn step1_finds_its_families_profiles() {
+    let (missed, tried) = sweep(20261126, 20000);
+    let cases: Vec<usize> = missed.iter().map(|m| m.0).collect();
+    for (case, m) in &missed {
+        if !KNOWN_MISSES.contains(case) {
+            eprintln!("{m}");
+        }
+    }
+    assert_eq!(cases, KNOWN_MISSES, "missed cases changed ({tried} tried)");
+    assert!(tried >= 12000, "{tried}");
+}
+
+/// The long run (`cargo test -p trajkit --release --test otg_step1_shapes -- --ignored`):
+/// every miss printed; it fails while the classes of [`KNOWN_MISSES`] remain.
+#[test]
+#[ignore]
+fn step1_finds_its_families_profiles_long() {
+    let (missed, tried) = sweep(20261127, 300_000);
+    for (_, m) in &missed {
+        eprintln!("{m}");
+    }
+    assert!(missed.is_empty(), "{} missed of {tried}", missed.len());
+}
