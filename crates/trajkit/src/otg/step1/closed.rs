@@ -179,8 +179,12 @@ impl Closed<'_> {
     /// The parameter is the level of smaller magnitude: the other one, ±√(s² ∓ K), then moves
     /// less than it, whereas the larger level as parameter amplifies its rounding error by the
     /// ratio of the levels (1e4 on the `step1_property` reproducer: one rounding unit of α₁
-    /// missed the target by 1.7e-8 and the fastest profile was dropped). (Coefficients only
-    /// when a window is not empty.)
+    /// missed the target by 1.7e-8 and the fastest profile was dropped). Each root is offered
+    /// with the other level both from the generated W(s) and from the velocity equation with
+    /// the exact K (the two differ by up to 2e-11 when |v_f − v₀| ≪ |v₀|; verification keeps
+    /// what reaches the target, the collector the shorter), and [`Self::end_roots`] adds roots
+    /// next to the window ends that the polynomial lost. (Coefficients only when a window is
+    /// not empty.)
     #[inline]
     fn none(&self, col: &mut Collector<'_>, roots: &mut [f64; MAX_POLY]) {
         let q = self.q;
@@ -206,13 +210,20 @@ impl Closed<'_> {
         for (lo, hi) in square_window(l.max(0.0), u, a0.min(q.amax), q.amax, true, tol) {
             let r = none.get_or_insert_with(|| s1_none(a0, af, q.v0, q.vf, self.d, j));
             let n = r.roots_with_ends(lo, hi, roots);
+            // α₂ from the velocity equation (K exact; the sign from W's branch) besides the
+            // generated W(s), whose coefficients cancel j·v₀ against j·v_f: see `end_roots`.
+            let w = |x: f64| (x * x - k).max(0.0).sqrt().copysign(r.w_at(x));
+            let n = self.end_roots(lo, hi, n, roots, |x| self.none_miss(x, w(x)));
             for &x in &roots[..n] {
-                let (x, al2) = self.polish_none(x, r.w_at(x), k);
-                let (x, al2) = snap_level(x, al2, k, af, amin, tol);
-                if al2 > x + tol || al2 > af + tol || al2 < amin - tol {
-                    continue;
+                let (wa, we) = (r.w_at(x), w(x));
+                for al2 in [wa, we].into_iter().take(if wa == we { 1 } else { 2 }) {
+                    let (x, al2) = self.polish_none(x, al2, k);
+                    let (x, al2) = snap_level(x, al2, k, af, amin, tol);
+                    if al2 > x + tol || al2 > af + tol || al2 < amin - tol {
+                        continue;
+                    }
+                    self.emit_none(x, al2, col);
                 }
-                self.emit_none(x, al2, col);
             }
         }
     }
@@ -245,14 +256,68 @@ impl Closed<'_> {
         for (lo, hi) in square_window(l.max(0.0), u, amin - tol, af + tol, true, tol) {
             let r = none.get_or_insert_with(|| s1_none(-af, -a0, q.vf, q.v0, self.d, j));
             let n = r.roots_with_ends(-hi, -lo, roots);
+            // α₁ from the velocity equation (K exact) besides W(s), as in `none`.
+            let w = |s: f64| (k + s * s).sqrt().copysign(-r.w_at(s));
+            let n = self.end_roots(-hi, -lo, n, roots, |s| self.none_miss(w(s), -s));
             for &s in &roots[..n] {
-                let (x, al2) = self.polish_none(-r.w_at(s), -s, k);
-                if x < a0 - tol || x > amax + tol || al2 > x + tol {
-                    continue;
+                let (wa, we) = (-r.w_at(s), w(s));
+                for x in [wa, we].into_iter().take(if wa == we { 1 } else { 2 }) {
+                    let (x, al2) = self.polish_none(x, -s, k);
+                    if x < a0 - tol || x > amax + tol || al2 > x + tol {
+                        continue;
+                    }
+                    self.emit_none(x, al2, col);
                 }
-                self.emit_none(x, al2, col);
             }
         }
+    }
+
+    /// Adds to the `n` polynomial roots in `roots` those of the accurate residual `g` next to
+    /// an end of `[lo, hi]` that the polynomial misses. Its coefficients cancel j·v₀ against
+    /// j·v_f, so when |v_f − v₀| ≪ |v₀| a root within a few 1e-11 of an end, where a ramp is
+    /// that short, can vanish from P (it stayed of one sign while the residual `g`, with the
+    /// other level from the exact K, changed sign 2.7e-11 inside the window). A sign change of
+    /// `g` between an end and 1e-4 of the window inward, with no polynomial root there, is
+    /// bisected to a root. Every root still passes verification by integration.
+    fn end_roots(
+        &self,
+        lo: f64,
+        hi: f64,
+        mut n: usize,
+        roots: &mut [f64; MAX_POLY],
+        g: impl Fn(f64) -> f64,
+    ) -> usize {
+        let h = 1e-4 * (hi - lo);
+        for (e, inner) in [(lo, lo + h), (hi, hi - h)] {
+            let (a, b) = (e.min(inner), e.max(inner));
+            if n == MAX_POLY
+                || h.is_nan()
+                || h <= 0.0
+                || roots[..n].iter().any(|&x| x >= a && x <= b)
+            {
+                continue;
+            }
+            let (mut x0, mut x1, mut g0) = (a, b, g(a));
+            let sign = g0 * g(b);
+            if sign.is_nan() || sign >= 0.0 {
+                continue;
+            }
+            for _ in 0..64 {
+                let m = 0.5 * (x0 + x1);
+                if m <= x0 || m >= x1 {
+                    break;
+                }
+                let gm = g(m);
+                if (gm < 0.0) == (g0 < 0.0) {
+                    (x0, g0) = (m, gm);
+                } else {
+                    x1 = m;
+                }
+            }
+            roots[n] = 0.5 * (x0 + x1);
+            n += 1;
+        }
+        n
     }
 
     /// The displacement of a₀ ↗ α₁ ↘ α₂ ↗ a_f minus the target's (durations unclamped).
