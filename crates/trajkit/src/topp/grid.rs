@@ -32,13 +32,15 @@
 //! Why two models: the guaranteed duration's error is the sum of two parts (measured on the
 //! range-repaired standard problem against 2·10⁵ intervals): the unguaranteed solve's error,
 //! first order and not local (refining one interval moves time between its neighbours, with
-//! both signs), and the cost of the guarantee (the sufficient rows between gridpoints), O(h²),
-//! local and positive. The second dominates on coarse grids (288 equal intervals: 9.8e-4 of
-//! 1.2e-3) and is about 40 % on the returned grid (1.3e-5 of 3.7e-5); their mix is the "order
-//! 1.3–1.8" seen on fine grids. The first-order estimate of the returned grid was 1.24× to
-//! 6.8× its measured error on the long suite (44 problems). Estimates that credit the faster
-//! convergence were measured and rejected (BENCHMARKS.md): an order fitted to three grids and
-//! a fixed order of 1.25 both let errors above 1e-4 through.
+//! both signs), and the cost of the guarantee, O(h²), local and positive (x linear in s cannot
+//! follow a curved limit inside an interval; rows at each interval's exact worst point instead
+//! of the sufficient rows give nearly the same durations). The second dominates on coarse
+//! grids (288 equal intervals: 9.8e-4 of 1.2e-3) and is about 40 % on the returned grid
+//! (1.3e-5 of 3.7e-5); their mix is the "order 1.3–1.8" seen on fine grids. The first-order
+//! estimate of the returned grid was 1.24× to 6.8× its measured error on the long suite (44
+//! problems). Estimates that credit the faster convergence were measured and rejected
+//! (BENCHMARKS.md): an order fitted to three grids and a fixed order of 1.25 both let errors
+//! above 1e-4 through.
 //!
 //! # Cost
 //! On the standard problem (6 pieces) the three solves have 288, 576 and 2331 intervals,
