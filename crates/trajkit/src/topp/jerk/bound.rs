@@ -368,8 +368,12 @@ impl<P: Path> Sweep<'_, P> {
         // three points' offsets from the middle, and the largest of those.
         let offsets = [sm - self.ref_s[self.piece], s0 - sm, 0.0, s1 - sm, reach];
         let mut wts = [[0.0f64; MAX_DEGREE + 1]; 5];
-        for (wt, &d) in wts.iter_mut().zip(&offsets) {
+        for (q, (wt, &d)) in wts.iter_mut().zip(&offsets).enumerate() {
             wt[0] = 1.0;
+            // The middle's own offset is 0: its weights are 1, 0, 0, … (as the loop gives).
+            if q == 2 {
+                continue;
+            }
             for i in 1..D + 1 {
                 wt[i] = wt[i - 1] * d / i as f64;
             }
