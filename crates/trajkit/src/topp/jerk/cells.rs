@@ -67,10 +67,10 @@ impl Cells {
             for q in 0..n {
                 let c = pair[0] + (q as f64 + 0.5) * width;
                 let delta = c - ref_s[p];
-                // The Taylor weights δʳ/r!, formed as each m's loop used to form them (the
-                // same products and quotients for every m).
+                // The Taylor weights δʳ/r! for r < d, formed as each m's loop used to form
+                // them (the same products and quotients for every m).
                 let mut wq = [1.0f64; 8];
-                for r in 1..=d {
+                for r in 1..d {
                     wq[r] = wq[r - 1] * (delta / r as f64);
                 }
                 sigma.fill(0.0);
