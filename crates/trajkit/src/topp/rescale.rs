@@ -193,7 +193,7 @@ impl<P: Path, L: TimeLaw> Trajectory for Retimed<P, L> {
 /// The chain rule of [`Retimed::eval`] on one row, in place: σ′, σ″, σ‴ in `d1`, `d2`, `d3`
 /// become ξ̇, ξ̈, ξ⃛ for the law's `[ṡ, s̈, s⃛]`. The terms `3ṡs̈·σ″` (`C2`) and `s⃛·σ′` (`S3`)
 /// are added only where their factor is not zero, as `eval` does; the choice is made once per
-/// row, so the joint loop has no branch and vectorizes.
+/// row, so the joint loop has no branch.
 #[inline(always)]
 fn chain_rule<const C2: bool, const S3: bool>(
     d1: &mut [f64],
