@@ -178,21 +178,41 @@ impl<P: Path, L: TimeLaw> Trajectory for Retimed<P, L> {
             for (i, &[_, sd, sdd, sddd]) in law[..m].iter().enumerate() {
                 let r = i * n..(i + 1) * n;
                 let (d1, d2, d3) = (&mut v[r.clone()], &mut a[r.clone()], &mut jk[r]);
-                let (c3, c2, x) = (sd * sd * sd, 3.0 * sd * sdd, sd * sd);
-                for j in 0..n {
-                    let mut jerk = d3[j] * c3;
-                    if c2 != 0.0 {
-                        jerk += c2 * d2[j];
-                    }
-                    if sddd != 0.0 {
-                        jerk += sddd * d1[j];
-                    }
-                    d3[j] = jerk;
-                    d2[j] = d1[j] * sdd + d2[j] * x;
-                    d1[j] *= sd;
+                let law = [sd, sdd, sddd];
+                match (3.0 * sd * sdd != 0.0, sddd != 0.0) {
+                    (true, true) => chain_rule::<true, true>(d1, d2, d3, law),
+                    (true, false) => chain_rule::<true, false>(d1, d2, d3, law),
+                    (false, true) => chain_rule::<false, true>(d1, d2, d3, law),
+                    (false, false) => chain_rule::<false, false>(d1, d2, d3, law),
                 }
             }
         }
+    }
+}
+
+/// The chain rule of [`Retimed::eval`] on one row, in place: σ′, σ″, σ‴ in `d1`, `d2`, `d3`
+/// become ξ̇, ξ̈, ξ⃛ for the law's `[ṡ, s̈, s⃛]`. The terms `3ṡs̈·σ″` (`C2`) and `s⃛·σ′` (`S3`)
+/// are added only where their factor is not zero, as `eval` does; the choice is made once per
+/// row, so the joint loop has no branch.
+#[inline(always)]
+fn chain_rule<const C2: bool, const S3: bool>(
+    d1: &mut [f64],
+    d2: &mut [f64],
+    d3: &mut [f64],
+    [sd, sdd, sddd]: [f64; 3],
+) {
+    let (c3, c2, x) = (sd * sd * sd, 3.0 * sd * sdd, sd * sd);
+    for ((v, a), jk) in d1.iter_mut().zip(d2.iter_mut()).zip(d3.iter_mut()) {
+        let mut jerk = *jk * c3;
+        if C2 {
+            jerk += c2 * *a;
+        }
+        if S3 {
+            jerk += sddd * *v;
+        }
+        *jk = jerk;
+        *a = *v * sdd + *a * x;
+        *v *= sd;
     }
 }
 

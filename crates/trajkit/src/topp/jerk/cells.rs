@@ -67,14 +67,19 @@ impl Cells {
             for q in 0..n {
                 let c = pair[0] + (q as f64 + 0.5) * width;
                 let delta = c - ref_s[p];
+                // The Taylor weights δʳ/r! for r < d, formed as each m's loop used to form
+                // them (the same products and quotients for every m).
+                let mut wq = [1.0f64; 8];
+                for r in 1..d {
+                    wq[r] = wq[r - 1] * (delta / r as f64);
+                }
                 sigma.fill(0.0);
                 for m in 1..=d {
-                    let mut w = 1.0;
                     for nn in m..=d {
+                        let w = wq[nn - m];
                         for j in 0..dim {
                             sigma[m * dim + j] += rd[nn * dim + j] * w;
                         }
-                        w *= delta / (nn - m + 1) as f64;
                     }
                 }
                 Self::bound(&sigma, r, d, dim, &mut b);

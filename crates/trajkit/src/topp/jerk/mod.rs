@@ -257,7 +257,8 @@ impl TimeLaw for FilteredProfile {
 /// The filter window for `profile` on `path`: the smallest w with
 /// `|σ′ⱼ(s)·Δs̈| / w ≤ budget · jerk_limitⱼ` at every switch of s̈ (including the jump from rest
 /// at the start and to rest at the end). Joints without a jerk limit do not count; returns
-/// `None` when no joint has one.
+/// `None` when no joint has one. σ′ comes from [`Path::eval_many`] (bitwise what `eval` gives
+/// on piecewise polynomials and polylines; to rounding on paths whose batch evaluation differs).
 pub fn filter_window<P: Path + ?Sized>(
     profile: &Profile,
     path: &P,
@@ -276,22 +277,36 @@ pub fn filter_window<P: Path + ?Sized>(
     if limits.joints().iter().all(|j| j.jerk.is_infinite()) {
         return Ok(None);
     }
+    let jl: Vec<f64> = (0..n)
+        .map(|j| limits.joint(j).symmetric_limit(Order::Jerk))
+        .collect();
     let u = profile.accelerations();
     let s = profile.gridpoints();
-    let mut d1 = vec![0.0; n];
+    // The switches, a block at a time: their s and |Δs̈|, then σ′ at all of them with one
+    // `eval_many` (each row what `eval` gives on trajkit's splines and polylines).
+    const BLOCK: usize = 64;
+    let (mut at, mut jump) = ([0.0; BLOCK], [0.0; BLOCK]);
+    let mut d1 = vec![0.0; BLOCK * n];
     let mut w: f64 = 0.0;
-    for i in 0..s.len() {
-        let before = if i == 0 { 0.0 } else { u[i - 1] };
-        let after = if i == u.len() { 0.0 } else { u[i] };
-        let du = (after - before).abs();
-        if du == 0.0 {
-            continue;
+    let mut i = 0;
+    while i < s.len() {
+        let mut m = 0;
+        while m < BLOCK && i < s.len() {
+            let before = if i == 0 { 0.0 } else { u[i - 1] };
+            let after = if i == u.len() { 0.0 } else { u[i] };
+            let du = (after - before).abs();
+            if du != 0.0 {
+                (at[m], jump[m]) = (s[i], du);
+                m += 1;
+            }
+            i += 1;
         }
-        path.eval(s[i], 1, &mut d1);
-        for j in 0..n {
-            let jl = limits.joint(j).symmetric_limit(Order::Jerk);
-            if jl.is_finite() {
-                w = w.max(d1[j].abs() * du / (budget * jl));
+        path.eval_many(&at[..m], 1, &mut d1[..m * n]);
+        for (row, &du) in d1.chunks_exact(n).zip(&jump[..m]) {
+            for (d, &jl) in row.iter().zip(&jl) {
+                if jl.is_finite() {
+                    w = w.max(d.abs() * du / (budget * jl));
+                }
             }
         }
     }
