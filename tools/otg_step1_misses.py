@@ -1,7 +1,7 @@
 """Classifies the misses of step 1's property test against the Ruckig wheel.
 
     cargo test --release -p trajkit --test otg_step1_shapes -- --ignored --nocapture 2> misses.txt
-    python3 tools/otg_step1_misses.py misses.txt [--jsonl OUT]
+    python3 tools/otg_step1_misses.py misses.txt [--jsonl OUT] [--exe target/release/trajkit]
 
 Every miss line of the test (`case N (family): T_trajkit > T_built: InputParameter { .. }`)
 is solved with the Ruckig wheel (pinned in otg_sweep.py). Ruckig's final state at its own
@@ -11,9 +11,10 @@ each miss is put in one class (`ruckig_error` in units of the tolerances):
   a  trajkit longer than Ruckig × (1 + 1e-9) and Ruckig reaches the target (a real miss),
   b  Ruckig as long or longer,
   c  Ruckig shorter only by missing the target,
-  e  Ruckig shorter, within the tolerance, by no more than twice the time its own position
-     error is worth at the motion's final speed (max(|v_f|, mean velocity)): it stops short
-     of the target where trajkit's profile is exact (the sweep's `longer_by_ruckig_error`),
+  e  Ruckig shorter by at most 1e-5, reaching the target within the tolerance, but trajkit
+     given the final position Ruckig actually reached as its target is at most Ruckig's
+     duration × (1 + 1e-9): Ruckig stops short of the target (`otg_sweep.by_ruckig_error`,
+     the sweep's `longer_by_ruckig_error`),
   f  Ruckig fails.
 Prints the counts per class and family, and the class-a cases; `--jsonl OUT` writes every
 case with its class, both durations, Ruckig's errors (in units of the tolerance) and the
@@ -47,8 +48,8 @@ def parse(line):
 
 
 def ruckig_end(p):
-    """Ruckig's duration and its final errors in units of trajkit's tolerances (None when it
-    fails)."""
+    """Ruckig's duration, its final errors in units of trajkit's tolerances and its final
+    position (None when it fails)."""
     inp = ruckig.InputParameter(1)
     for k in FIELDS:
         setattr(inp, k, p[k])
@@ -65,26 +66,25 @@ def ruckig_end(p):
     scale_v = max(abs(p["current_velocity"][0]), p["max_velocity"][0])
     err = (abs(pe - pf) / tol_p, abs(ve - p["target_velocity"][0]) / (1e-10 + 1e-13 * scale_v),
            abs(ae - p["target_acceleration"][0]) / 1e-10)
-    speed = max(abs(p["target_velocity"][0]), abs(pf - p0) / traj.duration if traj.duration > 0 else 0.0)
-    worth = abs(pe - pf) / speed if speed > 0 else 0.0
-    return traj.duration, err, worth
+    return traj.duration, err, pe
 
 
-def classify(tk, rd):
+def classify(tk, rd, p, exe):
     if rd is None:
         return "f"
-    tr, err, worth = rd
+    tr, err, pe = rd
     if tk <= tr * (1 + 1e-9):
         return "b"
     if max(err) > 1.0:
         return "c"
-    return "e" if tk <= tr * (1 + 1e-9) + 2 * worth else "a"
+    return "e" if sw.by_ruckig_error(exe, p, [pe], tr, tk) is not None else "a"
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("misses")
     ap.add_argument("--jsonl", default="")
+    ap.add_argument("--exe", default=os.path.join(sw.ROOT, "target", "release", "trajkit"))
     ap.add_argument("--no-venv", action="store_true")
     args = ap.parse_args()
     out = open(args.jsonl, "w") if args.jsonl else None
@@ -95,12 +95,11 @@ def main():
             continue
         case, fam, tk, built, p = c
         rd = ruckig_end(p)
-        k = classify(tk, rd)
+        k = classify(tk, rd, p, args.exe)
         counts.setdefault(k, {}).setdefault(fam, 0)
         counts[k][fam] += 1
         rec = {"case": case, "family": fam, "class": k, "trajkit": tk, "built": built,
-               "ruckig": rd[0] if rd else None, "ruckig_error": rd[1] if rd else None,
-               "ruckig_error_worth_s": rd[2] if rd else None, "problem": p}
+               "ruckig": rd[0] if rd else None, "ruckig_error": rd[1] if rd else None, "problem": p}
         if k == "a":
             print(json.dumps(rec))
         if out:
