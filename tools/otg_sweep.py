@@ -18,8 +18,9 @@ For every problem of every category (seeded, fresh seeds give fresh problems) it
   4. compares: trajkit's duration must be at most Ruckig's × (1 + 1e-9) wherever Ruckig
      succeeds; for phase synchronization, per-DOF options and zero limits the durations must
      be equal and the states equal at sampled times.
-Ruckig succeeds when its final state meets the same scale-relative tolerances (position,
-velocity, acceleration); otherwise it is counted in `ruckig_misses_target`. Where Ruckig is
+Ruckig succeeds when its final positions meet the same scale-relative tolerance as trajkit's
+(its velocities and accelerations are not judged, so that no problem leaves the comparison
+for a rounding of Ruckig's end state); otherwise it is counted in `ruckig_misses_target`. Where Ruckig is
 shorter than trajkit but trajkit, given the final positions Ruckig actually reached as its
 target, is at most Ruckig's duration × (1 + 1e-9), Ruckig stopped short of the target
 (within the tolerance) rather than found a faster motion: counted in
@@ -514,9 +515,9 @@ def position_tolerance(p0, pf, excursion):
 
 
 def ruckig_arrives(p, traj):
-    """Whether Ruckig's final state meets the same tolerances as trajkit's (position relative
-    to the motion's scale: Ruckig's own is 1e-8 absolute, so a motion of 1e-11 may end where
-    it started; velocity and acceleration as `check`), and the final positions it reached
+    """Whether Ruckig's final position meets the same tolerance as trajkit's (relative to the
+    motion's scale: Ruckig's own is 1e-8 absolute, so a motion of 1e-11 may end where it
+    started), and the final positions it reached
     (None for DOFs without a position target). A DOF that is not synchronized ends at its own
     minimum duration (and then moves on with its target velocity)."""
     n = len(p["current_position"])
@@ -534,13 +535,6 @@ def ruckig_arrives(p, traj):
         p0, pf, pe = p["current_position"][i], p["target_position"][i], end[0][i]
         if abs(pe - pf) > position_tolerance(p0, pf, abs(pe - p0)):
             return False, None
-        vmax, vmin, amax, amin, jmax = lims(p, i)
-        if amax < INF and jmax < INF:
-            vf = p["target_velocity"][i]
-            scale_v = max(abs(p["current_velocity"][i]), abs(vmax) if vmax < INF else 0,
-                          abs(vmin) if vmin > -INF else 0, 1e-300)
-            if abs(end[1][i] - vf) > 1e-10 + 1e-13 * scale_v or abs(end[2][i] - p["target_acceleration"][i]) > 1e-10:
-                return False, None
         ends[i] = pe
     return True, ends
 
