@@ -10,10 +10,28 @@
 //! step 1 finds must not exceed the constructed profile's (× (1 + 1e-9)). Half the problems
 //! are mirrored (the negative direction).
 //!
-//! Not yet met everywhere: 22 of the default run's ~16 800 cases are still missed
-//! ([`KNOWN_MISSES`], pinned so that any change shows), mostly levels within 1e-7 of each
-//! other or of a limit on motions of milliseconds and less; in each of them Ruckig 0.19.4 is
-//! as long or longer.
+//! Not yet met everywhere: 5 of the default run's ~16 800 cases are still missed
+//! ([`KNOWN_MISSES`], pinned so that any change shows), and 78 of the long run's 251 940; in
+//! each of them Ruckig 0.19.4 is as long or longer (`tools/otg_step1_misses.py` classifies a
+//! long run's misses against the wheel). Before the none family's rescue (window-end
+//! candidates, the solve in the middle ramp's duration, `step1/closed.rs`) and the plateau
+//! families' polish, the long run missed 333 cases: 45 where Ruckig was shorter and reached
+//! the target within the tolerance (in 6 of them, all 1e-9 to 2e-6 longer, the solver then
+//! given Ruckig's own final position as the target was as fast as Ruckig), 288 where Ruckig
+//! was as long or longer. Of those 45, 44 are now at most Ruckig's duration and are in
+//! `fixtures/otg/regressions.jsonl` (category `step1_property`); the other, case 126400, is
+//! now the exact constructed profile (below).
+//!
+//! Ruckig shorter by its own error, kept out of the fixture (trajkit's profile is exact, and
+//! the fixture demands Ruckig's duration): case 15540 of the default run (none family, a
+//! motion of 4.07e-7 in 3.78e-7 s at 1.08 m/s): trajkit 3.77733754e-7 s, the constructed
+//! duration to 1e-9; Ruckig 3.77731502e-7 s, 6.0e-6 shorter, ending 2.4e-12 before the target
+//! (0.59 of the scale-relative tolerance of 4.1e-12, so within it), and 2.4e-12 at 1.08 m/s is
+//! the 2.25e-12 s it saves. Case 126400 of the long run likewise: trajkit 1.21954210e-5 s (the
+//! constructed duration), Ruckig 4.95e-6 shorter, ending 3.5e-12 short (0.49 of the
+//! tolerance) at 0.06 m/s, worth 5.9e-11 s, the difference. In both, trajkit given Ruckig's
+//! final position as the target is as fast as Ruckig; the sweep counts such results as
+//! `longer_by_ruckig_error`, apart from `longer` (`tools/otg_sweep.py`).
 
 mod otg_common;
 use otg_common::{integrate_phases, level_phases, uni};
@@ -163,16 +181,14 @@ fn sweep(seed: u64, count: usize) -> (Vec<(usize, String)>, usize) {
 }
 
 /// The cases of the default run that step 1 still misses (see the module docs), so that a
-/// new miss fails the test and so does a fixed one (the list then shrinks). By class:
-/// - at most 1e-7 longer on durations below 2.2e-4 s (or 7e-9 below 1.5e-3 s), Ruckig as long
-///   or longer: 425, 3960, 4165, 6265, 6790, 12022, 13205, 16955, 18130, 18170, 18987;
-/// - far longer (up to 6e7 times, a slower family chosen), Ruckig returning the same longer
-///   duration: 4050, 6210, 8895, 14330, 15425, 15905, 16850, 18080, 18430, 19982,
-///   19995.
-const KNOWN_MISSES: [usize; 22] = [
-    425, 3960, 4050, 4165, 6210, 6265, 6790, 8895, 12022, 13205, 14330, 15425, 15905, 16850, 16955,
-    18080, 18130, 18170, 18430, 18987, 19982, 19995,
-];
+/// new miss fails the test and so does a fixed one (the list then shrinks; it was 22 cases
+/// before the none family's rescue, all of them fixed but these). By class, Ruckig 0.19.4
+/// as long or longer in each:
+/// - at most 8e-9 longer on durations below 2.5e-6 s, Ruckig's duration within 1e-9 or
+///   longer: 3960, 12022, 18987;
+/// - far longer (a slower family chosen: 16.7 s for 2.8e-7 s, 1.66 s for 1.6e-4 s), Ruckig
+///   returning the same longer duration: 15425, 19982.
+const KNOWN_MISSES: [usize; 5] = [3960, 12022, 15425, 18987, 19982];
 
 #[test]
 fn step1_finds_its_families_profiles() {

@@ -6,6 +6,7 @@ use super::super::families_gen::{s1_acc0, s1_acc01, s1_acc1, s1_none};
 use super::super::problem::{Dof1, ProfileOrder};
 use super::super::profile::{integrate, State1};
 use super::super::velocity_change::push_change;
+use super::scan::scan_piece;
 use super::verify::{velocity_window, TOL_POSITION};
 use super::Collector;
 use crate::roots::MAX_POLY;
@@ -130,12 +131,17 @@ pub(super) fn closed_families(q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
     let mut roots = [0.0; MAX_POLY];
     f.none(col, &mut roots);
     f.acc0(col, &mut roots);
-    if q.af < amin - tol {
-        return;
+    if q.af >= amin - tol {
+        f.acc1(col, &mut roots);
+        f.acc0_acc1(col, &mut roots);
     }
-    f.acc1(col, &mut roots);
-    f.acc0_acc1(col, &mut roots);
+    f.none_ends(col);
+    f.none_by_ramp(col);
 }
+
+/// How near (relative) a boundary level must be to a bound, to zero or to the other, or K to
+/// zero, for [`Closed::none_by_ramp`] to run: where the none polynomial is ill-conditioned.
+const NEAR: f64 = 1e-3;
 
 /// What [`closed_families`] shares between its four families.
 struct Closed<'q> {
@@ -225,6 +231,128 @@ impl Closed<'_> {
                     self.emit_none(x, al2, col);
                 }
             }
+        }
+    }
+
+    /// The none family's profiles with a level on a bound of its window, in closed form from
+    /// the velocity equation α₁² − α₂² = K: α₁ = a₀ or α₂ = a_f (a ramp of length zero: two
+    /// ramps a₀ ↘ α₂ ↗ a_f or a₀ ↗ α₁ ↘ a_f), α₁ = a_max or α₂ = a_min (a plateau of length
+    /// zero), each with both signs of the other level. The polynomials' roots there are
+    /// double or lie on the window's end, where round-off can lose them; these candidates
+    /// cost a square root each, and a verification when faster than the fastest so far (only
+    /// then are they offered: a rescue of the fastest profile, not more candidate durations).
+    fn none_ends(&self, col: &mut Collector<'_>) {
+        let q = self.q;
+        let (j, a0, af, amax, amin, tol) = (q.jmax, q.a0, q.af, q.amax, q.amin, self.tol);
+        let k = j * self.dv + (a0 * a0 - af * af) / 2.0;
+        let best = col.best().map_or(f64::INFINITY, |b| b.duration());
+        for (first, c) in [(true, a0), (false, af), (true, amax), (false, amin)] {
+            let w = if first { c * c - k } else { c * c + k };
+            if w.is_nan() || w < 0.0 {
+                continue;
+            }
+            let r = w.sqrt();
+            for other in [r, -r] {
+                let (a1, a2) = if first { (c, other) } else { (other, c) };
+                if a1 < a0 - tol
+                    || a1 > amax + tol
+                    || a2 < amin - tol
+                    || a2 > af + tol
+                    || a2 > a1 + tol
+                    || (2.0 * (a1 - a2) + af - a0) / j >= best
+                {
+                    continue;
+                }
+                self.emit_none(a1.clamp(a0, amax), a2.clamp(amin, af).min(a1), col);
+            }
+        }
+    }
+
+    /// none solved in the middle ramp's duration t = (α₁ − α₂)/j by bracketing the
+    /// integrated position residual: with α₁ + α₂ = K/(j t) from the velocity equation both
+    /// levels are single-valued in t (no branch of a square root), and the duration
+    /// 2t + (a_f − a₀)/j grows with t. The t where a level meets one of its bounds (roots of
+    /// quadratics in j·t) cut (0, (a_max − a_min)/j] into pieces; on every piece where the
+    /// levels lie within their bounds (to the levels' tolerance) the residual is sampled
+    /// ([`scan_piece`]: sign changes and tangent roots); the levels are clamped to the
+    /// bounds they pass by round-off. Only t below the fastest profile so far's counterpart
+    /// is scanned (a rescue of the fastest profile: the candidate durations that bound
+    /// blocked intervals still come from the polynomials), and only where the polynomial is
+    /// ill-conditioned: a boundary level within [`NEAR`] of the acceleration range from a
+    /// bound, zero or the other boundary level, or |K| within [`NEAR`] of its terms (levels
+    /// of nearly equal magnitude). On the seeded property test (`otg_step1_shapes`, 3·10⁵
+    /// cases) running it everywhere finds nothing more; its cost is about 30 evaluations of
+    /// the residual per piece scanned, plus ~10 per root.
+    fn none_by_ramp(&self, col: &mut Collector<'_>) {
+        let q = self.q;
+        let (j, a0, af, amax, amin, tol) = (q.jmax, q.a0, q.af, q.amax, q.amin, self.tol);
+        let k = j * self.dv + (a0 * a0 - af * af) / 2.0;
+        let span = amax - amin;
+        let near = |x: f64| x.abs() <= NEAR * span;
+        if !(k.abs() <= NEAR * (a0 * a0 + af * af + (j * self.dv).abs())
+            || near(amax - a0)
+            || near(a0 - amin)
+            || near(amax - af)
+            || near(af - amin)
+            || near(a0)
+            || near(af)
+            || near(a0 - af))
+        {
+            return;
+        }
+        let levels = |t: f64| {
+            let s = k / (j * t);
+            ((j * t + s) / 2.0, (s - j * t) / 2.0)
+        };
+        let valid = |(a1, a2): (f64, f64)| {
+            a1 >= a0 - tol && a1 <= amax + tol && a2 >= amin - tol && a2 <= af + tol
+        };
+        // t below (T_best − (a_f − a₀)/j)/2.
+        let t_cap = col.best().map_or(f64::INFINITY, |b| {
+            (b.duration() - (af - a0) / j) / 2.0 * (1.0 + 1e-9)
+        });
+        let t_hi = ((amax - amin) / j).min(t_cap);
+        if !(t_hi > 0.0 && t_hi.is_finite()) {
+            return;
+        }
+        // α₁ = c ⇔ (jt)² − 2c·jt + K = 0; α₂ = c ⇔ (jt)² + 2c·jt − K = 0.
+        let mut cuts = [0.0; 10];
+        let mut n = 0;
+        for (c, sg) in [(a0, 1.0), (amax, 1.0), (amin, -1.0), (af, -1.0)] {
+            let disc = c * c - sg * k;
+            if disc < 0.0 {
+                continue;
+            }
+            for r in [sg * c + disc.sqrt(), sg * c - disc.sqrt()] {
+                let t = r / j;
+                if t > 0.0 && t < t_hi {
+                    cuts[n] = t;
+                    n += 1;
+                }
+            }
+        }
+        cuts[n] = t_hi;
+        n += 1;
+        let cuts = &mut cuts[..n];
+        cuts.sort_unstable_by(f64::total_cmp);
+        let mut lo = 0.0;
+        for &hi in cuts.iter() {
+            let mid = if lo > 0.0 { (lo * hi).sqrt() } else { 0.5 * hi };
+            if hi > lo && valid(levels(mid)) {
+                scan_piece(
+                    lo,
+                    hi,
+                    |t| {
+                        let (a1, a2) = levels(t);
+                        self.none_miss(a1, a2)
+                    },
+                    |t| {
+                        let (a1, a2) = levels(t);
+                        self.emit_none(a1.clamp(a0, amax), a2.clamp(amin, af), col);
+                    },
+                );
+            }
+            lo = hi;
         }
     }
 
@@ -372,6 +500,38 @@ impl Closed<'_> {
         (best.0, best.1)
     }
 
+    /// Polishes a plateau family's root `x` whose integrated position residual `r` is above
+    /// round-off (1e-4 of the position tolerance): a root as imprecise as a near-double
+    /// root's passes verification with a duration up to a few 1e-9 off. At most three
+    /// Newton steps (central-difference derivative); the parameter with the smallest
+    /// residual seen is kept, so polishing never makes a root worse; `x` stays in `[lo, hi]`.
+    fn polish(&self, x: f64, (lo, hi): (f64, f64), r: impl Fn(f64) -> f64) -> f64 {
+        let tol = 1e-4 * TOL_POSITION.min(1e-5 * self.d.abs());
+        let mut best = (x, r(x).abs());
+        if best.1.is_nan() || best.1 <= tol {
+            return x;
+        }
+        let h = 1e-7 * (self.q.amax - self.q.amin);
+        let mut y = x;
+        for _ in 0..3 {
+            let df = (r(y + h) - r(y - h)) / (2.0 * h);
+            let fy = r(y);
+            if df == 0.0 || !df.is_finite() {
+                break;
+            }
+            y = (y - fy / df).clamp(lo, hi);
+            let fy = r(y).abs();
+            if fy.is_nan() || fy >= best.1 {
+                break;
+            }
+            best = (y, fy);
+            if fy <= tol {
+                break;
+            }
+        }
+        best.0
+    }
+
     /// acc0: s = α₂, plateau τ₁ at a_max. For α₂ < 0 the peak is v_f + (2α₂² − a_f²)/(2j).
     #[inline]
     fn acc0(&self, col: &mut Collector<'_>, roots: &mut [f64; MAX_POLY]) {
@@ -389,16 +549,25 @@ impl Closed<'_> {
         } else {
             s1_acc0(a0, af, q.v0, q.vf, self.d, j, amax).roots_with_ends(xlo, xhi, roots)
         };
-        for &x in &roots[..n] {
-            let t1 = (x * x - c0) / (j * amax);
-            if !self.okd(t1) {
-                continue;
-            }
+        let seq = |x: f64| {
             let mut s = Seq::new();
             s.add((amax - a0) / j, j);
-            s.add(t1, 0.0);
+            s.add(t1_at(x), 0.0);
             s.add((amax - x) / j, -j);
             s.add((af - x) / j, j);
+            s
+        };
+        for &x in &roots[..n] {
+            // A root just past a bound of α₂ (the window's tolerance) on the bound, where its
+            // ramp's length and the velocity equation agree.
+            let w = (amin, amax.min(af));
+            let x = self.polish(x.clamp(w.0, w.1), w, |x| {
+                seq(x).displacement(q.v0, a0) - self.d
+            });
+            if !self.okd(t1_at(x)) {
+                continue;
+            }
+            let s = seq(x);
             self.emit(&s, col);
         }
     }
@@ -424,16 +593,24 @@ impl Closed<'_> {
         } else {
             s1_acc1(a0, af, q.v0, q.vf, self.d, j, amin).roots_with_ends(xlo, xhi, roots)
         };
-        for &x in &roots[..n] {
-            let t2 = t2_of(x);
-            if !self.okd(t2) {
-                continue;
-            }
+        let seq = |x: f64| {
             let mut s = Seq::new();
             s.add((x - a0) / j, j);
             s.add((x - amin) / j, -j);
-            s.add(t2, 0.0);
+            s.add(t2_of(x), 0.0);
             s.add((af - amin) / j, j);
+            s
+        };
+        for &x in &roots[..n] {
+            // A root just past a bound of α₁ on the bound (as in `acc0`).
+            let w = (a0.min(amax), amax);
+            let x = self.polish(x.clamp(w.0, w.1), w, |x| {
+                seq(x).displacement(q.v0, a0) - self.d
+            });
+            if !self.okd(t2_of(x)) {
+                continue;
+            }
+            let s = seq(x);
             self.emit(&s, col);
         }
     }

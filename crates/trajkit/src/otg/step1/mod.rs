@@ -22,7 +22,18 @@
 //! of the tolerance is polished by Newton steps in the middle ramp's duration, and α₂ just
 //! past a_f or a_min is snapped to it. At K = 0 the single ramp a₀ ↗ a_f is a candidate (the
 //! polynomial vanishes identically on that branch), and a window end where a closed family's
-//! polynomial vanishes to round-off counts as a root (a double root at a zero-length ramp). The up-down-up-down shapes
+//! polynomial vanishes to round-off counts as a root (a double root at a zero-length ramp). Where
+//! round-off still loses the none family's fastest root (levels next to each other, to a
+//! bound or to zero), two rescues offer what beats the fastest so far: the profiles with a
+//! level on a bound of its window (α₁ = a₀ or a_max, α₂ = a_f or a_min, the other level in
+//! closed form), and, when a boundary level lies within 1e-3 of the acceleration range from
+//! a bound, zero or the other (or K nearly vanishes), the family solved again in the middle
+//! ramp's duration t, in which both levels are single-valued and the duration 2t + (a_f −
+//! a₀)/j is linear, by sampling and refining its integrated position residual (sign changes
+//! and tangent roots, `scan.rs`). The plateau families' roots (acc0, acc1) are put on their
+//! window when just past it and polished by Newton steps on the integrated residual when it
+//! is above round-off, so that a near-double root's imprecision does not cost a few 1e-9 of
+//! the duration. The up-down-up-down shapes
 //! (two velocity changes in the same direction through a velocity extremum with zero
 //! acceleration) come from the same polynomials, tried only in the one direction where the
 //! extremum can lie between the two kinks. When the closed forms give no valid profile, the
@@ -77,6 +88,7 @@ mod fallback;
 #[cfg(test)]
 mod modes_tests;
 mod rest;
+mod scan;
 mod verify;
 
 use super::brake::brake;
