@@ -644,9 +644,19 @@ def run(args):
                 for p in probs:
                     f.write(to_json(p) + "\n")
             res = os.path.join(args.out, "results.jsonl")
-            subprocess.run([exe, "otg", "--batch", path, "--profiles", "--out", res],
-                           stderr=subprocess.DEVNULL)
+            if os.path.exists(res):
+                os.unlink(res)
+            run_cli = subprocess.run([exe, "otg", "--batch", path, "--profiles", "--out", res],
+                                     stderr=subprocess.PIPE, text=True)
+            if run_cli.returncode not in (0, 1):
+                # 1: some problems failed (each has its record). Anything else is a crash (a
+                # panic exits 101) or a refused batch: stop, never compare stale or partial
+                # results.
+                sys.exit(f"trajkit otg --batch failed ({run_cli.returncode}) on {path}: "
+                         f"{run_cli.stderr.strip()[-2000:]}")
             recs = [json.loads(line) for line in open(res)]
+            if len(recs) != len(probs):
+                sys.exit(f"trajkit wrote {len(recs)} results for {len(probs)} problems")
             for p, rec in zip(probs, recs):
                 st["problems"] += 1
                 tr, states, ends = ruckig_solve(p, p.get("dt", 0.001), times, cat in SAME_MOTION)

@@ -263,7 +263,9 @@ impl Closed<'_> {
                 {
                     continue;
                 }
-                self.emit_none(a1.clamp(a0, amax), a2.clamp(amin, af).min(a1), col);
+                if let (Some(a1), Some(a2)) = (clamp_in(a1, a0, amax), clamp_in(a2, amin, af)) {
+                    self.emit_none(a1, a2.min(a1), col);
+                }
             }
         }
     }
@@ -348,7 +350,11 @@ impl Closed<'_> {
                     },
                     |t| {
                         let (a1, a2) = levels(t);
-                        self.emit_none(a1.clamp(a0, amax), a2.clamp(amin, af), col);
+                        if let (Some(a1), Some(a2)) =
+                            (clamp_in(a1, a0, amax), clamp_in(a2, amin, af))
+                        {
+                            self.emit_none(a1, a2, col);
+                        }
                     },
                 );
             }
@@ -561,9 +567,10 @@ impl Closed<'_> {
             // A root just past a bound of α₂ (the window's tolerance) on the bound, where its
             // ramp's length and the velocity equation agree.
             let w = (amin, amax.min(af));
-            let x = self.polish(x.clamp(w.0, w.1), w, |x| {
-                seq(x).displacement(q.v0, a0) - self.d
-            });
+            let Some(x) = clamp_in(x, w.0, w.1) else {
+                continue;
+            };
+            let x = self.polish(x, w, |x| seq(x).displacement(q.v0, a0) - self.d);
             if !self.okd(t1_at(x)) {
                 continue;
             }
@@ -604,9 +611,10 @@ impl Closed<'_> {
         for &x in &roots[..n] {
             // A root just past a bound of α₁ on the bound (as in `acc0`).
             let w = (a0.min(amax), amax);
-            let x = self.polish(x.clamp(w.0, w.1), w, |x| {
-                seq(x).displacement(q.v0, a0) - self.d
-            });
+            let Some(x) = clamp_in(x, w.0, w.1) else {
+                continue;
+            };
+            let x = self.polish(x, w, |x| seq(x).displacement(q.v0, a0) - self.d);
             if !self.okd(t2_of(x)) {
                 continue;
             }
@@ -699,4 +707,12 @@ pub(super) fn square_window(
         }
     }
     out.into_iter().filter(|(a, b)| a <= b)
+}
+
+/// `x` clamped to `[lo, hi]`, or `None` when the range is empty: its ends crossed by
+/// round-off (a start or target acceleration one ulp past a limit) or NaN, where
+/// [`f64::clamp`] would panic. The candidate is then dropped; the rescues and polishing that
+/// use this only add candidates, so the other families still give a profile.
+fn clamp_in(x: f64, lo: f64, hi: f64) -> Option<f64> {
+    (lo <= hi).then(|| x.clamp(lo, hi))
 }
