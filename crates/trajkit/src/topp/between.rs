@@ -62,13 +62,16 @@ enum Interval {
 /// start, from inside (`6·dim` numbers per interval; σ⁗ and σ⁽⁵⁾ zero on paths of degree ≤ 3),
 /// for intervals where the exact check applies. On quintic paths the path is evaluated once per
 /// path piece, at the piece's midpoint (so that no convention about which piece a breakpoint
-/// belongs to matters), and the expansion moved to each interval's start ([`PieceAnchor`]):
-/// once per gridpoint, by the pass over the gridpoints, which keeps the six derivatives for the
-/// interval starting there (the same numbers the interval's own shift would give; only
-/// intervals starting at a breakpoint are shifted here). On
+/// belongs to matters), and the expansion moved to each interval's start ([`PieceAnchor`]). On
 /// paths of degree ≤ 3, between ordinary gridpoints one cubic covers both ends: the gridpoint
 /// values give σ, σ′, σ″ and (σ″(s_{i+1}) − σ″(s_i))/Δ gives σ‴; at a breakpoint the path is
 /// evaluated at the interval's midpoint and the expansion moved to the start.
+///
+/// Only the data that need a path evaluation (intervals at breakpoints) are stored; the others
+/// (nearly all) are computed when asked for ([`Pieces::piece`], into a [`PieceBuf`]): moved
+/// from the piece's anchor (the pass over the gridpoints has found them finite) or taken from
+/// the gridpoint values, the same operations on the same numbers, so the same bits, as a stored
+/// copy, at one Taylor shift per use instead of `6·dim` numbers kept per interval.
 #[derive(Default)]
 pub(super) struct Pieces {
     /// Per interval: whether the path is a polynomial of degree ≤ 5 on it.
@@ -79,33 +82,43 @@ pub(super) struct Pieces {
     /// Per interval: whether an end is a breakpoint of the path (where σ″ may jump, so the
     /// gridpoint's rows may belong to the neighbouring piece).
     at_break: Vec<bool>,
-    /// Taylor data of the intervals not taken from `at_grid`, `6·dim` numbers each.
+    /// Taylor data of the intervals computed when the grid is built (those that need a path
+    /// evaluation), `6·dim` numbers each.
     data: Vec<f64>,
-    /// Per interval: where its Taylor data start, in `data`, or in `at_grid` when marked
-    /// with [`FROM_GRID`].
+    /// Per interval: where its Taylor data start in `data`; or, marked with [`FROM_ANCHOR`],
+    /// the index `b` of the path piece whose anchor they are moved from; or [`FROM_POINTS`]:
+    /// from the values at the gridpoints.
     loc: Vec<usize>,
-    /// Taylor data σ, σ′, …, σ⁽⁵⁾ at every gridpoint (`6·dim` numbers each), moved from the
-    /// anchor of the path piece that holds the gridpoint inside it, written by the pass over the
-    /// gridpoints on paths of degree 4 or 5 (see [`PieceAnchor::eval_full`]); zeros elsewhere.
-    /// The interval starting at such a gridpoint takes its data from here: the same numbers
-    /// the interval's own expansion would give.
+    /// Scratch of the pass over the gridpoints: the Taylor data σ, σ′, …, σ⁽⁵⁾ at the current
+    /// gridpoint (`6·dim` numbers), moved from the anchor of the path piece that holds it
+    /// inside (see [`PieceAnchor::eval_full`]), on paths of degree 4 or 5.
     at_grid: Vec<f64>,
     /// Per gridpoint: the index `b` of the piece (ending at `breaks[b]`) whose anchor gave
-    /// `at_grid`, `usize::MAX` where none did.
+    /// finite data there, `usize::MAX` where none did.
     grid_piece: Vec<usize>,
-    /// Whether the pass over the gridpoints keeps `at_grid`, and whether it evaluates σ.
+    /// The path's breakpoints (for the anchors of [`Pieces::piece`]).
+    breaks: Vec<f64>,
+    /// Whether the pass over the gridpoints marks `grid_piece`, and whether it evaluates σ.
     keep: bool,
     need_q: bool,
-    /// Scratch: Taylor data at the midpoint of one path piece.
-    anchor: PieceAnchor,
+    /// Scratch: Taylor data at the midpoint of one path piece, and of one interval.
+    pub(super) buf: PieceBuf,
     dim: usize,
     built: bool,
+}
+
+/// Scratch of [`Pieces::piece`]: the anchor of the last path piece used and the Taylor data
+/// of one interval.
+#[derive(Default)]
+pub(super) struct PieceBuf {
+    anchor: PieceAnchor,
+    d: Vec<f64>,
 }
 
 impl Pieces {
     /// Bytes held (roughly).
     pub(super) fn bytes(&self) -> usize {
-        8 * (self.data.capacity() + self.at_grid.capacity())
+        8 * (self.data.capacity() + self.at_grid.capacity() + self.breaks.capacity())
             + std::mem::size_of::<usize>() * (self.loc.capacity() + self.grid_piece.capacity())
             + self.exact.capacity()
             + self.at_break.capacity()
@@ -128,7 +141,7 @@ impl Pieces {
         self.at_grid.clear();
         if self.keep {
             self.grid_piece.reserve(points);
-            self.at_grid.reserve(6 * path.dim() * points);
+            self.at_grid.resize(6 * path.dim(), 0.0);
         }
         self.keep
     }
@@ -151,29 +164,31 @@ impl Pieces {
             let ok = inside && anchor.eval(path, breaks, b, s, self.need_q, out);
             return (ok, None);
         }
-        let at = self.at_grid.len();
-        self.at_grid.resize(at + 6 * path.dim(), 0.0);
         if !inside {
             self.grid_piece.push(usize::MAX);
             return (false, None);
         }
-        let full = &mut self.at_grid[at..];
+        let full = &mut self.at_grid[..];
         let ok = anchor.eval_full(path, breaks, b, s, self.need_q, out, full);
         // Data that are not all finite are left to the intervals' own expansion (which finds
         // them so and leaves the interval to the sampled check).
         let finite = ok == Some(true);
         self.grid_piece.push(if finite { b } else { usize::MAX });
-        (ok.is_some(), finite.then_some(&self.at_grid[at..]))
+        (ok.is_some(), finite.then_some(&self.at_grid[..]))
     }
 
-    fn build<P: Path>(&mut self, path: &P, grid: &[f64], need_q: bool, at_points: &[f64]) {
+    fn build<P: Path>(&mut self, path: &P, grid: &[f64], need_q: bool) {
         let n = grid.len() - 1;
         let dim = path.dim();
         self.dim = dim;
+        self.need_q = need_q;
         self.exact.clear();
         self.at_break.clear();
         self.loc.clear();
         self.built = true;
+        self.buf.anchor.reset(dim);
+        self.buf.d.clear();
+        self.buf.d.resize(6 * dim, 0.0);
         let degree = path.piecewise_degree();
         if degree.is_none_or(|d| d > 5) {
             self.exact.resize(n, false);
@@ -181,15 +196,15 @@ impl Pieces {
             return;
         }
         self.quintic = degree.is_some_and(|d| d > 3);
-        let breaks = path.breakpoints();
+        self.breaks = path.breakpoints();
+        let breaks = std::mem::take(&mut self.breaks);
         // Every entry of an exact interval is written below (σ only when needed, σ⁗ and σ⁽⁵⁾
         // only on quintic paths: zeros then).
         self.data.clear();
         let from_grid = self.quintic && self.grid_piece.len() == n + 1;
         // Quintic paths: the Taylor data of the path piece that holds the current interval, at
         // the piece's midpoint (evaluated once per piece, moved to each interval's start).
-        let mut anchor = std::mem::take(&mut self.anchor);
-        anchor.reset(dim);
+        let mut anchor = std::mem::take(&mut self.buf.anchor);
         let mut b = 0;
         for i in 0..n {
             let (s0, s1) = (grid[i], grid[i + 1]);
@@ -209,10 +224,14 @@ impl Pieces {
                 continue;
             }
             if from_grid && self.grid_piece[i] == b {
-                // The gridpoint's data are this piece's anchor moved to s0: what the branch
-                // below computes.
-                // (The pass over the gridpoints marks only finite data.)
-                self.loc.push((i * 6 * dim) | FROM_GRID);
+                // This piece's anchor moved to s0 (what the branch below computes), found
+                // finite by the pass over the gridpoints: moved again when asked for.
+                self.loc.push(b | FROM_ANCHOR);
+                continue;
+            }
+            let at_break = starts_at_break || ends_at_break;
+            if !self.quintic && !at_break {
+                self.loc.push(FROM_POINTS);
                 continue;
             }
             let off = self.data.len();
@@ -235,24 +254,39 @@ impl Pieces {
                 }
                 continue;
             }
-            let at_break = starts_at_break || ends_at_break;
-            if !cubic_taylor(path, (s0, s1), at_break, need_q, at_points, i, d) {
+            if !cubic_taylor_at_break(path, (s0, s1), need_q, d) {
                 self.exact[i] = false;
             }
         }
-        self.anchor = anchor;
+        self.buf.anchor = anchor;
+        self.breaks = breaks;
     }
 
+    /// The Taylor data of interval i (none where the path is not a polynomial of degree ≤ 5
+    /// there), stored or computed into `buf` (`at_points`: σ, σ′, σ″ at the gridpoints, read on
+    /// paths of degree ≤ 3).
     #[inline]
-    fn piece(&self, grid: &[f64], i: usize) -> Option<CubicPiece<'_>> {
+    fn piece<'a, P: Path>(
+        &'a self,
+        path: &P,
+        grid: &[f64],
+        i: usize,
+        at_points: &[f64],
+        buf: &'a mut PieceBuf,
+    ) -> Option<CubicPiece<'a>> {
         if !self.exact[i] {
             return None;
         }
         let dim = self.dim;
         let at = self.loc[i];
-        let d = if at & FROM_GRID != 0 {
-            let off = at & !FROM_GRID;
-            &self.at_grid[off..off + 6 * dim]
+        let d: &[f64] = if at & FROM_ANCHOR != 0 {
+            let b = at & !FROM_ANCHOR;
+            let (sm, a) = buf.anchor.piece(path, &self.breaks, b, self.need_q)?;
+            shift_taylor(a, grid[i] - sm, &mut buf.d);
+            &buf.d
+        } else if at == FROM_POINTS {
+            cubic_from_points(at_points, dim, i, grid[i + 1] - grid[i], &mut buf.d);
+            &buf.d
         } else {
             &self.data[at..at + 6 * dim]
         };
@@ -268,16 +302,8 @@ impl Pieces {
         })
     }
 
-    /// The piece of interval i for constraint `c`: none where the path is not a polynomial
-    /// of degree ≤ 5 there, or where it may have degree 4 or 5 and `c` handles cubics only.
-    fn piece_for(&self, grid: &[f64], i: usize, c: &dyn Constraint) -> Option<CubicPiece<'_>> {
-        if !self.has_piece_for(i, c) {
-            return None;
-        }
-        self.piece(grid, i)
-    }
-
-    /// Whether [`Pieces::piece_for`] gives a piece.
+    /// Whether constraint `c` gets interval i's piece: the path is a polynomial of degree ≤ 5
+    /// there, and of degree ≤ 3 unless `c` handles quintics.
     fn has_piece_for(&self, i: usize, c: &dyn Constraint) -> bool {
         self.exact[i] && (!self.quintic || c.handles_quintic())
     }
@@ -286,8 +312,12 @@ impl Pieces {
 /// Joints up to which [`PieceAnchor::eval`] moves the data in a buffer on the stack.
 const EVAL_DIM: usize = 16;
 
-/// Marks an interval's data offset (in [`Pieces`]) as one into the gridpoints' data.
-const FROM_GRID: usize = 1 << (usize::BITS - 1);
+/// Marks an interval's data (in [`Pieces`]) as moved from the anchor of the path piece whose
+/// index the other bits hold.
+const FROM_ANCHOR: usize = 1 << (usize::BITS - 1);
+
+/// Marks an interval's data (in [`Pieces`]) as taken from the values at its gridpoints.
+const FROM_POINTS: usize = 1 << (usize::BITS - 2);
 
 /// The Taylor data σ, σ′, …, σ⁽⁵⁾ (`6·dim` numbers) of one piece of a path that is a
 /// polynomial of degree ≤ 5 between breakpoints, at the piece's midpoint: evaluated once per
@@ -411,17 +441,31 @@ fn copy_values(moved: &[f64], dim: usize, need_q: bool, [q, dq, ddq]: [&mut [f64
     ddq.copy_from_slice(&moved[2 * dim..3 * dim]);
 }
 
-/// The cubic Taylor data (σ, σ′, σ″, σ‴ at s0) of interval i = \[s0, s1\] of a cubic path
-/// into `d`: from the values at the gridpoints `at_points` (σ‴ by differencing σ″) when the
-/// interval touches no breakpoint, else expanded from the midpoint's derivatives (σ zero
-/// unless `need_q`). Returns whether all are finite.
-fn cubic_taylor<P: Path>(
+/// The cubic Taylor data (σ, σ′, σ″, σ‴ at s_i) of interval i (length `h`) of a cubic path
+/// that touches no breakpoint into `d` (blocks 4 and 5 untouched): from the values at the
+/// gridpoints `at_points` (`3·dim` numbers each), σ‴ by differencing σ″.
+fn cubic_from_points(at_points: &[f64], dim: usize, i: usize, h: f64, d: &mut [f64]) {
+    let (d0, rest) = d.split_at_mut(dim);
+    let (d1, rest) = rest.split_at_mut(dim);
+    let (d2, rest) = rest.split_at_mut(dim);
+    let d3 = &mut rest[..dim];
+    let here = &at_points[3 * dim * i..3 * dim * (i + 1)];
+    let next_ddq = &at_points[3 * dim * (i + 1) + 2 * dim..3 * dim * (i + 2)];
+    d0.copy_from_slice(&here[..dim]);
+    d1.copy_from_slice(&here[dim..2 * dim]);
+    d2.copy_from_slice(&here[2 * dim..]);
+    for j in 0..dim {
+        d3[j] = (next_ddq[j] - d2[j]) / h;
+    }
+}
+
+/// The cubic Taylor data (σ, σ′, σ″, σ‴ at s0) of interval \[s0, s1\] of a cubic path at a
+/// breakpoint into `d`: expanded from the midpoint's derivatives (σ zero unless `need_q`).
+/// Returns whether all are finite.
+fn cubic_taylor_at_break<P: Path>(
     path: &P,
     (s0, s1): (f64, f64),
-    at_break: bool,
     need_q: bool,
-    at_points: &[f64],
-    i: usize,
     d: &mut [f64],
 ) -> bool {
     let dim = path.dim();
@@ -429,18 +473,6 @@ fn cubic_taylor<P: Path>(
     let (d1, rest) = rest.split_at_mut(dim);
     let (d2, rest) = rest.split_at_mut(dim);
     let d3 = &mut rest[..dim];
-    if !at_break {
-        let here = &at_points[3 * dim * i..3 * dim * (i + 1)];
-        let next_ddq = &at_points[3 * dim * (i + 1) + 2 * dim..3 * dim * (i + 2)];
-        d0.copy_from_slice(&here[..dim]);
-        d1.copy_from_slice(&here[dim..2 * dim]);
-        d2.copy_from_slice(&here[2 * dim..]);
-        let h = s1 - s0;
-        for j in 0..dim {
-            d3[j] = (next_ddq[j] - d2[j]) / h;
-        }
-        return true;
-    }
     let sm = 0.5 * (s0 + s1);
     if need_q {
         path.eval(sm, 0, d0);
@@ -595,7 +627,8 @@ impl Workspace {
         let n = grid.len() - 1;
         let need_q = cons.iter().any(|c| c.uses_position());
         let mut pieces = std::mem::take(&mut self.pieces);
-        pieces.build(path, grid, need_q, at_points);
+        pieces.build(path, grid, need_q);
+        let mut buf = std::mem::take(&mut pieces.buf);
         self.mid.clear();
         self.mid_off.clear();
         self.mid_add.clear();
@@ -606,7 +639,7 @@ impl Workspace {
         let own = std::mem::replace(&mut self.cr.rows, std::mem::take(&mut self.mid));
         let cr = &mut self.cr;
         for i in 0..n {
-            let Some(piece) = pieces.piece(grid, i) else {
+            let Some(piece) = pieces.piece(path, grid, i, at_points, &mut buf) else {
                 self.mid_off.push(cr.rows.len());
                 continue;
             };
@@ -626,6 +659,7 @@ impl Workspace {
         }
         self.mid = std::mem::replace(&mut cr.rows, own);
         self.cr.clear();
+        pieces.buf = buf;
         self.pieces = pieces;
     }
 
@@ -644,22 +678,19 @@ impl Workspace {
         let n = grid.len() - 1;
         let need_q = cons.iter().any(|c| c.uses_position());
         if !self.pieces.built {
-            let mut pieces = std::mem::take(&mut self.pieces);
-            let at_points = std::mem::take(&mut self.at_points);
-            pieces.build(path, grid, need_q, &at_points);
-            self.at_points = at_points;
-            self.pieces = pieces;
+            self.pieces.build(path, grid, need_q);
         }
         let mut split: Vec<usize> = Vec::new();
         let mut tightened: Option<(usize, usize)> = None;
         self.clean.start_round();
-        let pieces = std::mem::take(&mut self.pieces);
+        let mut pieces = std::mem::take(&mut self.pieces);
+        let mut buf = std::mem::take(&mut pieces.buf);
         for i in 0..n {
             let step = [grid[i], grid[i + 1], x[i], x[i + 1]];
             if self.clean.unchanged(step) {
                 continue;
             }
-            match self.check_interval(path, cons, &pieces, grid, x, i, disc) {
+            match self.check_interval(path, cons, (&pieces, &mut buf), grid, x, i, disc) {
                 Interval::Split(parts) => {
                     if split.is_empty() {
                         split.resize(n, 1);
@@ -672,6 +703,7 @@ impl Workspace {
                 Interval::Clean => self.clean.mark(step),
             }
         }
+        pieces.buf = buf;
         self.pieces = pieces;
         self.merge_added(n);
         if !split.is_empty() {
@@ -693,7 +725,7 @@ impl Workspace {
         &mut self,
         path: &P,
         cons: &[Box<dyn Constraint + '_>],
-        pieces: &Pieces,
+        (pieces, buf): (&Pieces, &mut PieceBuf),
         grid: &[f64],
         x: &[f64],
         i: usize,
@@ -705,12 +737,23 @@ impl Workspace {
         let mut failed = false;
         self.sample.clear();
         let proved_here = disc == Discretization::Interpolation && !pieces.at_break[i];
+        let proved = |k: usize, c: &dyn Constraint| {
+            proved_here && pieces.has_piece_for(i, c) && self.proved.get(k) == Some(&true)
+        };
+        // The interval's Taylor data, computed once for the constraints that read them.
+        let wanted = (cons.iter().enumerate())
+            .any(|(k, c)| pieces.has_piece_for(i, &**c) && !proved(k, &**c));
+        let piece = if wanted {
+            pieces.piece(path, grid, i, &self.at_points, buf)
+        } else {
+            None
+        };
         for (k, c) in cons.iter().enumerate() {
             if proved_here && pieces.has_piece_for(i, &**c) && self.proved.get(k) == Some(&true) {
                 self.sample.push(false);
                 continue;
             }
-            let piece = pieces.piece_for(grid, i, &**c);
+            let piece = piece.filter(|_| pieces.has_piece_for(i, &**c));
             match piece.and_then(|p| c.excess_on_cubic(&p, u, x[i])) {
                 Some((e, s)) => {
                     self.sample.push(false);
