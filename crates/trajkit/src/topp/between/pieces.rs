@@ -640,6 +640,26 @@ mod tests {
         }
     }
 
+    /// A random piecewise polynomial of `(dim, pieces, degree)`, piece lengths in `lengths`,
+    /// coefficients within ±`c`; and its breakpoints.
+    fn random_path(
+        rng: &mut SplitMix64,
+        (dim, pieces, degree): (usize, usize, usize),
+        lengths: (f64, f64),
+        c: f64,
+    ) -> (Vec<f64>, PiecewisePolynomial) {
+        let mut breaks = vec![0.0];
+        for _ in 0..pieces {
+            let last = breaks[breaks.len() - 1];
+            breaks.push(last + rng.uniform(lengths.0, lengths.1));
+        }
+        let coeffs: Vec<f64> = (0..pieces * dim * (degree + 1))
+            .map(|_| rng.uniform(-c, c))
+            .collect();
+        let path = PiecewisePolynomial::new(breaks.clone(), dim, degree, coeffs).unwrap();
+        (breaks, path)
+    }
+
     /// The intervals' Taylor data computed when asked for give the same solve, bit for bit, as
     /// the data kept at every gridpoint, on quintic paths (moved from the pieces' anchors),
     /// with both discretizations.
@@ -648,16 +668,8 @@ mod tests {
         use crate::topp::{Discretization, Gridpoints, Toppra, ToppraOptions};
         use crate::Limits;
         let mut rng = SplitMix64::new(29);
-        let (dim, pieces, degree) = (3, 5, 5);
-        let mut breaks = vec![0.0];
-        for _ in 0..pieces {
-            let last = breaks[breaks.len() - 1];
-            breaks.push(last + rng.uniform(0.3, 1.5));
-        }
-        let coeffs: Vec<f64> = (0..pieces * dim * (degree + 1))
-            .map(|_| rng.uniform(-1.0, 1.0))
-            .collect();
-        let path = PiecewisePolynomial::new(breaks, dim, degree, coeffs).unwrap();
+        let dim = 3;
+        let (_, path) = random_path(&mut rng, (dim, 5, 5), (0.3, 1.5), 1.0);
         let limits = Limits::uniform(dim, 1.0, 2.0, f64::INFINITY).unwrap();
         for discretization in [Discretization::Interpolation, Discretization::Collocation] {
             for gridpoints in [
@@ -693,16 +705,7 @@ mod tests {
         let mut rng = SplitMix64::new(11);
         for degree in 1..=5usize {
             let dim = 3;
-            let pieces = 4;
-            let mut breaks = vec![0.0];
-            for _ in 0..pieces {
-                let last = breaks[breaks.len() - 1];
-                breaks.push(last + rng.uniform(0.2, 2.0));
-            }
-            let coeffs: Vec<f64> = (0..pieces * dim * (degree + 1))
-                .map(|_| rng.uniform(-2.0, 2.0))
-                .collect();
-            let path = PiecewisePolynomial::new(breaks.clone(), dim, degree, coeffs).unwrap();
+            let (breaks, path) = random_path(&mut rng, (dim, 4, degree), (0.2, 2.0), 2.0);
             let mut anchor = PieceAnchor::default();
             anchor.reset(dim);
             let (mut q, mut dq, mut ddq) = (vec![0.0; dim], vec![0.0; dim], vec![0.0; dim]);
