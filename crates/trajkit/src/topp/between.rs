@@ -24,10 +24,16 @@
 //!
 //! Intervals found clean and unchanged since (same ends, x within 1e-9 relative) are not
 //! checked again.
+//!
+//! Files: this one holds the check and the rows between gridpoints; `between/pieces.rs` the
+//! path's Taylor data on the intervals (computed when asked for on long grids).
+
+mod pieces;
 
 use super::constraint::{Constraint, CubicPiece, PathPoint};
 use super::toppra::{Discretization, Workspace, MAX_REFINED_INTERVALS, REFINE_POINTS, REFINE_TOL};
 use crate::Path;
+pub(super) use pieces::{PieceAnchor, PieceBuf, Pieces};
 
 /// Relative excess accepted where the check is exact (joint velocity and acceleration on
 /// piecewise-cubic paths): the limits then hold everywhere within it, up to rounding.
@@ -58,518 +64,6 @@ enum Interval {
     Split(usize),
 }
 
-/// The path's Taylor data on every interval of the grid: σ, σ′, …, σ⁽⁵⁾ at the interval's
-/// start, from inside (`6·dim` numbers per interval; σ⁗ and σ⁽⁵⁾ zero on paths of degree ≤ 3),
-/// for intervals where the exact check applies. On quintic paths the path is evaluated once per
-/// path piece, at the piece's midpoint (so that no convention about which piece a breakpoint
-/// belongs to matters), and the expansion moved to each interval's start ([`PieceAnchor`]):
-/// once per gridpoint, by the pass over the gridpoints, which keeps the six derivatives for the
-/// interval starting there (the same numbers the interval's own shift would give; only
-/// intervals starting at a breakpoint are shifted here). On
-/// paths of degree ≤ 3, between ordinary gridpoints one cubic covers both ends: the gridpoint
-/// values give σ, σ′, σ″ and (σ″(s_{i+1}) − σ″(s_i))/Δ gives σ‴; at a breakpoint the path is
-/// evaluated at the interval's midpoint and the expansion moved to the start.
-#[derive(Default)]
-pub(super) struct Pieces {
-    /// Per interval: whether the path is a polynomial of degree ≤ 5 on it.
-    exact: Vec<bool>,
-    /// Whether the path's pieces may have degree 4 or 5 (then only constraints that
-    /// [`Constraint::handles_quintic`] get them).
-    pub(super) quintic: bool,
-    /// Per interval: whether an end is a breakpoint of the path (where σ″ may jump, so the
-    /// gridpoint's rows may belong to the neighbouring piece).
-    at_break: Vec<bool>,
-    /// Taylor data of the intervals not taken from `at_grid`, `6·dim` numbers each.
-    data: Vec<f64>,
-    /// Per interval: where its Taylor data start, in `data`, or in `at_grid` when marked
-    /// with [`FROM_GRID`].
-    loc: Vec<usize>,
-    /// Taylor data σ, σ′, …, σ⁽⁵⁾ at every gridpoint (`6·dim` numbers each), moved from the
-    /// anchor of the path piece that holds the gridpoint inside it, written by the pass over the
-    /// gridpoints on paths of degree 4 or 5 (see [`PieceAnchor::eval_full`]); zeros elsewhere.
-    /// The interval starting at such a gridpoint takes its data from here: the same numbers
-    /// the interval's own expansion would give.
-    at_grid: Vec<f64>,
-    /// Per gridpoint: the index `b` of the piece (ending at `breaks[b]`) whose anchor gave
-    /// `at_grid`, `usize::MAX` where none did.
-    grid_piece: Vec<usize>,
-    /// Whether the pass over the gridpoints keeps `at_grid`, and whether it evaluates σ.
-    keep: bool,
-    need_q: bool,
-    /// Scratch: Taylor data at the midpoint of one path piece.
-    anchor: PieceAnchor,
-    dim: usize,
-    built: bool,
-}
-
-impl Pieces {
-    /// Bytes held (roughly).
-    pub(super) fn bytes(&self) -> usize {
-        8 * (self.data.capacity() + self.at_grid.capacity())
-            + std::mem::size_of::<usize>() * (self.loc.capacity() + self.grid_piece.capacity())
-            + self.exact.capacity()
-            + self.at_break.capacity()
-    }
-
-    /// Starts the pass over the gridpoints of a new grid of `points` gridpoints
-    /// ([`Pieces::eval_gridpoint`]); `anchored`: whether the pass moves Taylor data from
-    /// path pieces at all. Returns whether it keeps the full data (paths of degree 4 or 5):
-    /// the intervals then need no values at the gridpoints.
-    pub(super) fn start_gridpoints<P: Path>(
-        &mut self,
-        path: &P,
-        need_q: bool,
-        anchored: bool,
-        points: usize,
-    ) -> bool {
-        self.keep = anchored && path.piecewise_degree().is_some_and(|d| d > 3);
-        self.need_q = need_q;
-        self.grid_piece.clear();
-        self.at_grid.clear();
-        if self.keep {
-            self.grid_piece.reserve(points);
-            self.at_grid.reserve(6 * path.dim() * points);
-        }
-        self.keep
-    }
-
-    /// σ (when needed), σ′ and σ″ at the next gridpoint `s`, from the Taylor data of the
-    /// path piece ending at `breaks[b]` when `inside` it (`at = (inside, b)`). On paths of
-    /// degree 4 or 5 the full data are kept for the interval starting there, and returned
-    /// (`6·dim` numbers, σ in them only when needed) when all finite; otherwise σ, σ′, σ″ are
-    /// written into `out`. Returns whether the values come from the piece, and the full data.
-    pub(super) fn eval_gridpoint<P: Path>(
-        &mut self,
-        anchor: &mut PieceAnchor,
-        path: &P,
-        breaks: &[f64],
-        (inside, b): (bool, usize),
-        s: f64,
-        out: [&mut [f64]; 3],
-    ) -> (bool, Option<&[f64]>) {
-        if !self.keep {
-            let ok = inside && anchor.eval(path, breaks, b, s, self.need_q, out);
-            return (ok, None);
-        }
-        let at = self.at_grid.len();
-        self.at_grid.resize(at + 6 * path.dim(), 0.0);
-        if !inside {
-            self.grid_piece.push(usize::MAX);
-            return (false, None);
-        }
-        let full = &mut self.at_grid[at..];
-        let ok = anchor.eval_full(path, breaks, b, s, self.need_q, out, full);
-        // Data that are not all finite are left to the intervals' own expansion (which finds
-        // them so and leaves the interval to the sampled check).
-        let finite = ok == Some(true);
-        self.grid_piece.push(if finite { b } else { usize::MAX });
-        (ok.is_some(), finite.then_some(&self.at_grid[at..]))
-    }
-
-    fn build<P: Path>(&mut self, path: &P, grid: &[f64], need_q: bool, at_points: &[f64]) {
-        let n = grid.len() - 1;
-        let dim = path.dim();
-        self.dim = dim;
-        self.exact.clear();
-        self.at_break.clear();
-        self.loc.clear();
-        self.built = true;
-        let degree = path.piecewise_degree();
-        if degree.is_none_or(|d| d > 5) {
-            self.exact.resize(n, false);
-            self.at_break.resize(n, true);
-            return;
-        }
-        self.quintic = degree.is_some_and(|d| d > 3);
-        let breaks = path.breakpoints();
-        // Every entry of an exact interval is written below (σ only when needed, σ⁗ and σ⁽⁵⁾
-        // only on quintic paths: zeros then).
-        self.data.clear();
-        let from_grid = self.quintic && self.grid_piece.len() == n + 1;
-        // Quintic paths: the Taylor data of the path piece that holds the current interval, at
-        // the piece's midpoint (evaluated once per piece, moved to each interval's start).
-        let mut anchor = std::mem::take(&mut self.anchor);
-        anchor.reset(dim);
-        let mut b = 0;
-        for i in 0..n {
-            let (s0, s1) = (grid[i], grid[i + 1]);
-            while b < breaks.len() && breaks[b] < s0 {
-                b += 1;
-            }
-            let starts_at_break = b < breaks.len() && breaks[b] == s0;
-            if starts_at_break {
-                b += 1;
-            }
-            let inside = b < breaks.len() && breaks[b] < s1;
-            let ends_at_break = b < breaks.len() && breaks[b] == s1;
-            self.exact.push(!inside);
-            self.at_break.push(starts_at_break || ends_at_break);
-            if inside {
-                self.loc.push(0);
-                continue;
-            }
-            if from_grid && self.grid_piece[i] == b {
-                // The gridpoint's data are this piece's anchor moved to s0: what the branch
-                // below computes.
-                // (The pass over the gridpoints marks only finite data.)
-                self.loc.push((i * 6 * dim) | FROM_GRID);
-                continue;
-            }
-            let off = self.data.len();
-            self.loc.push(off);
-            self.data.resize(off + 6 * dim, 0.0);
-            let d = &mut self.data[off..];
-            if self.quintic {
-                let ok = if b >= 1 && b < breaks.len() {
-                    anchor
-                        .piece(path, &breaks, b, need_q)
-                        .is_some_and(|(sm, a)| {
-                            shift_taylor(a, s0 - sm, d);
-                            d.iter().all(|v| v.is_finite())
-                        })
-                } else {
-                    quintic_taylor(path, s0, s1, need_q, d)
-                };
-                if !ok {
-                    self.exact[i] = false;
-                }
-                continue;
-            }
-            let at_break = starts_at_break || ends_at_break;
-            if !cubic_taylor(path, (s0, s1), at_break, need_q, at_points, i, d) {
-                self.exact[i] = false;
-            }
-        }
-        self.anchor = anchor;
-    }
-
-    #[inline]
-    fn piece(&self, grid: &[f64], i: usize) -> Option<CubicPiece<'_>> {
-        if !self.exact[i] {
-            return None;
-        }
-        let dim = self.dim;
-        let at = self.loc[i];
-        let d = if at & FROM_GRID != 0 {
-            let off = at & !FROM_GRID;
-            &self.at_grid[off..off + 6 * dim]
-        } else {
-            &self.data[at..at + 6 * dim]
-        };
-        Some(CubicPiece {
-            s0: grid[i],
-            s1: grid[i + 1],
-            d0: &d[..dim],
-            d1: &d[dim..2 * dim],
-            d2: &d[2 * dim..3 * dim],
-            d3: &d[3 * dim..4 * dim],
-            d4: &d[4 * dim..5 * dim],
-            d5: &d[5 * dim..],
-        })
-    }
-
-    /// The piece of interval i for constraint `c`: none where the path is not a polynomial
-    /// of degree ≤ 5 there, or where it may have degree 4 or 5 and `c` handles cubics only.
-    fn piece_for(&self, grid: &[f64], i: usize, c: &dyn Constraint) -> Option<CubicPiece<'_>> {
-        if !self.has_piece_for(i, c) {
-            return None;
-        }
-        self.piece(grid, i)
-    }
-
-    /// Whether [`Pieces::piece_for`] gives a piece.
-    fn has_piece_for(&self, i: usize, c: &dyn Constraint) -> bool {
-        self.exact[i] && (!self.quintic || c.handles_quintic())
-    }
-}
-
-/// Joints up to which [`PieceAnchor::eval`] moves the data in a buffer on the stack.
-const EVAL_DIM: usize = 16;
-
-/// Marks an interval's data offset (in [`Pieces`]) as one into the gridpoints' data.
-const FROM_GRID: usize = 1 << (usize::BITS - 1);
-
-/// The Taylor data σ, σ′, …, σ⁽⁵⁾ (`6·dim` numbers) of one piece of a path that is a
-/// polynomial of degree ≤ 5 between breakpoints, at the piece's midpoint: evaluated once per
-/// piece and moved by [`shift_taylor`] to every point of the piece that needs it, instead of
-/// evaluating the path again there.
-#[derive(Default)]
-pub(super) struct PieceAnchor {
-    data: Vec<f64>,
-    /// The piece's index (its end is `breaks[b]`), its midpoint, and whether the data are
-    /// finite.
-    of: Option<(usize, f64, bool)>,
-}
-
-impl PieceAnchor {
-    /// Forgets the piece; sized for `dim` joints.
-    pub(super) fn reset(&mut self, dim: usize) {
-        self.data.clear();
-        self.data.resize(6 * dim, 0.0);
-        self.of = None;
-    }
-
-    /// The midpoint and Taylor data there of the piece `[breaks[b − 1], breaks[b]]` (`b ≥ 1`),
-    /// or `None` when they are not finite.
-    pub(super) fn piece<P: Path>(
-        &mut self,
-        path: &P,
-        breaks: &[f64],
-        b: usize,
-        need_q: bool,
-    ) -> Option<(f64, &[f64])> {
-        let (sm, ok) = match self.of {
-            Some((key, sm, ok)) if key == b => (sm, ok),
-            _ => {
-                let sm = 0.5 * (breaks[b - 1] + breaks[b]);
-                let ok = quintic_taylor(path, sm, sm, need_q, &mut self.data);
-                self.of = Some((b, sm, ok));
-                (sm, ok)
-            }
-        };
-        ok.then_some((sm, &self.data[..]))
-    }
-
-    /// σ (when `need_q`), σ′ and σ″ at `s`, strictly inside the piece ending at `breaks[b]`,
-    /// from the piece's Taylor data. Returns false (nothing written) when they are not finite.
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn eval<P: Path>(
-        &mut self,
-        path: &P,
-        breaks: &[f64],
-        b: usize,
-        s: f64,
-        need_q: bool,
-        out: [&mut [f64]; 3],
-    ) -> bool {
-        let Some((sm, a)) = self.piece(path, breaks, b, need_q) else {
-            return false;
-        };
-        let dim = a.len() / 6;
-        let t = s - sm;
-        let [q, dq, ddq] = out;
-        if dim > EVAL_DIM {
-            for j in 0..dim {
-                let m = shift_one(std::array::from_fn(|k| a[k * dim + j]), t);
-                if need_q {
-                    q[j] = m[0];
-                }
-                dq[j] = m[1];
-                ddq[j] = m[2];
-            }
-            return true;
-        }
-        let mut moved = [0.0; 3 * EVAL_DIM];
-        let moved = &mut moved[..3 * dim];
-        shift_orders::<3>(a, t, moved);
-        copy_values(moved, dim, need_q, [q, dq, ddq]);
-        true
-    }
-
-    /// σ, σ′, …, σ⁽⁵⁾ at `s` into `full` (`6·dim` numbers, block k the k-th derivative; σ
-    /// moved from the anchor's, zeros there unless `need_q`): the Taylor data of an interval
-    /// starting at `s`. Returns `None` (nothing written) when the piece's data are not finite,
-    /// else whether all of `full` is finite; when not, σ (if `need_q`), σ′ and σ″ are also
-    /// written into `out`, as [`PieceAnchor::eval`] would.
-    #[allow(clippy::too_many_arguments)]
-    pub(super) fn eval_full<P: Path>(
-        &mut self,
-        path: &P,
-        breaks: &[f64],
-        b: usize,
-        s: f64,
-        need_q: bool,
-        out: [&mut [f64]; 3],
-        full: &mut [f64],
-    ) -> Option<bool> {
-        let (sm, a) = self.piece(path, breaks, b, need_q)?;
-        let dim = a.len() / 6;
-        let full = &mut full[..6 * dim];
-        shift_taylor(a, s - sm, full);
-        // x·0 is 0 for finite x and NaN otherwise: eight running sums, no branch.
-        let mut probe = [0.0; 8];
-        for chunk in full.chunks(8) {
-            for (p, &v) in probe.iter_mut().zip(chunk) {
-                *p += v * 0.0;
-            }
-        }
-        if probe.iter().all(|&p| p == 0.0) {
-            return Some(true);
-        }
-        copy_values(full, dim, need_q, out);
-        Some(false)
-    }
-}
-
-/// Copies σ (when `need_q`), σ′ and σ″ of `dim` joints from Taylor data in blocks (`moved`,
-/// block k the k-th derivative) into `out`.
-fn copy_values(moved: &[f64], dim: usize, need_q: bool, [q, dq, ddq]: [&mut [f64]; 3]) {
-    if need_q {
-        q.copy_from_slice(&moved[..dim]);
-    }
-    dq.copy_from_slice(&moved[dim..2 * dim]);
-    ddq.copy_from_slice(&moved[2 * dim..3 * dim]);
-}
-
-/// The cubic Taylor data (σ, σ′, σ″, σ‴ at s0) of interval i = \[s0, s1\] of a cubic path
-/// into `d`: from the values at the gridpoints `at_points` (σ‴ by differencing σ″) when the
-/// interval touches no breakpoint, else expanded from the midpoint's derivatives (σ zero
-/// unless `need_q`). Returns whether all are finite.
-fn cubic_taylor<P: Path>(
-    path: &P,
-    (s0, s1): (f64, f64),
-    at_break: bool,
-    need_q: bool,
-    at_points: &[f64],
-    i: usize,
-    d: &mut [f64],
-) -> bool {
-    let dim = path.dim();
-    let (d0, rest) = d.split_at_mut(dim);
-    let (d1, rest) = rest.split_at_mut(dim);
-    let (d2, rest) = rest.split_at_mut(dim);
-    let d3 = &mut rest[..dim];
-    if !at_break {
-        let here = &at_points[3 * dim * i..3 * dim * (i + 1)];
-        let next_ddq = &at_points[3 * dim * (i + 1) + 2 * dim..3 * dim * (i + 2)];
-        d0.copy_from_slice(&here[..dim]);
-        d1.copy_from_slice(&here[dim..2 * dim]);
-        d2.copy_from_slice(&here[2 * dim..]);
-        let h = s1 - s0;
-        for j in 0..dim {
-            d3[j] = (next_ddq[j] - d2[j]) / h;
-        }
-        return true;
-    }
-    let sm = 0.5 * (s0 + s1);
-    if need_q {
-        path.eval(sm, 0, d0);
-    } else {
-        d0.iter_mut().for_each(|v| *v = 0.0);
-    }
-    path.eval_derivatives(sm, d1, d2);
-    path.eval(sm, 3, d3);
-    // From the midpoint to s0: t = −h/2.
-    let t = s0 - sm;
-    for j in 0..dim {
-        let (a, b, c) = (d1[j], d2[j], d3[j]);
-        if need_q {
-            d0[j] += t * (a + t * (0.5 * b + t * c / 6.0));
-        }
-        d1[j] = a + t * (b + 0.5 * t * c);
-        d2[j] = b + t * c;
-    }
-    d.iter().all(|v| v.is_finite())
-}
-
-/// Taylor data σ, σ′, …, σ⁽⁵⁾ of a polynomial of degree ≤ 5 (`src`, `6·dim` numbers, block k
-/// holding the k-th derivative of every joint) moved by `t` along the parameter into `dst`:
-/// each derivative by its Taylor series, exact up to rounding.
-fn shift_taylor(src: &[f64], t: f64, dst: &mut [f64]) {
-    shift_orders::<6>(src, t, dst);
-}
-
-/// Orders `0..M` of the Taylor data `src` (as in [`shift_taylor`]) moved by `t` into `dst`
-/// (block m the m-th derivative of every joint): the same operations as [`shift_one`], on
-/// four or two joints at a time (fixed-size lanes, which the compiler vectorizes), the last
-/// odd joint alone.
-#[inline]
-fn shift_orders<const M: usize>(src: &[f64], t: f64, dst: &mut [f64]) {
-    let dim = src.len() / 6;
-    let mut j0 = 0;
-    while j0 + 4 <= dim {
-        shift_lanes::<M, 4>(src, t, dst, j0);
-        j0 += 4;
-    }
-    if j0 + 2 <= dim {
-        shift_lanes::<M, 2>(src, t, dst, j0);
-        j0 += 2;
-    }
-    if j0 < dim {
-        let m = shift_one(std::array::from_fn(|k| src[k * dim + j0]), t);
-        for (k, mk) in m.into_iter().take(M).enumerate() {
-            dst[k * dim + j0] = mk;
-        }
-    }
-}
-
-/// [`shift_orders`] for the joints `j0..j0 + L`.
-#[inline(always)]
-fn shift_lanes<const M: usize, const L: usize>(src: &[f64], t: f64, dst: &mut [f64], j0: usize) {
-    let dim = src.len() / 6;
-    let v: [[f64; L]; 6] = std::array::from_fn(|k| {
-        let mut lane = [0.0; L];
-        lane.copy_from_slice(&src[k * dim + j0..k * dim + j0 + L]);
-        lane
-    });
-    for m in 0..M {
-        let mut acc = [0.0; L];
-        for k in (m..6).rev() {
-            let f = SHIFT_INV[k - m + 1];
-            for l in 0..L {
-                acc[l] = v[k][l] + acc[l] * t * f;
-            }
-        }
-        dst[m * dim + j0..m * dim + j0 + L].copy_from_slice(&acc);
-    }
-}
-
-/// 1/1 … 1/6: multiplications instead of divisions in the Taylor shifts.
-const SHIFT_INV: [f64; 7] = [0.0, 1.0, 0.5, 1.0 / 3.0, 0.25, 0.2, 1.0 / 6.0];
-
-/// One joint's derivatives `v` (orders 0..5) of a quintic moved by `t`.
-#[inline]
-fn shift_one(v: [f64; 6], t: f64) -> [f64; 6] {
-    std::array::from_fn(|m| {
-        // Σ_{k ≥ m} v_k t^{k−m}/(k−m)!, by Horner from the top.
-        let mut acc = 0.0;
-        for k in (m..6).rev() {
-            acc = v[k] + acc * t * SHIFT_INV[k - m + 1];
-        }
-        acc
-    })
-}
-
-/// The Taylor data σ, σ′, …, σ⁽⁵⁾ at `s0` (into `d`, `6·dim` numbers) of a path that is a
-/// polynomial of degree ≤ 5 on [s0, s1]: evaluated at the midpoint (so that no convention
-/// about which piece a breakpoint belongs to matters) and moved to s0. σ is written only when
-/// `need_q` (zeros otherwise). Returns whether every value is finite.
-fn quintic_taylor<P: Path>(path: &P, s0: f64, s1: f64, need_q: bool, d: &mut [f64]) -> bool {
-    let dim = path.dim();
-    let sm = 0.5 * (s0 + s1);
-    {
-        let (q, rest) = d.split_at_mut(dim);
-        let (d1, rest) = rest.split_at_mut(dim);
-        let (d2, rest) = rest.split_at_mut(dim);
-        if need_q {
-            path.eval(sm, 0, q);
-        }
-        path.eval_derivatives(sm, d1, d2);
-        // Derivatives above the path's degree are zero (not asked of the path).
-        let degree = path.piecewise_degree().unwrap_or(5);
-        for k in 3..6 {
-            let out = &mut rest[(k - 3) * dim..(k - 2) * dim];
-            if k <= degree {
-                path.eval(sm, k, out);
-            } else {
-                out.iter_mut().for_each(|v| *v = 0.0);
-            }
-        }
-    }
-    // From the midpoint to s0: t = −h/2 (exact for a quintic).
-    let t = s0 - sm;
-    for j in 0..dim {
-        let moved = shift_one(std::array::from_fn(|k| d[k * dim + j]), t);
-        for (k, m) in moved.into_iter().enumerate() {
-            d[k * dim + j] = m;
-        }
-    }
-    if !need_q {
-        d[..dim].iter_mut().for_each(|v| *v = 0.0);
-    }
-    d.iter().all(|v| v.is_finite())
-}
-
 impl Workspace {
     /// Forgets the interior rows and Taylor data (a new grid).
     pub(super) fn reset_between(&mut self) {
@@ -595,7 +89,8 @@ impl Workspace {
         let n = grid.len() - 1;
         let need_q = cons.iter().any(|c| c.uses_position());
         let mut pieces = std::mem::take(&mut self.pieces);
-        pieces.build(path, grid, need_q, at_points);
+        pieces.build(path, grid, need_q);
+        let mut buf = std::mem::take(&mut pieces.buf);
         self.mid.clear();
         self.mid_off.clear();
         self.mid_add.clear();
@@ -606,7 +101,7 @@ impl Workspace {
         let own = std::mem::replace(&mut self.cr.rows, std::mem::take(&mut self.mid));
         let cr = &mut self.cr;
         for i in 0..n {
-            let Some(piece) = pieces.piece(grid, i) else {
+            let Some(piece) = pieces.piece(path, grid, i, at_points, &mut buf) else {
                 self.mid_off.push(cr.rows.len());
                 continue;
             };
@@ -626,6 +121,7 @@ impl Workspace {
         }
         self.mid = std::mem::replace(&mut cr.rows, own);
         self.cr.clear();
+        pieces.buf = buf;
         self.pieces = pieces;
     }
 
@@ -644,22 +140,19 @@ impl Workspace {
         let n = grid.len() - 1;
         let need_q = cons.iter().any(|c| c.uses_position());
         if !self.pieces.built {
-            let mut pieces = std::mem::take(&mut self.pieces);
-            let at_points = std::mem::take(&mut self.at_points);
-            pieces.build(path, grid, need_q, &at_points);
-            self.at_points = at_points;
-            self.pieces = pieces;
+            self.pieces.build(path, grid, need_q);
         }
         let mut split: Vec<usize> = Vec::new();
         let mut tightened: Option<(usize, usize)> = None;
         self.clean.start_round();
-        let pieces = std::mem::take(&mut self.pieces);
+        let mut pieces = std::mem::take(&mut self.pieces);
+        let mut buf = std::mem::take(&mut pieces.buf);
         for i in 0..n {
             let step = [grid[i], grid[i + 1], x[i], x[i + 1]];
             if self.clean.unchanged(step) {
                 continue;
             }
-            match self.check_interval(path, cons, &pieces, grid, x, i, disc) {
+            match self.check_interval(path, cons, (&pieces, &mut buf), grid, x, i, disc) {
                 Interval::Split(parts) => {
                     if split.is_empty() {
                         split.resize(n, 1);
@@ -672,6 +165,7 @@ impl Workspace {
                 Interval::Clean => self.clean.mark(step),
             }
         }
+        pieces.buf = buf;
         self.pieces = pieces;
         self.merge_added(n);
         if !split.is_empty() {
@@ -693,7 +187,7 @@ impl Workspace {
         &mut self,
         path: &P,
         cons: &[Box<dyn Constraint + '_>],
-        pieces: &Pieces,
+        (pieces, buf): (&Pieces, &mut PieceBuf),
         grid: &[f64],
         x: &[f64],
         i: usize,
@@ -705,12 +199,23 @@ impl Workspace {
         let mut failed = false;
         self.sample.clear();
         let proved_here = disc == Discretization::Interpolation && !pieces.at_break[i];
+        let proved = |k: usize, c: &dyn Constraint| {
+            proved_here && pieces.has_piece_for(i, c) && self.proved.get(k) == Some(&true)
+        };
+        // The interval's Taylor data, computed once for the constraints that read them.
+        let wanted = (cons.iter().enumerate())
+            .any(|(k, c)| pieces.has_piece_for(i, &**c) && !proved(k, &**c));
+        let piece = if wanted {
+            pieces.piece(path, grid, i, &self.at_points, buf)
+        } else {
+            None
+        };
         for (k, c) in cons.iter().enumerate() {
             if proved_here && pieces.has_piece_for(i, &**c) && self.proved.get(k) == Some(&true) {
                 self.sample.push(false);
                 continue;
             }
-            let piece = pieces.piece_for(grid, i, &**c);
+            let piece = piece.filter(|_| pieces.has_piece_for(i, &**c));
             match piece.and_then(|p| c.excess_on_cubic(&p, u, x[i])) {
                 Some((e, s)) => {
                     self.sample.push(false);
@@ -870,92 +375,5 @@ impl Workspace {
         self.pieces.built = false;
         self.pieces.grid_piece.clear();
         next
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::rng::SplitMix64;
-    use crate::spline::PiecewisePolynomial;
-
-    /// The Taylor shift on lanes of joints gives every joint exactly (bit for bit) what the
-    /// one-joint shift gives, for every joint count (lanes of four, two and one).
-    #[test]
-    fn lane_shift_equals_joint_shift() {
-        let mut rng = SplitMix64::new(3);
-        for dim in 1..=11usize {
-            for _ in 0..50 {
-                let src: Vec<f64> = (0..6 * dim).map(|_| rng.uniform(-3.0, 3.0)).collect();
-                let t = rng.uniform(-0.7, 0.7);
-                let mut moved = vec![0.0; 6 * dim];
-                shift_taylor(&src, t, &mut moved);
-                let mut three = vec![0.0; 3 * dim];
-                shift_orders::<3>(&src, t, &mut three);
-                for j in 0..dim {
-                    let m = shift_one(std::array::from_fn(|k| src[k * dim + j]), t);
-                    for k in 0..6 {
-                        assert_eq!(
-                            moved[k * dim + j].to_bits(),
-                            m[k].to_bits(),
-                            "{dim} {j} {k}"
-                        );
-                        if k < 3 {
-                            assert_eq!(three[k * dim + j].to_bits(), m[k].to_bits());
-                        }
-                    }
-                }
-            }
-        }
-    }
-
-    /// σ, σ′, σ″ from a piece's Taylor data (what the solver uses at gridpoints inside a
-    /// piece) equal the path's own evaluation up to rounding, on random piecewise polynomials
-    /// of degree 1 to 5; and the interval data moved from the piece's midpoint equal the
-    /// expansion at the interval's own midpoint.
-    #[test]
-    fn piece_expansion_matches_path_evaluation() {
-        let mut rng = SplitMix64::new(11);
-        for degree in 1..=5usize {
-            let dim = 3;
-            let pieces = 4;
-            let mut breaks = vec![0.0];
-            for _ in 0..pieces {
-                let last = breaks[breaks.len() - 1];
-                breaks.push(last + rng.uniform(0.2, 2.0));
-            }
-            let coeffs: Vec<f64> = (0..pieces * dim * (degree + 1))
-                .map(|_| rng.uniform(-2.0, 2.0))
-                .collect();
-            let path = PiecewisePolynomial::new(breaks.clone(), dim, degree, coeffs).unwrap();
-            let mut anchor = PieceAnchor::default();
-            anchor.reset(dim);
-            let (mut q, mut dq, mut ddq) = (vec![0.0; dim], vec![0.0; dim], vec![0.0; dim]);
-            let (mut q0, mut dq0, mut ddq0) = (vec![0.0; dim], vec![0.0; dim], vec![0.0; dim]);
-            for b in 1..breaks.len() {
-                for k in 1..10 {
-                    let s = breaks[b - 1] + (breaks[b] - breaks[b - 1]) * k as f64 / 10.0;
-                    let out = [&mut q[..], &mut dq[..], &mut ddq[..]];
-                    assert!(anchor.eval(&path, &breaks, b, s, true, out));
-                    path.eval(s, 0, &mut q0);
-                    path.eval_derivatives(s, &mut dq0, &mut ddq0);
-                    for j in 0..dim {
-                        for (a, e) in [(q[j], q0[j]), (dq[j], dq0[j]), (ddq[j], ddq0[j])] {
-                            assert!((a - e).abs() <= 1e-12 * (1.0 + e.abs()), "{a} vs {e}");
-                        }
-                    }
-                    // Interval [s, s + h]: moved from the piece's midpoint vs from its own.
-                    let h = 0.05 * (breaks[b] - breaks[b - 1]);
-                    let mut own = vec![0.0; 6 * dim];
-                    assert!(quintic_taylor(&path, s, s + h, true, &mut own));
-                    let (sm, a) = anchor.piece(&path, &breaks, b, true).unwrap();
-                    let mut moved = vec![0.0; 6 * dim];
-                    shift_taylor(a, s - sm, &mut moved);
-                    for (m, o) in moved.iter().zip(&own) {
-                        assert!((m - o).abs() <= 1e-10 * (1.0 + o.abs()), "{m} vs {o}");
-                    }
-                }
-            }
-        }
     }
 }

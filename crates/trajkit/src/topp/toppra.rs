@@ -6,8 +6,9 @@
 //! 1. evaluates the path and all constraints at every gridpoint (on paths that are
 //!    polynomials of degree ≤ 5 between breakpoints, the path once per piece: σ, σ′, σ″ at the
 //!    gridpoints inside a piece come from its Taylor expansion at the piece's midpoint, exact
-//!    up to rounding; on pieces of degree 4 or 5 the six derivatives moved to a gridpoint are
-//!    kept for the interval starting there, so each gridpoint costs one shift);
+//!    up to rounding; the Taylor data of the intervals are not stored but moved again from
+//!    the piece's midpoint, or taken from the gridpoint values, when the between-gridpoint
+//!    rows and checks ask for them: see `topp::between`);
 //! 2. **backward pass**: from the end set K_N = {ṡ_end²}, computes the controllable sets
 //!    K_i = [min, max] of the x from which some admissible u reaches K_{i+1} — two exact
 //!    two-variable linear programs per stage (`topp/lp.rs`);
@@ -495,13 +496,15 @@ impl Workspace {
         let dim = path.dim();
         self.q.iter_mut().for_each(|v| *v = 0.0);
         self.at_points.clear();
-        self.at_points.reserve(3 * dim * grid.len());
         let breaks = anchor_breaks(path);
         let mut anchor = std::mem::take(&mut self.anchor);
         anchor.reset(dim);
-        // Paths of degree 4 or 5: the full Taylor data at the gridpoints serve the intervals.
+        // Paths of degree 4 or 5: the intervals' Taylor data come from the pieces' anchors.
         let pieces = &mut self.pieces;
         let keep = pieces.start_gridpoints(path, need_q, !breaks.is_empty(), grid.len());
+        if !keep {
+            self.at_points.reserve(3 * dim * grid.len());
+        }
         let mut b = 0;
         for &s in grid {
             while b < breaks.len() && breaks[b] <= s {
