@@ -57,13 +57,14 @@
 //! `topp/` mirrors the algorithm. `constraint.rs` turns each constraint at a path point into
 //! half-planes `α·s̈ + β·ṡ² ≤ γ` and bounds on ṡ² (joint velocity, directional acceleration,
 //! torque through a user `InverseDynamics`, end-effector speed through a user `Jacobian`).
-//! `grid.rs` chooses gridpoints (always with the path's breakpoints; the default `Auto` doubles
-//! equal intervals per path piece until the duration settles within 1e-4); `lp.rs` is an exact
+//! `grid.rs` chooses gridpoints (always with the path's breakpoints; the default `Auto` grades
+//! the grid, refining where the duration is sensitive until its error estimate is within 1e-4;
+//! `toppra/auto.rs` runs the rounds); `lp.rs` is an exact
 //! two-variable Seidel LP; `toppra.rs` runs the backward (controllable sets) and forward passes,
 //! returning a `PhaseProfile` (`parametrized.rs`); its `stage.rs` reads a stage's half-planes
 //! straight from the gridpoint rows and takes the greedy forward step (shared with `ni/`), its
-//! `explain.rs` names the constraints in an infeasibility error. `between.rs` makes the limits
-//! hold between gridpoints: on paths that are polynomials of degree ≤ 5 between breakpoints
+//! `explain.rs` names the constraints in an infeasibility error. `between.rs` (with the path's Taylor data
+//! per interval in `between/pieces.rs`) makes the limits hold between gridpoints: on paths that are polynomials of degree ≤ 5 between breakpoints
 //! (`Path::piecewise_degree`) each stage gets the interior Bernstein coefficients of joint
 //! velocity and acceleration along its interval as extra rows (`Constraint::hold_on_cubic`), so
 //! one solve holds them everywhere; an exact check (`Constraint::excess_on_cubic`, closed-form
