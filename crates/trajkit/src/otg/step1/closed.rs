@@ -563,20 +563,9 @@ impl Closed<'_> {
             s.add((af - x) / j, j);
             s
         };
-        for &x in &roots[..n] {
-            // A root just past a bound of α₂ (the window's tolerance) on the bound, where its
-            // ramp's length and the velocity equation agree.
-            let w = (amin, amax.min(af));
-            let Some(x) = clamp_in(x, w.0, w.1) else {
-                continue;
-            };
-            let x = self.polish(x, w, |x| seq(x).displacement(q.v0, a0) - self.d);
-            if !self.okd(t1_at(x)) {
-                continue;
-            }
-            let s = seq(x);
-            self.emit(&s, col);
-        }
+        // A root just past a bound of α₂ (the window's tolerance) on the bound, where its
+        // ramp's length and the velocity equation agree.
+        self.emit_plateau_roots(&roots[..n], (amin, amax.min(af)), seq, t1_at, col);
     }
 
     /// acc1: s = α₁, plateau τ₂ at a_min. For α₁ > 0 the peak is v₀ + (2α₁² − a₀²)/(2j).
@@ -608,18 +597,31 @@ impl Closed<'_> {
             s.add((af - amin) / j, j);
             s
         };
-        for &x in &roots[..n] {
-            // A root just past a bound of α₁ on the bound (as in `acc0`).
-            let w = (a0.min(amax), amax);
+        // A root just past a bound of α₁ on the bound (as in `acc0`).
+        self.emit_plateau_roots(&roots[..n], (a0.min(amax), amax), seq, t2_of, col);
+    }
+
+    /// Offers the plateau families' (`acc0`, `acc1`) profiles `seq(x)` at the roots `x`:
+    /// each put on the window `w` of its level when just past it, polished by Newton steps on
+    /// the integrated residual ([`Closed::polish`]), and kept when the plateau's duration
+    /// `plateau(x)` is valid.
+    fn emit_plateau_roots(
+        &self,
+        roots: &[f64],
+        w: (f64, f64),
+        seq: impl Fn(f64) -> Seq,
+        plateau: impl Fn(f64) -> f64,
+        col: &mut Collector<'_>,
+    ) {
+        let (v0, a0) = (self.q.v0, self.q.a0);
+        for &x in roots {
             let Some(x) = clamp_in(x, w.0, w.1) else {
                 continue;
             };
-            let x = self.polish(x, w, |x| seq(x).displacement(q.v0, a0) - self.d);
-            if !self.okd(t2_of(x)) {
-                continue;
+            let x = self.polish(x, w, |x| seq(x).displacement(v0, a0) - self.d);
+            if self.okd(plateau(x)) {
+                self.emit(&seq(x), col);
             }
-            let s = seq(x);
-            self.emit(&s, col);
         }
     }
 
