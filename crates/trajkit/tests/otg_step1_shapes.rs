@@ -34,7 +34,7 @@
 //! `longer_by_ruckig_error`, apart from `longer` (`tools/otg_sweep.py`).
 
 mod otg_common;
-use otg_common::{integrate_phases, level_phases, uni};
+use otg_common::{forward_input, forward_profile, integrate_phases, uni};
 use trajkit::otg::Otg;
 use trajkit::rng::SplitMix64;
 
@@ -123,18 +123,13 @@ fn sweep(seed: u64, count: usize) -> (Vec<(usize, String)>, usize) {
     let mut r = SplitMix64::new(seed);
     let (mut missed, mut tried) = (Vec::new(), 0);
     for case in 0..count {
-        let j = 10f64.powf(uni(&mut r, -1.5, 2.0));
-        let amax = 10f64.powf(uni(&mut r, -1.0, 1.0));
         let kind = case % FAMILIES.len();
-        let (a0, steps) = family(&mut r, amax, j, kind);
-        let phases = level_phases(a0, &steps, j);
-        let v0 = uni(&mut r, -2.0, 2.0);
-        let ((p, v, a), vpeak) = integrate_phases(v0, a0, &phases);
-        let t: f64 = phases.iter().map(|x| x.0).sum();
+        let f = forward_profile(&mut r, -1.5, |r, amax, j| family(r, amax, j, kind));
+        let (j, a0, (p, _, a), vpeak, t) = (f.j, f.a0, f.end, f.vpeak, f.t);
         let vmax = if kind == 4 {
             // The cruise is at the velocity limit: nothing else may pass it.
-            let n1 = phases.len() - if steps[2].1 > 0.0 { 4 } else { 3 };
-            let vc = integrate_phases(v0, a0, &phases[..n1]).0 .1;
+            let n1 = f.phases.len() - if f.steps[2].1 > 0.0 { 4 } else { 3 };
+            let vc = integrate_phases(f.v0, a0, &f.phases[..n1]).0 .1;
             if !(vc > 0.0 && vpeak <= vc * (1.0 + 1e-13)) {
                 continue;
             }
@@ -151,16 +146,8 @@ fn sweep(seed: u64, count: usize) -> (Vec<(usize, String)>, usize) {
         tried += 1;
         let sign = if r.next_f64() < 0.5 { 1.0 } else { -1.0 };
         let p0 = uni(&mut r, -100.0, 100.0);
-        let mut inp = trajkit::otg::InputParameter::<1>::new();
-        inp.current_position = [sign * p0];
-        inp.current_velocity = [sign * v0];
-        inp.current_acceleration = [sign * a0];
-        inp.target_position = [sign * (p0 + p)];
-        inp.target_velocity = [sign * v];
-        inp.target_acceleration = [sign * a];
+        let mut inp = forward_input(&f, sign, p0);
         inp.max_velocity = [vmax];
-        inp.max_acceleration = [amax];
-        inp.max_jerk = [j];
         match otg.calculate(&inp) {
             Ok(tr) if tr.duration() <= t * (1.0 + 1e-9) => {}
             Ok(tr) => missed.push((

@@ -9,7 +9,7 @@
 //! picks.
 
 mod otg_common;
-use otg_common::{integrate_phases, level_phases, uni};
+use otg_common::{forward_input, forward_profile, uni};
 use trajkit::otg::Otg;
 use trajkit::rng::SplitMix64;
 
@@ -88,29 +88,16 @@ fn step2_shapes_are_planned_at_their_duration() {
     let mut r = SplitMix64::new(20261129);
     let (mut missed, mut tried) = (Vec::new(), 0);
     for case in 0..20000 {
-        let j = 10f64.powf(uni(&mut r, -1.0, 2.0));
-        let amax = 10f64.powf(uni(&mut r, -1.0, 1.0));
         let kind = case % SHAPES.len();
-        let (a0, steps) = shape(&mut r, amax, j, kind);
-        let phases = level_phases(a0, &steps, j);
-        let v0 = uni(&mut r, -2.0, 2.0);
-        let ((p, v, a), vpeak) = integrate_phases(v0, a0, &phases);
-        let t: f64 = phases.iter().map(|x| x.0).sum();
+        let f = forward_profile(&mut r, -1.0, |r, amax, j| shape(r, amax, j, kind));
+        let (j, a0, (p, _, a), vpeak, t) = (f.j, f.a0, f.end, f.vpeak, f.t);
         if vpeak > 100.0 || p.abs() > 1e4 {
             // Outside the absolute position accuracy's useful range (1e-8 on 1e4).
             continue;
         }
         tried += 1;
         let sign = if r.next_f64() < 0.5 { 1.0 } else { -1.0 };
-        let mut inp = trajkit::otg::InputParameter::<1>::new();
-        inp.current_position = [sign * 1.0];
-        inp.current_velocity = [sign * v0];
-        inp.current_acceleration = [sign * a0];
-        inp.target_position = [sign * (1.0 + p)];
-        inp.target_velocity = [sign * v];
-        inp.target_acceleration = [sign * a];
-        inp.max_acceleration = [amax];
-        inp.max_jerk = [j];
+        let mut inp = forward_input(&f, sign, 1.0);
         // Room for the braking of the start and target states too.
         let stop = (a0 * a0).max(a * a) / (2.0 * j);
         inp.max_velocity = [(vpeak + stop) * uni(&mut r, 1.0, 2.0) + 1e-3];

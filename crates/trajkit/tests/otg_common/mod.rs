@@ -410,3 +410,70 @@ pub fn level_phases(a0: f64, steps: &[(f64, f64)], j: f64) -> Vec<(f64, f64)> {
     }
     out
 }
+
+/// A one-DOF profile built forward from a random start: the limits drawn for it, its levels,
+/// its phases and the end state they reach.
+pub struct Forward {
+    /// Jerk limit (10^U(log_j_lo, 2)).
+    pub j: f64,
+    /// Acceleration limit (10^U(−1, 1)).
+    pub amax: f64,
+    /// Start acceleration.
+    pub a0: f64,
+    /// The levels and holds given by the shape builder.
+    pub steps: Vec<(f64, f64)>,
+    /// The phases `(duration, jerk)` of [`level_phases`].
+    pub phases: Vec<(f64, f64)>,
+    /// Start velocity (U(−2, 2)).
+    pub v0: f64,
+    /// End state `(p − p₀, v, a)`.
+    pub end: (f64, f64, f64),
+    /// Largest |v| on the way.
+    pub vpeak: f64,
+    /// The profile's duration.
+    pub t: f64,
+}
+
+/// Draws the limits, calls `build(r, amax, j)` for `(a0, steps)`, draws the start velocity
+/// and integrates: the seeded head shared by the forward-built property tests (the draws
+/// come in this order, so the cases stay those the tests pin by number).
+pub fn forward_profile(
+    r: &mut SplitMix64,
+    log_j_lo: f64,
+    build: impl FnOnce(&mut SplitMix64, f64, f64) -> (f64, Vec<(f64, f64)>),
+) -> Forward {
+    let j = 10f64.powf(uni(r, log_j_lo, 2.0));
+    let amax = 10f64.powf(uni(r, -1.0, 1.0));
+    let (a0, steps) = build(r, amax, j);
+    let phases = level_phases(a0, &steps, j);
+    let v0 = uni(r, -2.0, 2.0);
+    let (end, vpeak) = integrate_phases(v0, a0, &phases);
+    let t = phases.iter().map(|x| x.0).sum();
+    Forward {
+        j,
+        amax,
+        a0,
+        steps,
+        phases,
+        v0,
+        end,
+        vpeak,
+        t,
+    }
+}
+
+/// The problem from `p0` along `f` (mirrored when `sign` is −1): start and target states,
+/// acceleration and jerk limits; the caller sets the velocity limit and options.
+pub fn forward_input(f: &Forward, sign: f64, p0: f64) -> InputParameter<1> {
+    let (p, v, a) = f.end;
+    let mut inp = InputParameter::<1>::new();
+    inp.current_position = [sign * p0];
+    inp.current_velocity = [sign * f.v0];
+    inp.current_acceleration = [sign * f.a0];
+    inp.target_position = [sign * (p0 + p)];
+    inp.target_velocity = [sign * v];
+    inp.target_acceleration = [sign * a];
+    inp.max_acceleration = [f.amax];
+    inp.max_jerk = [f.j];
+    inp
+}
