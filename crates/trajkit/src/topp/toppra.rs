@@ -6,9 +6,10 @@
 //! 1. evaluates the path and all constraints at every gridpoint (on paths that are
 //!    polynomials of degree ≤ 5 between breakpoints, the path once per piece: σ, σ′, σ″ at the
 //!    gridpoints inside a piece come from its Taylor expansion at the piece's midpoint, exact
-//!    up to rounding; the Taylor data of the intervals are not stored but moved again from
-//!    the piece's midpoint, or taken from the gridpoint values, when the between-gridpoint
-//!    rows and checks ask for them: see `topp::between`);
+//!    up to rounding; on pieces of degree 4 or 5 the six derivatives moved to a gridpoint are
+//!    kept for the interval starting there while they fit in 16 MB, and beyond that moved
+//!    again from the piece's midpoint, or taken from the gridpoint values, when the
+//!    between-gridpoint rows and checks ask for them, bitwise the same: see `topp::between`);
 //! 2. **backward pass**: from the end set K_N = {ṡ_end²}, computes the controllable sets
 //!    K_i = [min, max] of the x from which some admissible u reaches K_{i+1} — two exact
 //!    two-variable linear programs per stage (`topp/lp.rs`);
