@@ -774,13 +774,15 @@ fn jerk_piece(
     let raw_duration = p.duration();
     let (path, law) = p.into_parts();
     let options = crate::topp::jerk::JerkOptions::default();
-    let filtered = crate::topp::jerk::limit_jerk(path.clone(), law.clone(), limits, &options)?;
+    // The path and law move into the filter; the rare local stage takes copies back from it.
+    let filtered = crate::topp::jerk::limit_jerk(path, law, limits, &options)?;
     // Not `Filter`, no torque rows, and the filter costs noticeably more than raw TOPP-RA: the
     // filter with a local slow-down (never longer than the filter, but 10–80× its cost).
     let filtered = if lines_allowed && filtered.duration() > raw_duration * (1.0 + LOCAL_ABOVE) {
+        let retimed = filtered.inner();
         crate::topp::jerk_local::limit_jerk_local(
-            path,
-            law,
+            retimed.path().clone(),
+            retimed.law().profile().clone(),
             limits,
             &crate::topp::jerk_local::LocalOptions::default(),
         )?

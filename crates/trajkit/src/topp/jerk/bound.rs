@@ -39,7 +39,7 @@
 //! of them on the standard 7-waypoint problem at the Panda's limits, where almost no segment
 //! is skipped whole), and the values at the three points only up to the highest order that
 //! still needs them. To make the running lower bound large early, the
-//! segments whose cell bounds are largest among every fourth one are bounded first (`SEEDS`
+//! segments whose cell bounds are largest among every sixteenth one are bounded first (`SEEDS`
 //! of them), then the rest in time order, each segment's law shape, cell and cell test
 //! computed once: only which segments are skipped depends on the order, and a skipped
 //! segment cannot change the result. Where the factor is close to 1 (the limits bind almost
@@ -61,7 +61,7 @@ const SEEDS: usize = 32;
 
 /// Seeds are chosen among every `SEED_STRIDE`-th segment (neighbours have nearly the same
 /// bounds), so that finding them costs a fraction of the sweep.
-const SEED_STRIDE: usize = 4;
+const SEED_STRIDE: usize = 16;
 
 /// Highest path degree the certified bound handles (s⁽ⁿ⁾ and σ⁽ⁿ⁾ up to n = 6 appear).
 const MAX_DEGREE: usize = 6;
