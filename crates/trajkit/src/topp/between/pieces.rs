@@ -281,6 +281,13 @@ impl Pieces {
         })
     }
 
+    /// Whether interval i lies inside one path piece of degree ≤ 5 and touches no breakpoint:
+    /// the sufficient rows prepared there hold every constraint that
+    /// [`Pieces::has_piece_for`] serves on the whole interval (`topp::between`).
+    pub(in crate::topp) fn inside_piece(&self, i: usize) -> bool {
+        self.exact[i] && !self.at_break[i]
+    }
+
     /// Whether constraint `c` gets interval i's piece: the path is a polynomial of degree ≤ 5
     /// there, and of degree ≤ 3 unless `c` handles quintics.
     pub(in crate::topp) fn has_piece_for(&self, i: usize, c: &dyn Constraint) -> bool {
