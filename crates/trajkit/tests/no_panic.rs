@@ -7,7 +7,9 @@
 //! The only property asserted is that every call returns, `Ok` or a typed error: proptest
 //! turns a panic into a failure and shrinks it to a minimal case. Results are judged by the
 //! per-module property tests (`otg_proptest`, `topp_proptest`, `spline_proptest`). Every
-//! panic found here is pinned below as a regression case.
+//! panic found is pinned below as a regression case: step 1's clamp of a level to a window
+//! whose ends round-off had crossed (a start acceleration one ulp past its limit), and
+//! polynomials spanning nearly the whole finite range.
 
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
@@ -16,6 +18,7 @@ use trajkit::otg::{
     calculate_dyn, plan_waypoints, ControlInterface, DurationDiscretization, DynInputParameter,
     InputParameter, Otg, Synchronization, Waypoints,
 };
+use trajkit::poly::{min_duration_rest_to_rest, Degree};
 use trajkit::spline::{AkimaSpline, CubicSpline, PchipSpline};
 use trajkit::topp::{Gridpoints, LinearPath, Toppra, ToppraOptions};
 use trajkit::{plan, Limits, Order, Path, PlanOptions, Trajectory};
@@ -291,6 +294,12 @@ proptest! {
         if let Ok(p) = AkimaSpline::original(&x, &y, dof) { eval(&p) }
         if let Ok(p) = AkimaSpline::modified(&x, &y, dof) { eval(&p) }
         if let Ok(p) = LinearPath::new(&y, dof) { eval(&p) }
+        // Point-to-point polynomials between the first two points, limits from the spacing.
+        if let Ok(limits) = Limits::uniform(dof, spacing, spacing, spacing) {
+            for degree in [Degree::Cubic, Degree::Quintic, Degree::Septic] {
+                let _ = min_duration_rest_to_rest(degree, &y[..dof], &y[dof..2 * dof], &limits);
+            }
+        }
     }
 }
 
@@ -323,6 +332,44 @@ proptest! {
             if let Ok(p) = plan(&wp, &limits, &PlanOptions::default()) {
                 sample(&p.trajectory, dof);
             }
+        }
+    }
+}
+
+/// A start acceleration one ulp past its limit: step 1 clamped a level to [a₀, a_max], an
+/// empty window (`f64::clamp` panicked); now `num::clamp_in` drops that candidate.
+#[test]
+fn start_acceleration_one_ulp_past_its_limit() {
+    for amax in [0.1, 1.0, 7.3, 1e3] {
+        for (v0, d) in [(0.0, 1.0), (0.3, -0.2), (-0.7, 1e-15), (0.9, 0.0)] {
+            for sign in [1.0, -1.0] {
+                let mut inp = InputParameter::<1>::new();
+                inp.current_velocity = [sign * v0];
+                inp.current_acceleration = [sign * beyond(amax)];
+                inp.target_position = [d];
+                inp.target_acceleration = [sign * 0.5 * amax];
+                inp.max_velocity = [1.0];
+                inp.max_acceleration = [amax];
+                inp.max_jerk = [2.0];
+                for sync in SYNC {
+                    inp.options.synchronization = sync;
+                    if let Ok(t) = Otg::<1>::new(0.001).calculate(&inp) {
+                        sample(&t, 1);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Point-to-point polynomials across nearly the whole finite range: the derivatives'
+/// coefficients overflow (a limit check on them must fail, not panic).
+#[test]
+fn polynomials_across_the_finite_range() {
+    let limits = Limits::uniform(1, 1.0, 1.0, 1.0).unwrap();
+    for degree in [Degree::Cubic, Degree::Quintic, Degree::Septic] {
+        for (q0, q1) in [(-1.7e308, 1.7e308), (0.0, 1e307), (-1e306, 1e306)] {
+            let _ = min_duration_rest_to_rest(degree, &[q0], &[q1], &limits);
         }
     }
 }
