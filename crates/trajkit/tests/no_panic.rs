@@ -9,7 +9,7 @@
 //! per-module property tests (`otg_proptest`, `topp_proptest`, `spline_proptest`). Every
 //! panic found is pinned below as a regression case: step 1's clamp of a level to a window
 //! whose ends round-off had crossed (a start acceleration one ulp past its limit), and
-//! polynomials spanning nearly the whole finite range.
+//! polynomials spanning nearly the whole finite range, TOTG with an absurd arc step.
 
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
@@ -20,7 +20,7 @@ use trajkit::otg::{
 };
 use trajkit::poly::{min_duration_rest_to_rest, Degree};
 use trajkit::spline::{AkimaSpline, CubicSpline, PchipSpline};
-use trajkit::topp::{Gridpoints, LinearPath, Toppra, ToppraOptions};
+use trajkit::topp::{BlendedPath, Gridpoints, LinearPath, Toppra, ToppraOptions, Totg};
 use trajkit::{plan, Limits, Order, Path, PlanOptions, Trajectory};
 
 /// A magnitude over the whole finite range, ordinary values most often.
@@ -360,6 +360,23 @@ fn start_acceleration_one_ulp_past_its_limit() {
             }
         }
     }
+}
+
+/// TOTG with an arc step of 1e-300 rad asked for ~10³⁰⁰ knots on each arc (an allocation
+/// abort); now a typed error names the count.
+#[test]
+fn totg_with_a_tiny_arc_step_is_an_error() {
+    let path = BlendedPath::new(&[0.0, 0.0, 1.0, 0.0, 1.0, 1.0], 2, 0.1).unwrap();
+    let limits = Limits::uniform(2, 1.0, 1.0, f64::INFINITY).unwrap();
+    let Err(e) = Totg::new(path, &limits)
+        .unwrap()
+        .arc_step(1e-300)
+        .unwrap()
+        .solve()
+    else {
+        panic!("an arc step of 1e-300 was accepted");
+    };
+    assert!(e.to_string().contains("knots on one arc"), "{e}");
 }
 
 /// Point-to-point polynomials across nearly the whole finite range: the derivatives'
