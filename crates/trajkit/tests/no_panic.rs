@@ -6,10 +6,11 @@
 //!
 //! The only property asserted is that every call returns, `Ok` or a typed error: proptest
 //! turns a panic into a failure and shrinks it to a minimal case. Results are judged by the
-//! per-module property tests (`otg_proptest`, `topp_proptest`, `spline_proptest`). Every
-//! panic found is pinned below as a regression case: step 1's clamp of a level to a window
-//! whose ends round-off had crossed (a start acceleration one ulp past its limit), and
-//! polynomials spanning nearly the whole finite range, TOTG with an absurd arc step.
+//! per-module property tests (`otg_proptest`, `topp_proptest`, `spline_proptest`). Fixed
+//! cases below pin what panicked or aborted before: step 1's clamp of a level to a window
+//! whose ends round-off had crossed (a start acceleration one ulp past its limit) and TOTG
+//! with an absurd arc step (an allocation abort); and polynomials spanning nearly the whole
+//! finite range (where derivative coefficients overflow; no panic found).
 
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
