@@ -35,7 +35,10 @@ printed; every problem that breaks a rule is written, with Ruckig's duration, to
 OUT/failures.jsonl. `--fixture FILE` appends the problems where trajkit was longer than Ruckig
 or failed where Ruckig succeeded to FILE in the format of
 crates/trajkit/tests/fixtures/otg/regressions.jsonl (category, Ruckig's duration, problem),
-which tests/otg_regressions.rs replays.
+which tests/otg_regressions.rs replays, and those counted in `longer_by_ruckig_error` with
+`ruckig_end_position` too (the final positions Ruckig reached; null for a DOF without a
+position target). `--replay FILE` runs FILE's problems themselves (e.g. a failures.jsonl),
+each once.
 """
 import argparse
 import json
@@ -126,22 +129,28 @@ def perturbed(base, r):
     return p
 
 
-def use_around(args):
+REPLAY = {}
+
+
+def use_around(args, exact=False):
     """`--around FILE`: the categories are those of FILE's problems, and each category's
-    problems are perturbed copies of FILE's problems of that category (round robin)."""
+    problems are perturbed copies of FILE's problems of that category (round robin).
+    `--replay FILE` (`exact`): FILE's problems themselves, each once."""
     global gen
     bases = {}
-    for line in open(args.around):
+    for line in open(args.replay if exact else args.around):
         d = json.loads(line)
         bases.setdefault(d["category"], []).append(d["problem"])
     args.categories = ",".join(bases)
+    if exact:
+        REPLAY.update({c: len(b) for c, b in bases.items()})
     counter = {}
 
     def around(cat, r, n):
         k = counter.get(cat, 0)
         counter[cat] = k + 1
         b = bases[cat]
-        return perturbed(b[k % len(b)], r)
+        return json.loads(json.dumps(b[k % len(b)])) if exact else perturbed(b[k % len(b)], r)
     gen = around
 
 
@@ -633,8 +642,9 @@ def run(args):
                   worst_ratio=0.0, best_ratio=INF)
         chunk = 20000
         done = 0
-        while done < per_cat:
-            m = min(chunk, per_cat - done)
+        count = REPLAY.get(cat, per_cat)
+        while done < count:
+            m = min(chunk, count - done)
             probs = []
             for _ in range(m):
                 n = r.choice([1, 3, 7])
@@ -665,6 +675,7 @@ def run(args):
                     tr = None
                 ok = rec["result"] == "working"
                 reasons = []
+                own_end = None
                 if tr is not None:
                     st["ruckig_ok"] += 1
                 if ok:
@@ -711,6 +722,10 @@ def run(args):
                         x.startswith(("longer:", "trajkit failed")) for x in reasons
                     ):
                         fixture.write(json.dumps({"category": cat, "ruckig_duration": tr, "problem": p}) + "\n")
+                elif fixture and own_end is not None:
+                    # Ruckig shorter by stopping short: with the end positions it reached.
+                    fixture.write(json.dumps({"category": cat, "ruckig_duration": tr,
+                                              "ruckig_end_position": ends, "problem": p}) + "\n")
                 if reasons:
                     failures.write(json.dumps({"category": cat, "problem": p, "ruckig_duration": tr,
                                                "trajkit": {k: rec.get(k) for k in ("result", "duration", "message")},
@@ -740,8 +755,13 @@ if __name__ == "__main__":
     ap.add_argument("--around", default="",
                     help="perturbed copies of the problems of this JSONL file (lines with 'category' and "
                          "'problem', e.g. a failures.jsonl) instead of generated ones")
+    ap.add_argument("--replay", default="",
+                    help="the problems of this JSONL file themselves, each once (lines with 'category' "
+                         "and 'problem')")
     ap.add_argument("--no-venv", action="store_true")
     args = ap.parse_args()
     if args.around:
         use_around(args)
+    elif args.replay:
+        use_around(args, exact=True)
     run(args)

@@ -99,6 +99,7 @@ mod inverse_dynamics;
 pub mod io;
 pub mod limits;
 pub mod linalg;
+mod num;
 pub mod otg;
 pub mod path;
 pub mod plan;

@@ -2,56 +2,96 @@
 //! `fixtures/otg/regressions.jsonl` is a problem, its category and the Ruckig wheel's
 //! duration. trajkit must solve each, within its contract, in at most Ruckig's duration
 //! (× (1 + 1e-9)).
+//!
+//! Lines with `ruckig_end_position` (the sweep's `longer_by_ruckig_error` class, written by
+//! `otg_sweep.py --fixture`) are problems where Ruckig is shorter only by stopping short of
+//! the target, within the tolerance (1e-11 to 6e-9 away; 1.2e-9 to 7.2e-7 shorter; the
+//! last is case 15540 of tests/otg_step1_shapes.rs, 6.0e-6 shorter): trajkit, given the
+//! positions Ruckig reached as its target, is at most Ruckig's duration × (1 + 1e-9); to the
+//! exact target it is at most Ruckig's × (1 + 1e-5) and arrives within its contract.
 
 mod otg_common;
 use trajkit::otg::json::parse_problem;
-use trajkit::otg::{calculate_dyn, ControlInterface};
+use trajkit::otg::{calculate_dyn, ControlInterface, DynInputParameter, DynTrajectory};
 
 const FIXTURE: &str = include_str!("fixtures/otg/regressions.jsonl");
 
 #[test]
 fn sweep_reproducers_are_never_longer_than_ruckig() {
-    let mut n = 0;
+    let (mut n, mut reached) = (0, 0);
     for (k, line) in FIXTURE.lines().enumerate() {
         let v: serde_json::Value = serde_json::from_str(line).unwrap();
         let problem = v["problem"].to_string();
         let p = parse_problem(&problem, "regressions.jsonl", k + 1).unwrap();
         let ruckig = v["ruckig_duration"].as_f64().unwrap();
+        let ruckig_end = v["ruckig_end_position"].as_array();
         let tr =
             calculate_dyn(&p.input, p.delta_time).unwrap_or_else(|e| panic!("line {}: {e}", k + 1));
         let t = tr.duration();
         let mut mins = vec![0.0; tr.dof()];
         tr.independent_min_durations(&mut mins);
+        // Ruckig's stopping short of the target is worth up to 1e-5 of its duration.
+        let slack = if ruckig_end.is_some() { 1e-5 } else { 1e-9 };
         assert!(
-            t <= ruckig * (1.0 + 1e-9),
+            t <= ruckig * (1.0 + slack),
             "line {} ({}): trajkit {t} > Ruckig {ruckig}; minima {mins:?}",
             k + 1,
             v["category"]
         );
-        // The target is reached.
-        for (i, d) in tr.dofs().iter().enumerate() {
-            let e = d.profile.end();
-            let iface = p
-                .input
-                .per_dof_control_interface
-                .as_ref()
-                .map_or(p.input.options.control_interface, |c| c[i]);
-            if p.input.enabled[i] && iface == ControlInterface::Position {
-                assert!(
-                    (e.p - p.input.target_position[i]).abs() <= 1e-8,
-                    "line {}",
-                    k + 1
-                );
+        arrives(&p.input, &tr, k + 1);
+        if let Some(ends) = ruckig_end {
+            // To where Ruckig ended: as fast as Ruckig.
+            let mut to_end = p.input.clone();
+            for (i, e) in ends.iter().enumerate() {
+                if let Some(e) = e.as_f64() {
+                    to_end.target_position[i] = e;
+                }
             }
+            let te = calculate_dyn(&to_end, p.delta_time).unwrap();
             assert!(
-                (e.v - p.input.target_velocity[i]).abs() <= 1e-9,
-                "line {}",
-                k + 1
+                te.duration() <= ruckig * (1.0 + 1e-9),
+                "line {}: trajkit to Ruckig's end {} > Ruckig {ruckig}",
+                k + 1,
+                te.duration()
             );
+            arrives(&to_end, &te, k + 1);
+            reached += 1;
         }
         n += 1;
     }
-    assert!(n >= 2);
+    assert!(n >= 2 && reached >= 12, "{n} {reached}");
+}
+
+/// The target is reached: positions within the contract (1e-8, below 1e-5 of the motion's
+/// scale for small motions, plus 16 rounding units), velocities to 1e-9.
+fn arrives(input: &DynInputParameter, tr: &DynTrajectory, line: usize) {
+    for (i, d) in tr.dofs().iter().enumerate() {
+        let e = d.profile.end();
+        let iface = input
+            .per_dof_control_interface
+            .as_ref()
+            .map_or(input.options.control_interface, |c| c[i]);
+        if input.enabled[i] && iface == ControlInterface::Position {
+            let (p0, pf) = (input.current_position[i], input.target_position[i]);
+            let (lo, _, hi, _) = d.profile.position_extrema();
+            let scale = (pf - p0).abs().max(hi - p0).max(p0 - lo);
+            let ulps = 16.0 * f64::EPSILON * p0.abs().max(pf.abs());
+            let tol = if (pf - p0).abs() >= 1e-3 {
+                1e-8
+            } else {
+                1e-8f64.min(1e-5 * scale)
+            };
+            assert!(
+                (e.p - pf).abs() <= tol + ulps,
+                "line {line} dof {i}: {} vs {pf}",
+                e.p
+            );
+        }
+        assert!(
+            (e.v - input.target_velocity[i]).abs() <= 1e-9,
+            "line {line} dof {i}"
+        );
+    }
 }
 
 /// The sweep's `tiny` reproducer (seed 27; Ruckig fails on it): start velocities of 1e-11 and

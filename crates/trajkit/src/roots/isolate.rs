@@ -18,6 +18,7 @@
 //! from a root, so a missed or imprecise root can cost time-optimality but never correctness.
 
 use super::{derivative, horner_d, quadratic};
+use crate::num::clamp_in;
 
 /// Highest polynomial degree [`poly_roots`] accepts.
 pub const MAX_POLY: usize = 6;
@@ -279,7 +280,8 @@ fn monotone_root(c: &[f64], mut a: f64, mut b: f64, fa: f64, fb: f64) -> f64 {
     let neg = fa < 0.0;
     // Start at the secant point, kept off the bracket's ends.
     let w = b - a;
-    let mut x = (a + w * (fa / (fa - fb))).clamp(a + w / 64.0, b - w / 64.0);
+    let secant = a + w * (fa / (fa - fb));
+    let mut x = clamp_in(secant, a + w / 64.0, b - w / 64.0).unwrap_or(0.5 * (a + b));
     for _ in 0..100 {
         let (f, df) = horner_d(c, x);
         if f == 0.0 {

@@ -88,6 +88,7 @@ use super::lp::{self, BOX};
 use super::parametrized::{Parametrized, PhaseProfile};
 use super::rescale::Retimed;
 use crate::error::{Error, Result};
+use crate::num::clamp_in;
 use crate::{Limits, Path};
 pub(crate) use stage::{largest_step, CleanSteps, Stage};
 
@@ -747,7 +748,8 @@ impl Workspace {
             }
             hint_max = best.active;
             hint_min = worst.active;
-            let new_hi = best.v[1].clamp(xlo, xhi);
+            let new_hi =
+                clamp_in(best.v[1], xlo, xhi).ok_or_else(|| self.explain_stage(prob, grid, i))?;
             let new_lo = worst.v[1].clamp(xlo, new_hi);
             if incremental && i < settle && same(new_hi, self.khi[i]) && same(new_lo, self.klo[i]) {
                 return Ok(i + 1);

@@ -248,7 +248,14 @@ impl Totg {
         for &(s0, s1, r) in &pieces {
             knots.push(s0);
             if r.is_finite() {
-                let m = ((s1 - s0) / r / self.arc_step).ceil().max(1.0) as usize;
+                let m = ((s1 - s0) / r / self.arc_step).ceil().max(1.0);
+                // A tiny arc step must not ask for more knots than memory holds.
+                let m = crate::size::check_memory(
+                    "knots on one arc (angle / arc step)",
+                    m,
+                    8.0,
+                    "a knot",
+                )?;
                 for k in 1..m {
                     knots.push(s0 + (s1 - s0) * (k as f64 / m as f64));
                 }

@@ -477,3 +477,114 @@ pub fn forward_input(f: &Forward, sign: f64, p0: f64) -> InputParameter<1> {
     inp.max_jerk = [f.j];
     inp
 }
+
+/// A `step1_property` problem (the generator of tests/otg_step1_shapes.rs): a profile of step-1
+/// family `kind` of [`FAMILIES`] built forward ([`forward_profile`], log₁₀ j from −1.5), its
+/// end state the target, mirrored half of the time, the velocity limit just above the
+/// cruise (cruise family) or with room for both ends' braking. Returns the problem and the
+/// constructed profile's duration, or `None` for a draw outside the useful range (the draws
+/// come in this order, so the cases stay those the tests pin by number).
+pub fn step1_property(r: &mut SplitMix64, kind: usize) -> Option<(InputParameter<1>, f64)> {
+    let f = forward_profile(r, -1.5, |r, amax, j| family(r, amax, j, kind));
+    let (j, a0, (p, _, a), vpeak, t) = (f.j, f.a0, f.end, f.vpeak, f.t);
+    let vmax = if kind == 4 {
+        // The cruise is at the velocity limit: nothing else may pass it.
+        let n1 = f.phases.len() - if f.steps[2].1 > 0.0 { 4 } else { 3 };
+        let vc = integrate_phases(f.v0, a0, &f.phases[..n1]).0 .1;
+        if !(vc > 0.0 && vpeak <= vc * (1.0 + 1e-13)) {
+            return None;
+        }
+        vc * (1.0 + 1e-13)
+    } else {
+        // Room for the braking of the start and target states too.
+        let stop = (a0 * a0).max(a * a) / (2.0 * j);
+        (vpeak + stop) * uni(r, 1.0, 2.0) + 1e-3
+    };
+    if vpeak > 300.0 || p.abs() > 1e4 {
+        // Outside the absolute position accuracy's useful range (1e-8 on 1e4).
+        return None;
+    }
+    let sign = if r.next_f64() < 0.5 { 1.0 } else { -1.0 };
+    let p0 = uni(r, -100.0, 100.0);
+    let mut inp = forward_input(&f, sign, p0);
+    inp.max_velocity = [vmax];
+    Some((inp, t))
+}
+
+/// The step-1 families (the negative direction by mirroring the whole problem).
+pub const FAMILIES: [&str; 5] = ["none", "acc0", "acc1", "acc0_acc1", "vel"];
+
+/// A level in `[lo, hi]`: uniform, next to one end (10⁻⁷ to 10⁻¹ of the range away) or, when
+/// the range holds it, next to zero (10⁻⁷ to 10⁻¹ of the range), a third of the time each.
+fn pick(r: &mut SplitMix64, lo: f64, hi: f64) -> f64 {
+    let w = hi - lo;
+    let off = w * 10f64.powf(uni(r, -7.0, -1.0));
+    let u = r.next_f64();
+    let x = if u < 1.0 / 3.0 {
+        uni(r, lo, hi)
+    } else if u < 2.0 / 3.0 {
+        if r.next_f64() < 0.5 {
+            lo + off
+        } else {
+            hi - off
+        }
+    } else if lo < 0.0 && hi > 0.0 {
+        off.copysign(uni(r, -1.0, 1.0))
+    } else {
+        uni(r, lo, hi)
+    };
+    x.clamp(lo, hi)
+}
+
+/// A random profile of family `kind` of [`FAMILIES`] with levels inside ±a_max; returns
+/// (a₀, steps). In the cruise family the level 0 held is the cruise.
+fn family(r: &mut SplitMix64, amax: f64, j: f64, kind: usize) -> (f64, Vec<(f64, f64)>) {
+    let hold = |r: &mut SplitMix64| amax / j * 10f64.powf(uni(r, -4.0, 1.0));
+    match kind {
+        0 => {
+            // a₀ ↗ α₁ ↘ α₂ ↗ a_f.
+            let al1 = pick(r, -amax, amax);
+            let a0 = pick(r, -amax, al1);
+            let al2 = pick(r, -amax, al1);
+            let af = pick(r, al2, amax);
+            (a0, vec![(al1, 0.0), (al2, 0.0), (af, 0.0)])
+        }
+        1 => {
+            // a₀ ↗ a_max (hold) ↘ α₂ ↗ a_f.
+            let a0 = pick(r, -amax, amax);
+            let al2 = pick(r, -amax, amax);
+            let af = pick(r, al2, amax);
+            (a0, vec![(amax, hold(r)), (al2, 0.0), (af, 0.0)])
+        }
+        2 => {
+            // a₀ ↗ α₁ ↘ −a_max (hold) ↗ a_f.
+            let al1 = pick(r, -amax, amax);
+            let a0 = pick(r, -amax, al1);
+            let af = pick(r, -amax, amax);
+            (a0, vec![(al1, 0.0), (-amax, hold(r)), (af, 0.0)])
+        }
+        3 => {
+            // a₀ ↗ a_max (hold) ↘ −a_max (hold) ↗ a_f.
+            let a0 = pick(r, -amax, amax);
+            let af = pick(r, -amax, amax);
+            (a0, vec![(amax, hold(r)), (-amax, hold(r)), (af, 0.0)])
+        }
+        _ => {
+            // a₀ ↗ α₁ (plateau at a_max, or none) ↘ 0, cruise, ↘ α₂ (plateau at −a_max, or
+            // none) ↗ a_f.
+            let a0 = pick(r, -amax, amax);
+            let plateau1 = r.next_f64() < 0.5;
+            let al1 = if plateau1 {
+                amax
+            } else {
+                pick(r, a0.max(0.0), amax)
+            };
+            let plateau2 = r.next_f64() < 0.5;
+            let al2 = if plateau2 { -amax } else { pick(r, -amax, 0.0) };
+            let af = pick(r, al2, amax);
+            let h1 = if plateau1 { hold(r) } else { 0.0 };
+            let h2 = if plateau2 { hold(r) } else { 0.0 };
+            (a0, vec![(al1, h1), (0.0, hold(r)), (al2, h2), (af, 0.0)])
+        }
+    }
+}

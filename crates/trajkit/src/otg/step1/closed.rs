@@ -9,6 +9,7 @@ use super::super::velocity_change::push_change;
 use super::scan::scan_piece;
 use super::verify::{velocity_window, TOL_POSITION};
 use super::Collector;
+use crate::num::clamp_in;
 use crate::roots::MAX_POLY;
 
 /// A sequence of up to 7 constant-jerk segments.
@@ -525,6 +526,7 @@ impl Closed<'_> {
             if df == 0.0 || !df.is_finite() {
                 break;
             }
+            // Ordered: the caller's `clamp_in` on this window succeeded.
             y = (y - fy / df).clamp(lo, hi);
             let fy = r(y).abs();
             if fy.is_nan() || fy >= best.1 {
@@ -709,12 +711,4 @@ pub(super) fn square_window(
         }
     }
     out.into_iter().filter(|(a, b)| a <= b)
-}
-
-/// `x` clamped to `[lo, hi]`, or `None` when the range is empty: its ends crossed by
-/// round-off (a start or target acceleration one ulp past a limit) or NaN, where
-/// [`f64::clamp`] would panic. The candidate is then dropped; the rescues and polishing that
-/// use this only add candidates, so the other families still give a profile.
-fn clamp_in(x: f64, lo: f64, hi: f64) -> Option<f64> {
-    (lo <= hi).then(|| x.clamp(lo, hi))
 }

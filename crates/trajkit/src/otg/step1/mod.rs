@@ -60,8 +60,9 @@
 //! skipping it changes no result. Likewise the parameter window of a plateau family ends
 //! where its velocity peak (closed form in the parameter) exceeds the limit by more than
 //! 1e-9 relative, and a direction's closed families (or the two-change shapes) are skipped
-//! when their velocity range, bounded by the start's dip and the target's approach, has no
-//! velocity on the side of the displacement (`Collector::cannot_cover`).
+//! when their velocity range, bounded by the start's dip and the target's approach (and the
+//! start and target velocities themselves), has no velocity on the side of the displacement
+//! (`Collector::cannot_cover`).
 //!
 //! Fastest-only mode (`step1_fastest_into`): where the candidate durations are not needed,
 //! candidates slower than the fastest so far are not verified, and a valid cruise at the
@@ -430,11 +431,13 @@ fn closed_and_two_changes(dof: &Dof1, dirs: [bool; 2], col: &mut Collector<'_>) 
         let k0 = kink(ProfileOrder::Third, q.v0, q.a0, q.jmax, 1.0);
         let kf = kink(ProfileOrder::Third, q.vf, q.af, q.jmax, -1.0);
         let slack = 1e-9 * (k0.abs() + kf.abs()) + 1e-300;
-        // Both changes go up: the velocity stays between the start's dip and the
-        // target's approach from above.
+        // Both changes go up: the velocity stays between the start's dip (or the target
+        // velocity, reached from above when a_f < 0 after a change up of next to nothing)
+        // and the target's approach from above (or the start velocity, left downwards when
+        // a₀ < 0).
         let j2 = 2.0 * q.jmax;
-        let v_low = q.v0 - q.a0.min(0.0).powi(2) / j2;
-        let v_high = q.vf + q.af.min(0.0).powi(2) / j2;
+        let v_low = (q.v0 - q.a0.min(0.0).powi(2) / j2).min(q.vf);
+        let v_high = (q.vf + q.af.min(0.0).powi(2) / j2).max(q.v0);
         if moving && k0 <= kf + slack && !col.cannot_cover(q.pf - q.p0, v_low, v_high) {
             let (vlo, vhi) = velocity_window(&q);
             two_changes(&q, 1.0, 1.0, None, vlo, vhi, &mut |pr| {

@@ -22,6 +22,7 @@
 use super::budget::Clock;
 use super::trajectory::WaypointTrajectory;
 use super::{section_inputs, Waypoints};
+use crate::num::clamp_in;
 use crate::otg::input::DynInputParameter;
 use crate::otg::result::OtgError;
 use crate::otg::sync::{calculate, calculate_status, Scratch, Search, Spare};
@@ -359,10 +360,9 @@ impl<'a> Planner<'a> {
                 let d = if din * dout > 0.0 && tin > 0.0 && tout > 0.0 {
                     let (vin, vout) = (din / tin, dout / tout);
                     let t = (vin * tout + vout * tin) / (tin + tout);
-                    t.clamp(
-                        -3.0 * vin.abs().min(vout.abs()),
-                        3.0 * vin.abs().min(vout.abs()),
-                    )
+                    let cap = 3.0 * vin.abs().min(vout.abs());
+                    // NaN (overflowed differences): stop at the waypoint, always valid.
+                    clamp_in(t, -cap, cap).unwrap_or(0.0)
                 } else {
                     0.0
                 };

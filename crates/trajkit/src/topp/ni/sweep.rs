@@ -6,6 +6,7 @@
 use super::rows::{is_break, Scratch, View};
 use super::{largest_step, lp, Constraint, Stage, SwitchKind, SwitchingPoint, BOX, X_BIG};
 use crate::error::{Error, Result};
+use crate::num::clamp_in;
 use crate::Path;
 
 /// The curve of one sweep: x = ṡ² at the points `s` (the knots and located crossings).
@@ -106,7 +107,12 @@ fn backward(
             )));
         }
         hint = best.active;
-        back[i] = best.v[1].clamp(xlo, xhi);
+        back[i] = clamp_in(best.v[1], xlo, xhi).ok_or_else(|| {
+            Error::Infeasible(format!(
+                "at s = {}: the admissible set of ṡ² is empty ([{xlo}, {xhi}])",
+                knots[i]
+            ))
+        })?;
         let backward_row = stage.here.len() + stage.next.len();
         if !best.active.contains(&backward_row) {
             let at_break = i > 0 && is_break(breaks, knots[i]);
