@@ -26,13 +26,15 @@ pub struct TorqueReport {
 }
 
 /// Worst |τ_j| / effort_j over samples at 1 kHz and at `rate` Hz, and the joint where it
-/// occurs.
+/// occurs. A sample count above what a sample table of the trajectory may hold
+/// ([`crate::size::check_memory`], 8 + 32·dof bytes a sample) is refused before sampling, so
+/// that an absurd duration is an error and not an endless loop.
 fn worst_ratio(
     traj: &dyn Trajectory,
     model: &TorqueModel,
     effort: &[f64],
     rate: f64,
-) -> (f64, usize) {
+) -> Result<(f64, usize)> {
     let n = traj.dof();
     let (mut q, mut qd, mut qdd, mut tau) =
         (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
@@ -42,7 +44,12 @@ fn worst_ratio(
         if !(step.is_finite() && step > 0.0) {
             continue;
         }
-        let count = (duration / step).ceil() as usize;
+        let count = crate::size::check_memory(
+            "torque check sample count (duration / step)",
+            (duration / step).ceil(),
+            8.0 + 32.0 * n as f64,
+            &format!("a sample of {n} joint(s)"),
+        )?;
         for k in 0..=count {
             let time = (k as f64 * step).min(duration);
             traj.eval(time, Order::Position, &mut q);
@@ -58,7 +65,7 @@ fn worst_ratio(
             }
         }
     }
-    (worst, joint)
+    Ok((worst, joint))
 }
 
 /// The smallest uniform time-scale factor k ∈ [1, MAX_TORQUE_SCALE] keeping the sampled torque
@@ -86,7 +93,7 @@ pub(crate) fn torque_time_scale(
         }
     }
     let ok = |r: f64| r <= 1.0 + TORQUE_TOLERANCE;
-    let (r1, j1) = worst_ratio(&*traj, model, &effort, rate);
+    let (r1, j1) = worst_ratio(&*traj, model, &effort, rate)?;
     if ok(r1) {
         let report = TorqueReport {
             worst: r1,
@@ -97,7 +104,7 @@ pub(crate) fn torque_time_scale(
     }
     let at = |k: f64| -> Result<(f64, usize)> {
         let s = Scaled::new(&*traj, k)?;
-        Ok(worst_ratio(&s, model, &effort, rate))
+        worst_ratio(&s, model, &effort, rate)
     };
     let (rmax, jmax) = at(MAX_TORQUE_SCALE)?;
     if !ok(rmax) {
@@ -131,4 +138,38 @@ pub(crate) fn torque_time_scale(
         scale: hi,
     };
     Ok((Box::new(Scaled::new(traj, hi)?), report))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::inverse_dynamics::InverseDynamics;
+    use crate::poly::{Degree, PolyMove};
+    use std::sync::Arc;
+
+    /// τ = q̈ on one joint.
+    struct Inertia;
+    impl InverseDynamics for Inertia {
+        fn dof(&self) -> usize {
+            1
+        }
+        fn torque(&self, _q: &[f64], _qd: &[f64], qdd: &[f64], tau: &mut [f64]) {
+            tau[0] = qdd[0];
+        }
+    }
+
+    #[test]
+    fn an_absurd_duration_is_refused_before_sampling() {
+        let model = TorqueModel(Arc::new(Inertia));
+        let long = PolyMove::rest_to_rest(Degree::Quintic, &[0.0], &[1.0], 1e12).unwrap();
+        match worst_ratio(&long, &model, &[1.0], 100.0) {
+            Err(Error::TooLarge { .. }) => {}
+            other => panic!("{other:?}"),
+        }
+        // A second-long move is sampled: its peak acceleration is 10/√3·(1 s)⁻² ≈ 5.77.
+        let short = PolyMove::rest_to_rest(Degree::Quintic, &[0.0], &[1.0], 1.0).unwrap();
+        let (worst, joint) = worst_ratio(&short, &model, &[1.0], 100.0).unwrap();
+        assert_eq!(joint, 0);
+        assert!((worst - 10.0 / 3f64.sqrt()).abs() < 1e-3, "{worst}");
+    }
 }
