@@ -577,7 +577,7 @@ impl InputView<'_> {
     }
 
     /// The validated problem of degree of freedom `i`.
-    #[inline]
+    #[inline(always)]
     pub fn dof_problem(&self, i: usize) -> Result<Dof1, OtgError> {
         let (vmax, amax, jmax) = (self.vmax[i], self.amax[i], self.jmax[i]);
         let vmin = self.vmin.map_or(-vmax, |v| v[i]);
