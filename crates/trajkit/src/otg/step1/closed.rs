@@ -465,15 +465,19 @@ impl Closed<'_> {
         integrate(p, v, a, j, (q.af - al2) / j).0 - self.d
     }
 
-    /// Polishes a root of the none family whose position misses the target by more than a
-    /// quarter of the tolerance. Near α₂ = 0 the parameter α₁ is ill-conditioned (α₂ =
-    /// ±√(α₁² − K) moves by α₁/α₂ times as much, so one rounding unit of α₁ can move the end
-    /// by more than 1e-8 on a long motion); the middle ramp's duration t = (α₁ − α₂)/j is not:
+    /// Polishes a root of the none family whose position misses the target by more than
+    /// round-off (1e-4 of the position tolerance). Near α₂ = 0 the parameter α₁ is
+    /// ill-conditioned (α₂ = ±√(α₁² − K) moves by α₁/α₂ times as much, so one rounding unit
+    /// of α₁ can move the end by more than 1e-8 on a long motion), and with levels of nearly
+    /// equal magnitude the polynomial's coefficients cancel: a root missing by 1.8e-10, within
+    /// the tolerance, was 2.2e-9 of the duration longer than the exact one (tiny jerk, both
+    /// levels next to a_min). The middle ramp's duration t = (α₁ − α₂)/j is well conditioned:
     /// with α₁ + α₂ = K/(j t) from the velocity equation, a few Newton steps on the position
-    /// residual in t (central-difference derivative) keep the best of the levels seen.
+    /// residual in t (central-difference derivative), stopped when a step no longer reduces
+    /// it, keep the best of the levels seen.
     fn polish_none(&self, x: f64, al2: f64, k: f64) -> (f64, f64) {
         let j = self.q.jmax;
-        let tol = 0.25 * TOL_POSITION.min(1e-5 * self.d.abs());
+        let tol = 1e-4 * TOL_POSITION.min(1e-5 * self.d.abs());
         let mut best = (x, al2, self.none_miss(x, al2).abs());
         if best.2.is_nan() || best.2 <= tol {
             return (x, al2);
@@ -483,7 +487,7 @@ impl Closed<'_> {
             ((j * t + s) / 2.0, (s - j * t) / 2.0)
         };
         let mut t = (x - al2) / j;
-        for _ in 0..4 {
+        for i in 0..4 {
             if !(t > 0.0 && t.is_finite()) {
                 break;
             }
@@ -491,6 +495,8 @@ impl Closed<'_> {
             let f = self.none_miss(a1, a2);
             if f.abs() < best.2 {
                 best = (a1, a2, f.abs());
+            } else if i > 0 {
+                break;
             }
             if best.2 <= 0.01 * tol {
                 break;
