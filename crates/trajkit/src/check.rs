@@ -876,8 +876,14 @@ mod tests {
                     time: times[0],
                 };
                 for (&t, &x) in times.iter().zip(&q) {
-                    position.min = position.min.min(x);
-                    position.max = position.max.max(x);
+                    // The first smallest and first largest (a tie of −0 and +0 keeps the
+                    // earlier).
+                    if x < position.min {
+                        position.min = x;
+                    }
+                    if x > position.max {
+                        position.max = x;
+                    }
                     let d = (jl.position_min - x).max(x - jl.position_max);
                     if d > position.excursion {
                         position.excursion = d;
@@ -972,6 +978,47 @@ mod tests {
                     format!("{derivatives:?}"),
                     "case {case}"
                 );
+            }
+        }
+    }
+
+    /// The position range keeps the first smallest and first largest value, so a tie of −0
+    /// and +0 reports the earlier one's sign, the same on every path of the scan (full
+    /// tables block by block, tables with a missing column joint by joint), whether the two
+    /// are in one block or in different ones.
+    #[test]
+    fn position_range_keeps_the_earlier_of_signed_zeros() {
+        let rows = 300;
+        let times: Vec<f64> = (0..rows).map(|i| i as f64 / 1000.0).collect();
+        let limits = Limits::uniform(1, 10.0, 10.0, 10.0).unwrap();
+        for (first, second) in [(10, 20), (10, 200), (200, 250)] {
+            for zero_first in [0.0, -0.0] {
+                for sign in [1.0, -1.0] {
+                    // Positions 0.5·sign but at `first` and `second`: the extreme on the side of
+                    // 0 is a tie of zero_first and its negation.
+                    let mut q = vec![0.5 * sign; rows];
+                    q[first] = zero_first;
+                    q[second] = -zero_first;
+                    let zeros = vec![0.0; rows];
+                    for full in [true, false] {
+                        let jerk = full.then(|| zeros.clone());
+                        let data = [
+                            Some(q.clone()),
+                            Some(zeros.clone()),
+                            Some(zeros.clone()),
+                            jerk,
+                        ];
+                        let table = SampleTable::new(1, times.clone(), data).unwrap();
+                        let p = check_samples(&table, &limits).unwrap().joints[0].position;
+                        let got = if sign > 0.0 { p.min } else { p.max };
+                        assert_eq!(got, 0.0);
+                        assert_eq!(
+                            got.is_sign_negative(),
+                            zero_first.is_sign_negative(),
+                            "rows {first}, {second}, first zero {zero_first}, sign {sign}, full {full}"
+                        );
+                    }
+                }
             }
         }
     }

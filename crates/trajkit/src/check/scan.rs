@@ -233,11 +233,18 @@ impl<S: PeakScan> JointScan<S> {
         }
     }
 
-    /// The position range part of [`JointScan::push`].
+    /// The position range part of [`JointScan::push`]. The range keeps the first smallest and
+    /// first largest value (a NaN is skipped, as `f64::min` and `f64::max` skip it; on a tie
+    /// of −0 and +0 the earlier one stays), so that [`RowScan`] can take it from its blocks'
+    /// extremes.
     #[inline]
     fn position(&mut self, t: f64, q: f64) {
-        self.min = self.min.min(q);
-        self.max = self.max.max(q);
+        if q < self.min {
+            self.min = q;
+        }
+        if q > self.max {
+            self.max = q;
+        }
         let d = (self.position_min - q).max(q - self.position_max);
         if d > self.beyond {
             self.beyond = d;
@@ -306,7 +313,7 @@ pub(super) fn full_table_scan(table: &SampleTable, limits: &Limits) -> Option<Ve
 pub(crate) type ScanResult = (PositionCheck, [DerivativeCheck; 3]);
 
 /// Rows per block of [`RowScan`]'s summaries.
-const SUMMARY_ROWS: usize = 64;
+const SUMMARY_ROWS: usize = 128;
 
 /// Series per block summary: the divided-difference numerators of position, velocity and
 /// acceleration, then the pointwise velocity, acceleration and jerk.
@@ -317,7 +324,8 @@ const SERIES: usize = 6;
 ///
 /// Pushing a block only summarizes it, with comparisons and subtractions (no division): per
 /// joint the largest and smallest pointwise value of each order, of each divided-difference
-/// numerator `x₁ − x₀` and of the position excursion, and the smallest and largest time step.
+/// numerator `x₁ − x₀` and of the position (the block's largest position excursion follows
+/// from the last two, [`excursion`]), and the smallest and largest time step.
 /// [`RowScan::finish`] then finds each peak exactly: a pointwise peak in the first block whose
 /// extreme equals the series' extreme; a divided-difference peak among the blocks whose upper
 /// bound (numerator extreme over the time-step extremes: a correctly rounded division is
@@ -340,9 +348,11 @@ pub(crate) struct RowScan<'a> {
     steps: Vec<(f64, f64)>,
     /// Per block, per series ([`SERIES`]): largest values (dof), then smallest (dof).
     extremes: Vec<f64>,
-    /// Per block and joint: the largest position excursion `max(lo − q, q − hi)`.
+    /// Per block and joint: the largest position excursion `max(lo − q, q − hi)`, from the
+    /// block's smallest and largest position ([`excursion`]).
     beyond: Vec<f64>,
-    /// Per joint: the running position minimum and maximum, row by row as [`JointScan`].
+    /// Per joint: the running position minimum and maximum, from the blocks' (the first
+    /// smallest and first largest, as [`JointScan`] keeps them).
     q_min: Vec<f64>,
     q_max: Vec<f64>,
     /// Every time step seen is positive and finite.
@@ -446,19 +456,15 @@ impl<'a> RowScan<'a> {
         let joints = self.limits.joints();
         let lo: [f64; D] = std::array::from_fn(|j| joints[j].position_min);
         let hi: [f64; D] = std::array::from_fn(|j| joints[j].position_max);
-        let mut q_min = *fixed::<D>(&self.q_min);
-        let mut q_max = *fixed::<D>(&self.q_max);
-        let mut beyond = [f64::NEG_INFINITY; D];
+        let (mut q_hi, mut q_lo) = ([f64::NEG_INFINITY; D], [f64::INFINITY; D]);
         for q in rows(0) {
             for j in 0..D {
-                q_min[j] = q_min[j].min(q[j]);
-                q_max[j] = q_max[j].max(q[j]);
-                let d = (lo[j] - q[j]).max(q[j] - hi[j]);
-                beyond[j] = if d > beyond[j] { d } else { beyond[j] };
+                q_hi[j] = if q[j] > q_hi[j] { q[j] } else { q_hi[j] };
+                q_lo[j] = if q[j] < q_lo[j] { q[j] } else { q_lo[j] };
             }
         }
-        self.q_min.copy_from_slice(&q_min);
-        self.q_max.copy_from_slice(&q_max);
+        let beyond: [f64; D] = std::array::from_fn(|j| excursion(lo[j], hi[j], q_lo[j], q_hi[j]));
+        self.extend_range(&q_lo, &q_hi);
         self.beyond.extend_from_slice(&beyond);
         self.extremes.extend(ext.iter().flatten());
         self.finish_block(times, cols);
@@ -474,10 +480,7 @@ impl<'a> RowScan<'a> {
                 .extend(grow.flat_map(|v| std::iter::repeat_n(v, dof)));
         }
         let ext = &mut self.extremes[base..];
-        let beyond_at = self.beyond.len();
-        self.beyond.resize(beyond_at + dof, f64::NEG_INFINITY);
-        let beyond = &mut self.beyond[beyond_at..];
-        let joints = self.limits.joints();
+        let (mut q_hi, mut q_lo) = (vec![f64::NEG_INFINITY; dof], vec![f64::INFINITY; dof]);
         let row = |k: usize, i: usize| &cols[k][i * dof..(i + 1) * dof];
         for i in 0..m {
             if self.rows + i > 0 {
@@ -496,15 +499,28 @@ impl<'a> RowScan<'a> {
                 let (mx, mn) = ext[2 * s * dof..2 * (s + 1) * dof].split_at_mut(dof);
                 track(mx, mn, row(k, i).iter().copied());
             }
-            let q = row(0, i);
-            for (j, (&q, jl)) in q.iter().zip(joints).enumerate() {
-                self.q_min[j] = self.q_min[j].min(q);
-                self.q_max[j] = self.q_max[j].max(q);
-                let d = (jl.position_min - q).max(q - jl.position_max);
-                beyond[j] = if d > beyond[j] { d } else { beyond[j] };
-            }
+            track(&mut q_hi, &mut q_lo, row(0, i).iter().copied());
         }
+        let joints = self.limits.joints();
+        self.beyond.extend(
+            joints
+                .iter()
+                .zip(q_lo.iter().zip(&q_hi))
+                .map(|(jl, (&mn, &mx))| excursion(jl.position_min, jl.position_max, mn, mx)),
+        );
+        self.extend_range(&q_lo, &q_hi);
         self.finish_block(times, cols);
+    }
+
+    /// Widens the running position range by a block's smallest and largest positions (the
+    /// first smallest and first largest stay, as in [`JointScan`]).
+    fn extend_range(&mut self, q_lo: &[f64], q_hi: &[f64]) {
+        for (m, &x) in self.q_max.iter_mut().zip(q_hi) {
+            *m = if x > *m { x } else { *m };
+        }
+        for (m, &x) in self.q_min.iter_mut().zip(q_lo) {
+            *m = if x < *m { x } else { *m };
+        }
     }
 
     /// The end of a block's summary (its extremes pushed): its time steps, the previous row
@@ -685,6 +701,15 @@ fn all_finite(values: &[f64]) -> bool {
         }
     }
     lanes.iter().chain(tail).all(|x| x.is_finite())
+}
+
+/// The largest position excursion `max(lo − q, q − hi)` of a block from its smallest and
+/// largest position `q_lo`, `q_hi`: a correctly rounded subtraction is monotone in each
+/// operand, so `lo − q` is largest at the smallest q and `q − hi` at the largest, and this is
+/// the largest of the rows' own excursions, bit for bit (every value finite).
+#[inline]
+fn excursion(lo: f64, hi: f64, q_lo: f64, q_hi: f64) -> f64 {
+    (lo - q_lo).max(q_hi - hi)
 }
 
 /// A row of exactly `D` values.

@@ -23,11 +23,14 @@ use super::FilteredProfile;
 /// piece computed from its reference point).
 #[derive(Default)]
 pub(super) struct Cells {
-    /// Per piece: its start in s, its first cell's index, its cell count and cell width.
+    /// Per piece: its start in s, its first cell's index, its cell count (a whole number)
+    /// and cell width, and the width's reciprocal (to guess a segment's cell, see
+    /// [`Cells::cell`]).
     start: Vec<f64>,
     first: Vec<usize>,
-    count: Vec<usize>,
+    count: Vec<f64>,
     width: Vec<f64>,
+    inv_width: Vec<f64>,
     /// Index (cell·3 + k − 1)·dim + j.
     pub(super) bounds: Vec<f64>,
 }
@@ -57,8 +60,9 @@ impl Cells {
             let width = len / n as f64;
             cells.start.push(pair[0]);
             cells.first.push(cells.bounds.len() / (3 * dim));
-            cells.count.push(n);
+            cells.count.push(n as f64);
             cells.width.push(width);
+            cells.inv_width.push(1.0 / width);
             let rd = &ref_der[p * (d + 1) * dim..(p + 1) * (d + 1) * dim];
             let mut whole = vec![0.0; 3 * dim];
             Self::bound(rd, 0.5 * len * (1.0 + 1e-6), d, dim, &mut whole);
@@ -119,14 +123,17 @@ impl Cells {
     pub(super) fn cell(&self, piece: usize, sm: f64, reach: f64) -> Option<usize> {
         let (n, width) = (*self.count.get(piece)?, self.width[piece]);
         let lo = self.start[piece];
-        // ⌊x⌋ ∈ [0, n) exactly when x ∈ [0, n) (n is an integer, NaN fails both), and there
-        // ⌊x⌋ is the truncation: no call to `floor`.
-        let x = (sm - lo) / width;
-        if !(x >= 0.0 && x < n as f64 && reach.is_finite()) {
+        // The cell index guessed with the reciprocal of the width (no division): a guess one
+        // cell off near a cell's edge fails the containment test below or passes it, and
+        // either way only decides whether a segment may be skipped, never a value. ⌊x⌋ ∈
+        // [0, n) exactly when x ∈ [0, n) (n ≤ 2¹⁶ is an integer, NaN fails both), and there
+        // ⌊x⌋ is the truncation: no call to `floor`, and exact through i64.
+        let x = (sm - lo) * self.inv_width[piece];
+        if !(x >= 0.0 && x < n && reach.is_finite()) {
             return None;
         }
-        let q = (x as usize) as f64;
-        let c = lo + (q + 0.5) * width;
+        let q = x as i64;
+        let c = lo + (q as f64 + 0.5) * width;
         ((sm - c).abs() + reach <= 0.5 * width).then_some(self.first[piece] + q as usize)
     }
 }

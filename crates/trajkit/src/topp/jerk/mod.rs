@@ -151,6 +151,7 @@ impl FilteredProfile {
 
     /// `[s, ṡ, s̈]` of the unfiltered law at any t (rest outside `[0, T*]`); `hint` is the
     /// piece to search from, updated to the piece found.
+    #[inline]
     fn raw(&self, t: f64, hint: &mut usize) -> [f64; 3] {
         let p = &self.profile;
         let (s, times) = (p.gridpoints(), p.times());
@@ -280,6 +281,11 @@ pub fn filter_window<P: Path + ?Sized>(
     let jl: Vec<f64> = (0..n)
         .map(|j| limits.joint(j).symmetric_limit(Order::Jerk))
         .collect();
+    // Per joint the largest numerator |σ′ⱼ|·|Δs̈|, divided once at the end: a correctly
+    // rounded division by a positive constant is monotone, so the largest quotient is the
+    // quotient of the largest numerator, bit for bit (NaN numerators are ignored by `max`
+    // either way).
+    let mut top = vec![0.0f64; n];
     let u = profile.accelerations();
     let s = profile.gridpoints();
     // The switches, a block at a time: their s and |Δs̈|, then σ′ at all of them with one
@@ -303,11 +309,14 @@ pub fn filter_window<P: Path + ?Sized>(
         }
         path.eval_many(&at[..m], 1, &mut d1[..m * n]);
         for (row, &du) in d1.chunks_exact(n).zip(&jump[..m]) {
-            for (d, &jl) in row.iter().zip(&jl) {
-                if jl.is_finite() {
-                    w = w.max(d.abs() * du / (budget * jl));
-                }
+            for (t, d) in top.iter_mut().zip(row) {
+                *t = t.max(d.abs() * du);
             }
+        }
+    }
+    for (&t, &jl) in top.iter().zip(&jl) {
+        if jl.is_finite() {
+            w = w.max(t / (budget * jl));
         }
     }
     Ok(Some(w.max(1e-9)))
