@@ -571,8 +571,8 @@ impl<P: Path> Sweep<'_, P> {
             return ([f64::INFINITY; 3], u64::MAX);
         };
         let (reach, open) = match self.dim {
-            6 => self.cell_test_n::<6>(c, sh.x),
-            7 => self.cell_test_n::<7>(c, sh.x),
+            6 => self.cell_test_n::<6, true>(c, sh.x),
+            7 => self.cell_test_n::<7, true>(c, sh.x),
             dim => {
                 let pb = &self.cells.bounds[c * 3 * dim..(c + 1) * 3 * dim];
                 let mut reach = [0.0f64; 3];
@@ -591,9 +591,15 @@ impl<P: Path> Sweep<'_, P> {
     }
 
     /// [`Sweep::cell_test`] of cell `c` for `N` joints in fixed-size arrays, before its NaN
-    /// test (the arithmetic of [`Sweep::cheap`]: the same values as joint by joint).
+    /// test (the arithmetic of [`Sweep::cheap`]: the same values as joint by joint). Without
+    /// `REACH` only the open joints are found (the reach stays 0): what [`Sweep::visit`]
+    /// needs.
     #[inline(always)]
-    fn cell_test_n<const N: usize>(&self, c: usize, [x1, x2, x3]: [f64; 3]) -> ([f64; 3], u64) {
+    fn cell_test_n<const N: usize, const REACH: bool>(
+        &self,
+        c: usize,
+        [x1, x2, x3]: [f64; 3],
+    ) -> ([f64; 3], u64) {
         let pb = &self.cells.bounds[c * 3 * N..(c + 1) * 3 * N];
         let row = |v: &[f64]| -> [f64; N] { std::array::from_fn(|j| v[j]) };
         let (b0, b1, b2) = (row(&pb[..N]), row(&pb[N..2 * N]), row(&pb[2 * N..]));
@@ -608,7 +614,9 @@ impl<P: Path> Sweep<'_, P> {
             ];
             let skip = (cheap[0] <= t[0]) & (cheap[1] <= t[1]) & (cheap[2] <= t[2]);
             open |= u64::from(!skip) << j;
-            max_nan(&mut reach, cheap);
+            if REACH {
+                max_nan(&mut reach, cheap);
+            }
         }
         (reach, open)
     }
@@ -833,12 +841,29 @@ impl<'a, P: Path> Sweep<'a, P> {
     /// Bounds the segment unless, by its cell test ([`Sweep::cell_test`]), no joint's cheap
     /// bound exceeds the running thresholds: then every joint of the segment would be skipped
     /// by [`Sweep::poly_joint`] too, and the segment changes nothing.
+    ///
+    /// On 6 and 7 joints in a cell the test is whether any joint is open: every order's
+    /// reach is at most its threshold exactly when every joint's cheap bounds are (a NaN
+    /// fails both), so the reach itself is not formed.
     #[inline]
     fn visit(&mut self, sp: &Span) {
         let sh = Shape::new(&sp.cub, sp.t0, sp.t1);
         let cell = self.cells.cell(sp.piece, sh.s[1], sh.reach);
-        let (c, open) = self.cell_test(&sh, cell);
-        if (0..3).all(|o| c[o] <= self.threshold[o]) {
+        let (skip, open) = match (cell, self.dim) {
+            (Some(c), 6) => {
+                let open = self.cell_test_n::<6, false>(c, sh.x).1;
+                (open == 0, open)
+            }
+            (Some(c), 7) => {
+                let open = self.cell_test_n::<7, false>(c, sh.x).1;
+                (open == 0, open)
+            }
+            _ => {
+                let (c, open) = self.cell_test(&sh, cell);
+                ((0..3).all(|o| c[o] <= self.threshold[o]), open)
+            }
+        };
+        if skip {
             self.skipped += 1;
         } else {
             self.segment(sp, &sh, cell, open);
