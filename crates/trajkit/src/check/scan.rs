@@ -688,14 +688,19 @@ fn track(mx: &mut [f64], mn: &mut [f64], values: impl Iterator<Item = f64>) {
     }
 }
 
-/// True when every value of `values` is finite: eight independent lanes (`x · 0` is 0 for a
-/// finite `x`, NaN otherwise, and a NaN stays in its lane's sum), so that the test runs in
-/// vector registers without a branch per value.
+/// Independent sums of [`all_finite`]: enough that the additions of one chunk do not wait for
+/// the previous chunk's (eight two-lane vector registers).
+const FINITE_LANES: usize = 16;
+
+/// True when every value of `values` is finite: [`FINITE_LANES`] independent lanes (`x · 0` is
+/// 0 for a finite `x`, NaN otherwise, and a NaN stays in its lane's sum), so that the test runs
+/// in vector registers without a branch per value.
 fn all_finite(values: &[f64]) -> bool {
-    let mut lanes = [0.0f64; 8];
-    let chunks = values.chunks_exact(8);
+    let mut lanes = [0.0f64; FINITE_LANES];
+    let chunks = values.chunks_exact(FINITE_LANES);
     let tail = chunks.remainder();
     for c in chunks {
+        let c = fixed::<FINITE_LANES>(c);
         for (l, &x) in lanes.iter_mut().zip(c) {
             *l += x * 0.0;
         }
@@ -712,7 +717,7 @@ fn excursion(lo: f64, hi: f64, q_lo: f64, q_hi: f64) -> f64 {
     (lo - q_lo).max(q_hi - hi)
 }
 
-/// A row of exactly `D` values.
+/// A row (or chunk) of exactly `D` values.
 #[inline]
 fn fixed<const D: usize>(row: &[f64]) -> &[f64; D] {
     row.try_into().expect("a row of D values")
@@ -735,7 +740,7 @@ mod tests {
 
     #[test]
     fn all_finite_finds_each_non_finite_value_in_any_lane_or_the_tail() {
-        for len in [0, 1, 7, 8, 9, 16, 23] {
+        for len in [0, 1, 7, 8, 9, 15, 16, 17, 23, 31, 32, 33, 47] {
             let v: Vec<f64> = (0..len).map(|i| (i as f64 - 5.0) * 1e300).collect();
             assert!(all_finite(&v), "len {len}");
             for at in 0..len {
