@@ -215,7 +215,7 @@ impl Workspace {
         let wanted = (cons.iter().enumerate())
             .any(|(k, c)| pieces.has_piece_for(i, &**c) && !proved(k, &**c));
         let piece = if wanted {
-            pieces.piece(path, grid, i, &self.at_points, buf)
+            pieces.piece(path, grid, i, &self.pts.at_points, buf)
         } else {
             None
         };

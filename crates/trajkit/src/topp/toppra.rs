@@ -9,7 +9,12 @@
 //!    up to rounding; on pieces of degree 4 or 5 the six derivatives moved to a gridpoint are
 //!    kept for the interval starting there while they fit in 16 MB, and beyond that moved
 //!    again from the piece's midpoint, or taken from the gridpoint values, when the
-//!    between-gridpoint rows and checks ask for them, bitwise the same: see `topp::between`);
+//!    between-gridpoint rows and checks ask for them, bitwise the same: see `topp::between`).
+//!    A grid that keeps the points of the previous grid of the same solve (the rounds of the
+//!    default grid halve or cut its intervals) takes their rows, bounds and Taylor data from
+//!    it instead of evaluating them again: the same numbers (while that grid has at most
+//!    4096 points, so that holding both grids' data stays within the memory kept between
+//!    solves);
 //! 2. **backward pass**: from the end set K_N = {ṡ_end²}, computes the controllable sets
 //!    K_i = [min, max] of the x from which some admissible u reaches K_{i+1} — two exact
 //!    two-variable linear programs per stage (`topp/lp.rs`);
@@ -353,16 +358,8 @@ fn profile_from(grid: &[f64], x: &[f64]) -> Result<PhaseProfile> {
 /// Constraint data at every gridpoint and scratch space.
 #[derive(Default)]
 pub(super) struct Workspace {
-    /// Raw half-planes of all gridpoints and constraints, concatenated.
-    rows: Vec<[f64; 3]>,
-    /// `off[i * (nc + 1) + k]`: start of constraint k's rows at gridpoint i.
-    off: Vec<usize>,
-    /// Bounds on x per gridpoint, and the constraint that set the upper one.
-    xlo: Vec<f64>,
-    xhi: Vec<f64>,
-    xhi_by: Vec<usize>,
-    /// Whether every row at the gridpoint holds at rest (right-hand side ≥ 0).
-    rests: Vec<bool>,
+    /// The constraints' data at the gridpoints.
+    pub(super) pts: PointData,
     nc: usize,
     /// The problem's scale of x = ṡ² (see [`Workspace::x_scale`]): the LP tolerances are
     /// relative to it, so that a problem whose limits are all multiplied by c > 0 is solved
@@ -391,8 +388,52 @@ pub(super) struct Workspace {
     pub(super) q: Vec<f64>,
     pub(super) dq: Vec<f64>,
     pub(super) ddq: Vec<f64>,
+    /// Whether `pts` belong to the current solve; the data of the grid before them and
+    /// whether those do (see [`REUSE_POINTS`]).
+    this_solve: bool,
+    prev: PointData,
+    prev_valid: bool,
+}
+
+/// The constraints' data at every gridpoint of one grid.
+#[derive(Default)]
+pub(super) struct PointData {
+    /// The grid (kept only while it may be reused, see [`REUSE_POINTS`]).
+    grid: Vec<f64>,
+    /// Raw half-planes of all gridpoints and constraints, concatenated.
+    rows: Vec<[f64; 3]>,
+    /// `off[i * (nc + 1) + k]`: start of constraint k's rows at gridpoint i.
+    off: Vec<usize>,
+    /// Bounds on x per gridpoint, and the constraint that set the upper one.
+    xlo: Vec<f64>,
+    xhi: Vec<f64>,
+    xhi_by: Vec<usize>,
+    /// Whether every row at the gridpoint holds at rest (right-hand side ≥ 0).
+    rests: Vec<bool>,
     /// σ, σ′, σ″ at every gridpoint (`3·dim` numbers each; σ zero when no constraint reads it).
     pub(super) at_points: Vec<f64>,
+}
+
+/// A grid takes the data of the points it shares with the previous grid of the same solve
+/// while that grid has at most this many points. Then both grids' data are held (the previous
+/// one in `Workspace::prev`); beyond it the second copy would take the workspace kept between
+/// solves over [`SPARE_BYTES`] (and every solve would ask for fresh pages), for a gain of a
+/// few per cent.
+const REUSE_POINTS: usize = 4096;
+
+impl PointData {
+    /// Bytes held (roughly).
+    fn bytes(&self) -> usize {
+        let f = std::mem::size_of::<f64>();
+        3 * f * self.rows.capacity()
+            + f * (self.grid.capacity()
+                + self.off.capacity()
+                + self.xlo.capacity()
+                + self.xhi.capacity()
+                + self.xhi_by.capacity()
+                + self.at_points.capacity())
+            + self.rests.capacity()
+    }
 }
 
 /// Largest workspace (bytes, roughly) kept for the next solve on the same thread.
@@ -408,18 +449,23 @@ thread_local! {
 impl Workspace {
     /// The spare workspace of this thread (a new one if there is none).
     fn take_spare() -> Workspace {
-        SPARE
+        let mut ws: Workspace = SPARE
             .try_with(|s| s.borrow_mut().take())
             .ok()
             .flatten()
-            .unwrap_or_default()
+            .unwrap_or_default();
+        // Another problem: its gridpoints' data are not this one's.
+        ws.this_solve = false;
+        ws.prev_valid = false;
+        ws
     }
 
     /// Keeps this workspace for the next solve on this thread, unless it is very large.
     fn keep_spare(self) {
         let f = std::mem::size_of::<f64>();
-        let bytes = 3 * f * (self.rows.capacity() + self.mid.capacity())
-            + f * (self.off.capacity() + self.at_points.capacity())
+        let bytes = 3 * f * (self.pts.rows.capacity() + self.mid.capacity())
+            + f * (self.pts.off.capacity() + self.pts.at_points.capacity())
+            + self.prev.bytes()
             + self.pieces.bytes();
         if bytes <= SPARE_BYTES {
             let _ = SPARE.try_with(|s| *s.borrow_mut() = Some(self));
@@ -463,28 +509,79 @@ impl Workspace {
     ) -> Result<()> {
         let n = path.dim();
         let nc = cons.len();
+        // The current data become the previous grid's when this solve wrote them for a grid
+        // small enough (see `REUSE_POINTS`); otherwise they are overwritten. (With three rounds
+        // the first and the last write the same buffers, those of the last solve's last round.)
+        let reuse = self.this_solve && self.nc == nc;
+        self.prev_valid = reuse;
+        if reuse {
+            std::mem::swap(&mut self.pts, &mut self.prev);
+        }
+        self.this_solve = false;
         self.nc = nc;
         self.q.resize(n, 0.0);
         self.dq.resize(n, 0.0);
         self.ddq.resize(n, 0.0);
-        self.off.clear();
-        self.xlo.clear();
-        self.xhi.clear();
-        self.xhi_by.clear();
-        self.rests.clear();
-        self.rests.reserve(grid.len());
-        self.off.reserve((nc + 1) * grid.len());
-        self.xlo.reserve(grid.len());
-        self.xhi.reserve(grid.len());
-        self.xhi_by.reserve(grid.len());
+        self.pts.off.clear();
+        self.pts.xlo.clear();
+        self.pts.xhi.clear();
+        self.pts.xhi_by.clear();
+        self.pts.rests.clear();
+        self.pts.rests.reserve(grid.len());
+        self.pts.off.reserve((nc + 1) * grid.len());
+        self.pts.xlo.reserve(grid.len());
+        self.pts.xhi.reserve(grid.len());
+        self.pts.xhi_by.reserve(grid.len());
         // The constraints append straight to the workspace's rows (no copy per gridpoint):
         // lend them to the collector for the pass and take them back afterwards.
-        let own = std::mem::replace(&mut self.cr.rows, std::mem::take(&mut self.rows));
+        let own = std::mem::replace(&mut self.cr.rows, std::mem::take(&mut self.pts.rows));
         self.cr.rows.clear();
         let result = self.evaluate_rows(path, cons, grid);
-        self.rows = std::mem::replace(&mut self.cr.rows, own);
-        self.scale = x_scale(&self.xhi);
+        self.pts.rows = std::mem::replace(&mut self.cr.rows, own);
+        self.scale = x_scale(&self.pts.xhi);
+        // Kept for the next grid of this solve when small enough to be reused.
+        self.pts.grid.clear();
+        if grid.len() <= REUSE_POINTS {
+            self.pts.grid.extend_from_slice(grid);
+            self.this_solve = result.is_ok();
+        }
         result
+    }
+
+    /// Takes gridpoint `p` of the previous grid (the same s) as the next gridpoint when its
+    /// data are there: its rows, bounds and values, the numbers an evaluation would write.
+    /// Returns false (nothing taken) otherwise.
+    fn copy_point(&mut self, p: usize, dim: usize, keep: bool) -> bool {
+        let nc = self.nc;
+        let prev = &self.prev;
+        let base = p * (nc + 1);
+        let (Some(off), Some(&rests)) = (prev.off.get(base..=base + nc), prev.rests.get(p)) else {
+            return false;
+        };
+        let (lo, hi, by) = (prev.xlo[p], prev.xhi[p], prev.xhi_by[p]);
+        let points = if keep {
+            &[][..]
+        } else {
+            match prev.at_points.get(3 * dim * p..3 * dim * (p + 1)) {
+                Some(v) => v,
+                None => return false,
+            }
+        };
+        if !self.pieces.copy_gridpoint(p, dim) {
+            return false;
+        }
+        let rows = &mut self.cr.rows;
+        for k in 0..nc {
+            self.pts.off.push(rows.len());
+            rows.extend_from_slice(&prev.rows[off[k]..off[k + 1]]);
+        }
+        self.pts.off.push(rows.len());
+        self.pts.rests.push(rests);
+        self.pts.xlo.push(lo);
+        self.pts.xhi.push(hi);
+        self.pts.xhi_by.push(by);
+        self.pts.at_points.extend_from_slice(points);
+        true
     }
 
     fn evaluate_rows<P: Path>(
@@ -493,29 +590,42 @@ impl Workspace {
         cons: &[Box<dyn Constraint + '_>],
         grid: &[f64],
     ) -> Result<()> {
-        let nc = cons.len();
         let need_q = cons.iter().any(|c| c.uses_position());
         let dim = path.dim();
         self.q.iter_mut().for_each(|v| *v = 0.0);
-        self.at_points.clear();
+        self.pts.at_points.clear();
         let breaks = anchor_breaks(path);
         let mut anchor = std::mem::take(&mut self.anchor);
         anchor.reset(dim);
         // Paths of degree 4 or 5: the intervals' Taylor data come from the pieces' anchors.
-        let pieces = &mut self.pieces;
-        let keep = pieces.start_gridpoints(path, need_q, !breaks.is_empty(), grid.len());
+        let reuse = self.prev_valid;
+        let anchored = !breaks.is_empty();
+        let keep = (self.pieces).start_gridpoints(path, need_q, anchored, grid.len(), reuse);
         if !keep {
-            self.at_points.reserve(3 * dim * grid.len());
+            self.pts.at_points.reserve(3 * dim * grid.len());
         }
         let mut b = 0;
+        // Points of the previous grid of this solve keep their data (see `copy_point`).
+        let mut old_p = 0;
         for &s in grid {
             while b < breaks.len() && breaks[b] <= s {
                 b += 1;
             }
+            if reuse {
+                let old = &self.prev.grid;
+                while old_p < old.len() && old[old_p] < s {
+                    old_p += 1;
+                }
+                if old_p < old.len() && old[old_p] == s && self.copy_point(old_p, dim, keep) {
+                    self.reserve_rows(grid.len());
+                    continue;
+                }
+            }
             let inside = b >= 1 && b < breaks.len() && breaks[b - 1] < s;
             let out = [&mut self.q[..], &mut self.dq[..], &mut self.ddq[..]];
             let at = (inside, b);
-            let (anchored, full) = pieces.eval_gridpoint(&mut anchor, path, &breaks, at, s, out);
+            let (anchored, full) =
+                (self.pieces).eval_gridpoint(&mut anchor, path, &breaks, at, s, out);
             if !anchored {
                 if need_q {
                     path.eval(s, 0, &mut self.q);
@@ -537,14 +647,14 @@ impl Workspace {
             };
             if !keep {
                 // Read by the cubic pieces' data only (see `between::Pieces`).
-                self.at_points.extend_from_slice(p.q);
-                self.at_points.extend_from_slice(p.dq);
-                self.at_points.extend_from_slice(p.ddq);
+                self.pts.at_points.extend_from_slice(p.q);
+                self.pts.at_points.extend_from_slice(p.dq);
+                self.pts.at_points.extend_from_slice(p.ddq);
             }
             let (mut lo, mut hi, mut by) = (0.0f64, f64::INFINITY, usize::MAX);
             let first = self.cr.rows.len();
             for (k, c) in cons.iter().enumerate() {
-                self.off.push(self.cr.rows.len());
+                self.pts.off.push(self.cr.rows.len());
                 self.cr.clear_bounds();
                 c.write(&p, &mut self.cr);
                 self.cr.check(&**c, s)?;
@@ -554,44 +664,50 @@ impl Workspace {
                     by = k;
                 }
             }
-            self.rests
+            self.pts
+                .rests
                 .push(self.cr.rows[first..].iter().all(|r| r[2] >= 0.0));
-            self.off.push(self.cr.rows.len());
-            if self.off.len() == nc + 1 {
-                // Every gridpoint usually has as many rows as the first: reserve once.
-                let per_point = self.cr.rows.len();
-                self.cr.rows.reserve(per_point * grid.len());
-            }
+            self.pts.off.push(self.cr.rows.len());
+            self.reserve_rows(grid.len());
             if lo > hi * (1.0 + 1e-12) {
                 return Err(contradiction(s, lo, hi, &cons[by].name()));
             }
-            self.xlo.push(lo);
-            self.xhi.push(hi.max(lo));
-            self.xhi_by.push(by);
+            self.pts.xlo.push(lo);
+            self.pts.xhi.push(hi.max(lo));
+            self.pts.xhi_by.push(by);
         }
         self.anchor = anchor;
         Ok(())
     }
 
+    /// Reserves the rows of a grid of `points` gridpoints once the first gridpoint is written
+    /// (every gridpoint usually has as many rows as the first).
+    fn reserve_rows(&mut self, points: usize) {
+        if self.pts.off.len() == self.nc + 1 {
+            let per_point = self.cr.rows.len();
+            self.cr.rows.reserve(per_point * points);
+        }
+    }
+
     /// [`Workspace::prepare_between`] with the velocity bounds at the gridpoints.
     fn prepare<P: Path>(&mut self, path: &P, cons: &[Box<dyn Constraint + '_>], grid: &[f64]) {
-        let xhi = std::mem::take(&mut self.xhi);
-        let at_points = std::mem::take(&mut self.at_points);
+        let xhi = std::mem::take(&mut self.pts.xhi);
+        let at_points = std::mem::take(&mut self.pts.at_points);
         self.prepare_between(path, cons, grid, &xhi, &at_points);
-        self.xhi = xhi;
-        self.at_points = at_points;
+        self.pts.xhi = xhi;
+        self.pts.at_points = at_points;
     }
 
     /// Rows of constraint k at gridpoint i.
     fn rows_of(&self, i: usize, k: usize) -> &[[f64; 3]] {
         let base = i * (self.nc + 1);
-        &self.rows[self.off[base + k]..self.off[base + k + 1]]
+        &self.pts.rows[self.pts.off[base + k]..self.pts.off[base + k + 1]]
     }
 
     /// All rows at gridpoint i.
     fn rows_at(&self, i: usize) -> &[[f64; 3]] {
         let base = i * (self.nc + 1);
-        &self.rows[self.off[base]..self.off[base + self.nc]]
+        &self.pts.rows[self.pts.off[base]..self.pts.off[base + self.nc]]
     }
 
     /// Rows of interior points of interval i, in (u, x_i).
@@ -684,13 +800,13 @@ impl Workspace {
         self.klo.resize(n + 1, 0.0);
         self.khi.clear();
         self.khi.resize(n + 1, 0.0);
-        if x_end > self.xhi[n] * (1.0 + 1e-9) || x_end < self.xlo[n] * (1.0 - 1e-9) {
+        if x_end > self.pts.xhi[n] * (1.0 + 1e-9) || x_end < self.pts.xlo[n] * (1.0 - 1e-9) {
             return Err(Error::Infeasible(format!(
                 "the end path velocity ṡ = {} is outside what '{}' allows at s = {} (ṡ ≤ {})",
                 o.end_velocity,
-                self.name_of(prob, self.xhi_by[n]),
+                self.name_of(prob, self.pts.xhi_by[n]),
                 grid[n],
-                self.xhi[n].sqrt()
+                self.pts.xhi[n].sqrt()
             )));
         }
         self.klo[n] = x_end;
@@ -716,8 +832,8 @@ impl Workspace {
             let (klo, khi) = (self.klo[i + 1], self.khi[i + 1]);
             let tol = 1e-10 * (self.scale + khi);
             let stage = &self.stage(i, delta, disc, None, khi, klo);
-            let xhi = self.xhi[i].min(X_BIG);
-            let xlo = self.xlo[i];
+            let xhi = self.pts.xhi[i].min(X_BIG);
+            let xlo = self.pts.xlo[i];
             let lo = [(klo - xhi) / (2.0 * delta), xlo];
             let hi = [(khi - xlo) / (2.0 * delta), xhi];
             let best = lp::maximize([0.0, 1.0], stage, lo, hi, hint_max, tol);
@@ -725,8 +841,8 @@ impl Workspace {
             // skip the second program then.
             let rest_ok = xlo == 0.0
                 && klo <= 0.0
-                && self.rests[i]
-                && (disc == Discretization::Collocation || self.rests[i + 1])
+                && self.pts.rests[i]
+                && (disc == Discretization::Collocation || self.pts.rests[i + 1])
                 && self.mid_rows(i).iter().all(|r| r[2] >= 0.0);
             let worst = if rest_ok {
                 best.map(|_| lp::LpSolution {
@@ -871,4 +987,72 @@ fn contradiction(s: f64, lo: f64, hi: f64, by: &str) -> Error {
     Error::Infeasible(format!(
         "at s = {s}: the velocity bounds contradict each other (ṡ² ≥ {lo} but ṡ² ≤ {hi} by '{by}')"
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::rng::SplitMix64;
+    use crate::spline::{BoundedSpline, CubicSpline};
+    use crate::topp::grid::subdivide;
+
+    /// The gridpoint data and interval rows of `fine` after evaluating `coarse` first (its
+    /// points reused where `fine` keeps them) and on a fresh workspace.
+    fn reused_and_fresh<P: Path>(path: &P, limits: &Limits, coarse: &[f64], fine: &[f64]) {
+        let prob = Toppra::with_limits(path, limits).unwrap();
+        let cons = prob.constraints_ref();
+        let mut reused = Workspace::default();
+        reused.evaluate(path, cons, coarse).unwrap();
+        reused.prepare(path, cons, coarse);
+        reused.evaluate(path, cons, fine).unwrap();
+        assert!(reused.prev_valid && reused.prev.grid == coarse);
+        reused.prepare(path, cons, fine);
+        let mut fresh = Workspace::default();
+        fresh.evaluate(path, cons, fine).unwrap();
+        fresh.prepare(path, cons, fine);
+        assert_eq!(reused.pts.rows, fresh.pts.rows);
+        assert_eq!(reused.pts.off, fresh.pts.off);
+        assert_eq!(reused.pts.xlo, fresh.pts.xlo);
+        assert_eq!(reused.pts.xhi, fresh.pts.xhi);
+        assert_eq!(reused.pts.xhi_by, fresh.pts.xhi_by);
+        assert_eq!(reused.pts.rests, fresh.pts.rests);
+        assert_eq!(reused.pts.at_points, fresh.pts.at_points);
+        assert_eq!(reused.pieces.grid_piece, fresh.pieces.grid_piece);
+        // The interval rows read the Taylor data kept at the gridpoints.
+        assert_eq!(reused.mid, fresh.mid);
+        assert_eq!(reused.mid_off, fresh.mid_off);
+        assert_eq!(reused.scale, fresh.scale);
+    }
+
+    /// A grid that keeps the points of the previous one takes their data from it: the same
+    /// numbers as evaluating them again, on cubic and on range-repaired (quintic) splines.
+    #[test]
+    fn reused_gridpoints_equal_evaluated_ones() {
+        let lim = Limits::preset("panda").unwrap();
+        let lo: Vec<f64> = lim.joints().iter().map(|j| j.position_min).collect();
+        let hi: Vec<f64> = lim.joints().iter().map(|j| j.position_max).collect();
+        let mut rng = SplitMix64::new(77);
+        let mut quintic = 0;
+        for case in 0..12 {
+            let n = 4 + case % 4;
+            let wp: Vec<f64> = (0..n)
+                .flat_map(|_| lim.joints().to_vec())
+                .map(|j| rng.uniform(j.position_min + 0.05, j.position_max - 0.05))
+                .collect();
+            let ss: Vec<f64> = (0..n).map(|i| i as f64 / (n - 1) as f64).collect();
+            let natural = CubicSpline::natural(&ss, &wp, 7).unwrap();
+            let coarse = Gridpoints::Uniform(30 + case).points(&natural).unwrap();
+            let parts: Vec<usize> = (0..coarse.len() - 1)
+                .map(|i| 1 + (i * 7 + case) % 4)
+                .collect();
+            let fine = subdivide(&coarse, &parts);
+            reused_and_fresh(&natural, &lim, &coarse, &fine);
+            let bounded = BoundedSpline::new(natural.as_ppoly(), &lo, &hi).unwrap();
+            if bounded.piecewise_degree() == Some(5) {
+                quintic += 1;
+                reused_and_fresh(&bounded, &lim, &coarse, &fine);
+            }
+        }
+        assert!(quintic > 0);
+    }
 }

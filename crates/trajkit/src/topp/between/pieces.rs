@@ -54,6 +54,11 @@ pub(in crate::topp) struct Pieces {
     /// Per gridpoint: the index `b` of the piece (ending at `breaks[b]`) whose anchor gave
     /// finite data there, `usize::MAX` where none did.
     pub(in crate::topp) grid_piece: Vec<usize>,
+    /// `at_grid`, `store` and `grid_piece` of the previous pass over the gridpoints, for the
+    /// points the next grid keeps ([`Pieces::copy_gridpoint`]).
+    prev_at_grid: Vec<f64>,
+    prev_store: bool,
+    prev_grid_piece: Vec<usize>,
     /// The path's breakpoints (for the anchors of [`Pieces::piece`]).
     breaks: Vec<f64>,
     /// Whether the pass over the gridpoints marks `grid_piece`, and whether it evaluates σ.
@@ -76,25 +81,41 @@ pub(in crate::topp) struct PieceBuf {
 impl Pieces {
     /// Bytes held (roughly).
     pub(in crate::topp) fn bytes(&self) -> usize {
-        8 * (self.data.capacity() + self.at_grid.capacity() + self.breaks.capacity())
-            + std::mem::size_of::<usize>() * (self.loc.capacity() + self.grid_piece.capacity())
+        8 * (self.data.capacity()
+            + self.at_grid.capacity()
+            + self.prev_at_grid.capacity()
+            + self.breaks.capacity())
+            + std::mem::size_of::<usize>()
+                * (self.loc.capacity()
+                    + self.grid_piece.capacity()
+                    + self.prev_grid_piece.capacity())
             + self.exact.capacity()
             + self.at_break.capacity()
     }
 
     /// Starts the pass over the gridpoints of a new grid of `points` gridpoints
     /// ([`Pieces::eval_gridpoint`]); `anchored`: whether the pass moves Taylor data from
-    /// path pieces at all. Returns whether it keeps the full data (paths of degree 4 or 5):
-    /// the intervals then need no values at the gridpoints.
+    /// path pieces at all; `keep_previous`: whether the data of the last pass are kept for
+    /// [`Pieces::copy_gridpoint`]. Returns whether it keeps the full data (paths of degree 4
+    /// or 5): the intervals then need no values at the gridpoints.
     pub(in crate::topp) fn start_gridpoints<P: Path>(
         &mut self,
         path: &P,
         need_q: bool,
         anchored: bool,
         points: usize,
+        keep_previous: bool,
     ) -> bool {
         self.keep = anchored && path.piecewise_degree().is_some_and(|d| d > 3);
         self.need_q = need_q;
+        if keep_previous {
+            std::mem::swap(&mut self.at_grid, &mut self.prev_at_grid);
+            std::mem::swap(&mut self.grid_piece, &mut self.prev_grid_piece);
+            self.prev_store = self.store;
+        } else {
+            self.prev_grid_piece.clear();
+            self.prev_store = false;
+        }
         self.grid_piece.clear();
         self.at_grid.clear();
         let per_point = 6 * path.dim();
@@ -146,6 +167,31 @@ impl Pieces {
         let finite = ok == Some(true);
         self.grid_piece.push(if finite { b } else { usize::MAX });
         (ok.is_some(), finite.then_some(&self.at_grid[at..]))
+    }
+
+    /// Takes the data of gridpoint `p` of the previous pass over the gridpoints (of the same
+    /// path, at the same s: the same numbers [`Pieces::eval_gridpoint`] would compute) as the
+    /// next gridpoint of this pass. Returns false, with nothing taken, when the previous pass
+    /// did not keep what this one needs (then the caller evaluates the point).
+    pub(in crate::topp) fn copy_gridpoint(&mut self, p: usize, dim: usize) -> bool {
+        if !self.keep {
+            return true;
+        }
+        let Some(&piece) = self.prev_grid_piece.get(p) else {
+            return false;
+        };
+        if self.store {
+            let n = 6 * dim;
+            let Some(d) = (self.prev_store)
+                .then(|| self.prev_at_grid.get(p * n..(p + 1) * n))
+                .flatten()
+            else {
+                return false;
+            };
+            self.at_grid.extend_from_slice(d);
+        }
+        self.grid_piece.push(piece);
+        true
     }
 
     pub(in crate::topp) fn build<P: Path>(&mut self, path: &P, grid: &[f64], need_q: bool) {

@@ -23,8 +23,8 @@ impl Workspace {
     ) -> Error {
         let delta = grid[i + 1] - grid[i];
         let (klo, khi) = (self.klo[i + 1], self.khi[i + 1]);
-        let xhi = self.xhi[i].min(X_BIG);
-        let xlo = self.xlo[i];
+        let xhi = self.pts.xhi[i].min(X_BIG);
+        let xlo = self.pts.xlo[i];
         let lo = [(klo - xhi) / (2.0 * delta), xlo];
         let hi = [(khi - xlo) / (2.0 * delta), xhi];
         let tol = 1e-10 * (self.scale + khi);
@@ -79,10 +79,10 @@ impl Workspace {
         }
         if who.is_empty() {
             for j in [i, i + 1] {
-                if self.xhi[j] <= 0.0 {
+                if self.pts.xhi[j] <= 0.0 {
                     who.push(format!(
                         "'{}' allows only ṡ = 0",
-                        self.name_of(prob, self.xhi_by[j])
+                        self.name_of(prob, self.pts.xhi_by[j])
                     ));
                 }
             }
