@@ -10,9 +10,11 @@
 //! step 1 finds must not exceed the constructed profile's (× (1 + 1e-9)). Half the problems
 //! are mirrored (the negative direction).
 //!
-//! Not yet met everywhere: 5 of the default run's ~16 800 cases are still missed
-//! ([`KNOWN_MISSES`], pinned so that any change shows), and 78 of the long run's 251 940; in
-//! each of them Ruckig 0.19.4 is as long or longer (`tools/otg_step1_misses.py` classifies a
+//! Not yet met everywhere: 2 of the default run's ~16 800 cases are still missed
+//! ([`KNOWN_MISSES`], pinned so that any change shows), and 52 of the long run's 251 940 (77
+//! before the plateau families' window ends took the displacement's rounding and the none
+//! family's window-end levels were polished; none new); in each of them Ruckig 0.19.4 is as
+//! long or longer (`tools/otg_step1_misses.py` classifies a
 //! long run's misses against the wheel). Before the none family's rescue (window-end
 //! candidates, the solve in the middle ramp's duration, `step1/closed.rs`) and the plateau
 //! families' polish, the long run missed 333 cases: 45 where Ruckig was shorter and reached

@@ -278,26 +278,34 @@ impl Closed<'_> {
                         continue;
                     }
                 }
-                // The closed form missed: where it is ill-conditioned, its polished levels
-                // (when they differ).
-                if w >= NEAR * c * c {
-                    continue;
-                }
-                let Some((p1, p2)) = self.polish_none(a1, a2, k).next() else {
-                    continue;
-                };
-                if (p1, p2) == (a1, a2)
-                    || p1 < a0 - tol
-                    || p1 > amax + tol
-                    || p2 < amin - tol
-                    || p2 > af + tol
-                {
-                    continue;
-                }
-                if let (Some(p1), Some(p2)) = (clamp_in(p1, a0, amax), clamp_in(p2, amin, af)) {
-                    self.emit_none(p1, p2.min(p1), col);
+                // The closed form missed: where it is ill-conditioned, its polished levels.
+                if w < NEAR * c * c {
+                    self.none_end_polished(a1, a2, k, col);
                 }
             }
+        }
+    }
+
+    /// [`Self::none_ends`]' candidate (α₁, α₂) polished ([`Self::polish_none`]), offered when
+    /// its levels differ and stay on their windows (to the levels' tolerance). Out of line:
+    /// it runs only where the closed form is ill-conditioned and missed.
+    #[cold]
+    fn none_end_polished(&self, a1: f64, a2: f64, k: f64, col: &mut Collector<'_>) {
+        let q = self.q;
+        let (a0, af, amax, amin, tol) = (q.a0, q.af, q.amax, q.amin, self.tol);
+        let Some((p1, p2)) = self.polish_none(a1, a2, k).next() else {
+            return;
+        };
+        if (p1, p2) == (a1, a2)
+            || p1 < a0 - tol
+            || p1 > amax + tol
+            || p2 < amin - tol
+            || p2 > af + tol
+        {
+            return;
+        }
+        if let (Some(p1), Some(p2)) = (clamp_in(p1, a0, amax), clamp_in(p2, amin, af)) {
+            self.emit_none(p1, p2.min(p1), col);
         }
     }
 
