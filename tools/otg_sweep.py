@@ -22,7 +22,8 @@ Ruckig succeeds when its final positions meet the same scale-relative tolerance 
 (its velocities and accelerations are not judged, so that no problem leaves the comparison
 for a rounding of Ruckig's end state); otherwise it is counted in `ruckig_misses_target`. Where Ruckig is
 shorter than trajkit but trajkit, given the final positions Ruckig actually reached as its
-target, is at most Ruckig's duration × (1 + 1e-9), Ruckig stopped short of the target
+target (and its final velocities and accelerations where they miss trajkit's tolerances,
+1e-10), is at most Ruckig's duration × (1 + 1e-9), Ruckig stopped short of the target
 (within the tolerance) rather than found a faster motion: counted in
 `longer_by_ruckig_error` (and listed in failures.jsonl), apart from `longer`. (Near a
 tangent root the end position moves slowly with the duration, so an error well inside the
@@ -37,7 +38,8 @@ or failed where Ruckig succeeded to FILE in the format of
 crates/trajkit/tests/fixtures/otg/regressions.jsonl (category, Ruckig's duration, problem),
 which tests/otg_regressions.rs replays, and those counted in `longer_by_ruckig_error` with
 `ruckig_end_position` too (the final positions Ruckig reached; null for a DOF without a
-position target). `--replay FILE` runs FILE's problems themselves (e.g. a failures.jsonl),
+position target), and `ruckig_end_velocity` / `ruckig_end_acceleration` where Ruckig's final
+velocities / accelerations missed (null for the DOFs that did not). `--replay FILE` runs FILE's problems themselves (e.g. a failures.jsonl),
 each once.
 """
 import argparse
@@ -523,18 +525,32 @@ def position_tolerance(p0, pf, excursion):
     return tol + 16 * EPS * max(abs(p0), abs(pf), s) + 1e-14 * s
 
 
+class Ends(list):
+    """The final positions Ruckig reached (None for DOFs without a position target), with the
+    final velocities and accelerations where they miss trajkit's tolerances in `velocity` and
+    `acceleration` (None elsewhere)."""
+
+
+def velocity_tolerance(p, i):
+    """The tolerance of a final velocity judged against trajkit's contract (1e-10, and 1e-13 of
+    the velocity scale for round-off, as tools/otg_step1_misses.py)."""
+    return 1e-10 + 1e-13 * max(abs(p["current_velocity"][i]), abs(p["max_velocity"][i]))
+
+
 def ruckig_arrives(p, traj):
     """Whether Ruckig's final position meets the same tolerance as trajkit's (relative to the
     motion's scale: Ruckig's own is 1e-8 absolute, so a motion of 1e-11 may end where it
     started), and the final positions it reached
-    (None for DOFs without a position target). A DOF that is not synchronized ends at its own
+    (None for DOFs without a position target), with the final velocities and accelerations
+    that miss trajkit's tolerances (`Ends`; they are not judged here). A DOF that is not synchronized ends at its own
     minimum duration (and then moves on with its target velocity)."""
     n = len(p["current_position"])
     ifaces = p.get("per_dof_control_interface", [p.get("control_interface", "position")] * n)
     syncs = p.get("per_dof_synchronization", [p.get("synchronization", "time")] * n)
     enabled = p.get("enabled", [True] * n)
     mins = traj.independent_min_durations
-    ends = [None] * n
+    ends = Ends([None] * n)
+    ends.velocity, ends.acceleration = [None] * n, [None] * n
     for i in range(n):
         if not enabled[i] or ifaces[i] != "position":
             continue
@@ -545,6 +561,11 @@ def ruckig_arrives(p, traj):
         if abs(pe - pf) > position_tolerance(p0, pf, abs(pe - p0)):
             return False, None
         ends[i] = pe
+        ve, ae = end[1][i], end[2][i]
+        if abs(ve - p["target_velocity"][i]) > velocity_tolerance(p, i):
+            ends.velocity[i] = ve
+        if abs(ae - p["target_acceleration"][i]) > 1e-10:
+            ends.acceleration[i] = ae
     return True, ends
 
 
@@ -564,14 +585,21 @@ def trajkit_duration(exe, p):
 def by_ruckig_error(exe, p, ends, tr, t):
     """Whether Ruckig (duration `tr`, trajkit's `t`) is shorter only because it stops short of
     the target (within the tolerance): trajkit, given the final positions Ruckig actually
-    reached as the target, is at most Ruckig's duration × (1 + 1e-9), and Ruckig is shorter
-    by at most 1e-5 of it (the relative position tolerance of the smallest motions; a solver
-    that misses a profile by far at one target and finds it at a nearby one is not excused).
-    Returns that duration when so."""
-    if t > tr * (1 + 1e-5) or all(e is None or e == pf for e, pf in zip(ends, p["target_position"])):
-        return None
+    reached as the target (and the final velocities and accelerations where Ruckig's miss
+    trajkit's tolerances, `Ends`: e.g. a single ramp 1.3e-9 off the target velocity, 7.9e-9
+    shorter than any profile that reaches it), is at most Ruckig's duration × (1 + 1e-9), and
+    Ruckig is shorter by at most 1e-5 of it (the relative position tolerance of the smallest
+    motions; a solver that misses a profile by far at one target and finds it at a nearby one
+    is not excused). Returns that duration when so."""
     q = json.loads(json.dumps(p))
-    q["target_position"] = [pf if e is None else e for e, pf in zip(ends, p["target_position"])]
+    changed = False
+    for key, new in (("target_position", ends), ("target_velocity", getattr(ends, "velocity", None)),
+                     ("target_acceleration", getattr(ends, "acceleration", None))):
+        if new is not None and any(e is not None and e != x for e, x in zip(new, q[key])):
+            q[key] = [x if e is None else e for e, x in zip(new, q[key])]
+            changed = True
+    if t > tr * (1 + 1e-5) or not changed:
+        return None
     t = trajkit_duration(exe, q)
     return t if t is not None and t <= tr * (1 + 1e-9) + 1e-15 else None
 
@@ -724,8 +752,12 @@ def run(args):
                         fixture.write(json.dumps({"category": cat, "ruckig_duration": tr, "problem": p}) + "\n")
                 elif fixture and own_end is not None:
                     # Ruckig shorter by stopping short: with the end positions it reached.
-                    fixture.write(json.dumps({"category": cat, "ruckig_duration": tr,
-                                              "ruckig_end_position": ends, "problem": p}) + "\n")
+                    line = {"category": cat, "ruckig_duration": tr, "ruckig_end_position": ends}
+                    for k in ("velocity", "acceleration"):
+                        if any(x is not None for x in getattr(ends, k)):
+                            line["ruckig_end_" + k] = getattr(ends, k)
+                    line["problem"] = p
+                    fixture.write(json.dumps(line) + "\n")
                 if reasons:
                     failures.write(json.dumps({"category": cat, "problem": p, "ruckig_duration": tr,
                                                "trajkit": {k: rec.get(k) for k in ("result", "duration", "message")},

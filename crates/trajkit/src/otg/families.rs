@@ -44,6 +44,21 @@ impl Resid {
     /// may not report. (Step 1's closed families: every candidate is verified.)
     #[inline]
     pub fn roots_with_ends(&self, lo: f64, hi: f64, out: &mut [f64; MAX_POLY]) -> usize {
+        self.roots_with_ends_above(lo, hi, 0.0, out)
+    }
+
+    /// [`Self::roots_with_ends`] with an absolute `floor` added to the end test's round-off
+    /// (|P| ≤ 1e-12 of its terms' magnitude + `floor`): for a P that is the position residual
+    /// itself (step 1's plateau families), the rounding of the displacement p_f − p₀, which
+    /// its coefficients do not carry.
+    #[inline]
+    pub fn roots_with_ends_above(
+        &self,
+        lo: f64,
+        hi: f64,
+        floor: f64,
+        out: &mut [f64; MAX_POLY],
+    ) -> usize {
         let p = &self.p[..self.np];
         let mut n = poly_roots(p, lo, hi, out);
         for e in [lo, hi] {
@@ -57,7 +72,7 @@ impl Resid {
             let seen = out[..n]
                 .iter()
                 .any(|&r| (r - e).abs() <= 1e-12 * (1.0 + e.abs()));
-            if v.abs() <= 1e-12 * mag && !seen {
+            if v.abs() <= 1e-12 * mag + floor && !seen {
                 out[n] = e;
                 n += 1;
                 out[..n].sort_unstable_by(f64::total_cmp);

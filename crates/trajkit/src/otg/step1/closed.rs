@@ -35,10 +35,10 @@ impl Seq {
         self.n += 1;
     }
     /// Offers the sequence, started from `q`'s start state (mirrored back when `mirror`), to
-    /// the collector unless it cannot matter.
-    pub(super) fn offer(&self, q: &Dof1, mirror: bool, col: &mut Collector<'_>) {
+    /// the collector unless it cannot matter; returns whether it was offered and valid.
+    pub(super) fn offer(&self, q: &Dof1, mirror: bool, col: &mut Collector<'_>) -> bool {
         if !col.wants(self.d[..self.n].iter().sum()) {
-            return;
+            return false;
         }
         let pr = col.scratch(State1 {
             p: q.p0,
@@ -51,7 +51,7 @@ impl Seq {
         if mirror {
             pr.mirror();
         }
-        col.submit();
+        col.submit()
     }
     #[inline]
     pub(super) fn displacement(&self, v0: f64, a0: f64) -> f64 {
@@ -162,8 +162,8 @@ struct Closed<'q> {
 
 impl Closed<'_> {
     #[inline]
-    fn emit(&self, seq: &Seq, col: &mut Collector<'_>) {
-        seq.offer(self.q, self.mirror, col);
+    fn emit(&self, seq: &Seq, col: &mut Collector<'_>) -> bool {
+        seq.offer(self.q, self.mirror, col)
     }
 
     /// Durations may come out negative at round-off level on a family's edge.
@@ -243,6 +243,14 @@ impl Closed<'_> {
     /// double or lie on the window's end, where round-off can lose them; these candidates
     /// cost a square root each, and a verification when faster than the fastest so far (only
     /// then are they offered: a rescue of the fastest profile, not more candidate durations).
+    /// The other level is ill-conditioned where it is small (α₂² = a₀² − K cancels): a
+    /// candidate that fails verification where the other level's square is below [`NEAR`]
+    /// of the bound's (three digits or more lost) is offered again polished
+    /// ([`Self::polish_none`]), when the polished levels stay on their windows (to the
+    /// levels' tolerance): on a `step1_property` problem with α₁ = a₀ and
+    /// α₂ = 5.9e-6, the closed form missed the target by 1.2e-7 (a 50.65 s ramp at 62 m/s),
+    /// the exact root's α₁ lies 1e-16 below a₀ (just outside the polynomial's window), and a
+    /// profile five times longer won.
     fn none_ends(&self, col: &mut Collector<'_>) {
         let q = self.q;
         let (j, a0, af, amax, amin, tol) = (q.jmax, q.a0, q.af, q.amax, q.amin, self.tol);
@@ -265,10 +273,39 @@ impl Closed<'_> {
                 {
                     continue;
                 }
-                if let (Some(a1), Some(a2)) = (clamp_in(a1, a0, amax), clamp_in(a2, amin, af)) {
-                    self.emit_none(a1, a2.min(a1), col);
+                if let (Some(c1), Some(c2)) = (clamp_in(a1, a0, amax), clamp_in(a2, amin, af)) {
+                    if self.emit_none(c1, c2.min(c1), col) {
+                        continue;
+                    }
+                }
+                // The closed form missed: where it is ill-conditioned, its polished levels.
+                if w < NEAR * c * c {
+                    self.none_end_polished(a1, a2, k, col);
                 }
             }
+        }
+    }
+
+    /// [`Self::none_ends`]' candidate (α₁, α₂) polished ([`Self::polish_none`]), offered when
+    /// its levels differ and stay on their windows (to the levels' tolerance). Out of line:
+    /// it runs only where the closed form is ill-conditioned and missed.
+    #[cold]
+    fn none_end_polished(&self, a1: f64, a2: f64, k: f64, col: &mut Collector<'_>) {
+        let q = self.q;
+        let (a0, af, amax, amin, tol) = (q.a0, q.af, q.amax, q.amin, self.tol);
+        let Some((p1, p2)) = self.polish_none(a1, a2, k).next() else {
+            return;
+        };
+        if (p1, p2) == (a1, a2)
+            || p1 < a0 - tol
+            || p1 > amax + tol
+            || p2 < amin - tol
+            || p2 > af + tol
+        {
+            return;
+        }
+        if let (Some(p1), Some(p2)) = (clamp_in(p1, a0, amax), clamp_in(p2, amin, af)) {
+            self.emit_none(p1, p2.min(p1), col);
         }
     }
 
@@ -364,15 +401,15 @@ impl Closed<'_> {
         }
     }
 
-    /// Offers a₀ ↗ α₁ ↘ α₂ ↗ a_f.
+    /// Offers a₀ ↗ α₁ ↘ α₂ ↗ a_f; returns whether it was valid (and wanted).
     #[inline]
-    fn emit_none(&self, al1: f64, al2: f64, col: &mut Collector<'_>) {
+    fn emit_none(&self, al1: f64, al2: f64, col: &mut Collector<'_>) -> bool {
         let (a0, af, j) = (self.q.a0, self.q.af, self.q.jmax);
         let mut s = Seq::new();
         s.add((al1 - a0) / j, j);
         s.add((al1 - al2) / j, -j);
         s.add((af - al2) / j, j);
-        self.emit(&s, col);
+        self.emit(&s, col)
     }
 
     /// none for K ≥ 0 (|α₂| ≤ |α₁|), parameterized by the second level: the time-reversed,
@@ -580,7 +617,12 @@ impl Closed<'_> {
         {
             0
         } else {
-            s1_acc0(a0, af, q.v0, q.vf, self.d, j, amax).roots_with_ends(xlo, xhi, roots)
+            s1_acc0(a0, af, q.v0, q.vf, self.d, j, amax).roots_with_ends_above(
+                xlo,
+                xhi,
+                self.end_floor(),
+                roots,
+            )
         };
         let seq = |x: f64| {
             let mut s = Seq::new();
@@ -614,7 +656,12 @@ impl Closed<'_> {
         {
             0
         } else {
-            s1_acc1(a0, af, q.v0, q.vf, self.d, j, amin).roots_with_ends(xlo, xhi, roots)
+            s1_acc1(a0, af, q.v0, q.vf, self.d, j, amin).roots_with_ends_above(
+                xlo,
+                xhi,
+                self.end_floor(),
+                roots,
+            )
         };
         let seq = |x: f64| {
             let mut s = Seq::new();
@@ -650,6 +697,21 @@ impl Closed<'_> {
                 self.emit(&seq(x), col);
             }
         }
+    }
+
+    /// The rounding of the displacement p_f − p₀ (16 rounding units of the positions), plus
+    /// 1e-4 of the position tolerance (the polish's target, [`Closed::polish`]): added to
+    /// the end test of the plateau families' polynomials, whose P is the position residual
+    /// itself (`roots_with_ends_above`). Their coefficients do not carry that rounding, so a
+    /// root it moved just past the window was lost with its family: α₂ 4.9e-13 past a_f (a
+    /// last ramp of −6e-15 s) on a `step1_property` problem starting 2.8e-13 below a_max at
+    /// p₀ = −84, P 2.1e-12 of its terms at the window's end, where the profile misses the
+    /// target by 4e-17; a profile 122 times longer won.
+    #[inline]
+    fn end_floor(&self) -> f64 {
+        let q = self.q;
+        16.0 * f64::EPSILON * q.p0.abs().max(q.pf.abs())
+            + 1e-4 * TOL_POSITION.min(1e-5 * self.d.abs())
     }
 
     /// acc0_acc1: s = τ₁ (τ₂ grows with τ₁: its largest value is at the window's end). The

@@ -26,14 +26,17 @@
 //! round-off still loses the none family's fastest root (levels next to each other, to a
 //! bound or to zero), two rescues offer what beats the fastest so far: the profiles with a
 //! level on a bound of its window (α₁ = a₀ or a_max, α₂ = a_f or a_min, the other level in
-//! closed form), and, when a boundary level lies within 1e-3 of the acceleration range from
+//! closed form, polished in the middle ramp's duration where that form is ill-conditioned and
+//! misses), and, when a boundary level lies within 1e-3 of the acceleration range from
 //! a bound, zero or the other (or K nearly vanishes), the family solved again in the middle
 //! ramp's duration t, in which both levels are single-valued and the duration 2t + (a_f −
 //! a₀)/j is linear, by sampling and refining its integrated position residual (sign changes
 //! and tangent roots, `scan.rs`). The plateau families' roots (acc0, acc1) are put on their
 //! window when just past it and polished by Newton steps on the integrated residual when it
 //! is above round-off, so that a near-double root's imprecision does not cost a few 1e-9 of
-//! the duration. The up-down-up-down shapes
+//! the duration; an end of their window where the polynomial (the position residual itself)
+//! is within the rounding of p_f − p₀ of zero counts as a root too (that rounding can move the
+//! root just past it). The up-down-up-down shapes
 //! (two velocity changes in the same direction through a velocity extremum with zero
 //! acceleration) come from the same polynomials, tried only in the one direction where the
 //! extremum can lie between the two kinks. When the closed forms give no valid profile, the
