@@ -749,14 +749,15 @@ def run(args):
                 if reasons and fixture and tr is not None and any(
                         x.startswith(("longer:", "trajkit failed")) for x in reasons
                     ):
-                        fixture.write(json.dumps({"category": cat, "ruckig_duration": tr, "problem": p}) + "\n")
+                        fixture.write(json.dumps({"category": cat, "ruckig_duration": tr,
+                                                 "problem": json.loads(to_json(p))}) + "\n")
                 elif fixture and own_end is not None:
                     # Ruckig shorter by stopping short: with the end positions it reached.
                     line = {"category": cat, "ruckig_duration": tr, "ruckig_end_position": ends}
                     for k in ("velocity", "acceleration"):
                         if any(x is not None for x in getattr(ends, k)):
                             line["ruckig_end_" + k] = getattr(ends, k)
-                    line["problem"] = p
+                    line["problem"] = json.loads(to_json(p))  # infinite limits as "inf"
                     fixture.write(json.dumps(line) + "\n")
                 if reasons:
                     failures.write(json.dumps({"category": cat, "problem": p, "ruckig_duration": tr,

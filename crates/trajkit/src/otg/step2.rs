@@ -359,6 +359,7 @@ fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile>
     };
     let f = |vc: f64| parts(vc).map(|(c1, c2, tau)| c1.dist + c2.dist + vc * tau.max(0.0) - d);
     let guess = if t > 0.0 { d / t } else { 0.0 };
+    let [z0, z1, z2] = cruise_vanishes(order, dof, lo, hi, &parts);
     let cuts = [
         lo,
         hi,
@@ -366,8 +367,45 @@ fn cruise(dof: &Dof1, t: f64, ok: &impl Fn(&Profile) -> bool) -> Option<Profile>
         guess,
         kink(order, dof.v0, dof.a0, dof.jmax, 1.0),
         kink(order, dof.vf, dof.af, dof.jmax, -1.0),
+        z0,
+        z1,
+        z2,
     ];
     first_at_root(cuts, Grid::Coarse, f, |vc| build(vc).filter(|pr| ok(pr)))
+}
+
+/// Second order: the cruise velocities where the cruise of [`cruise`] vanishes (τ = 0), as
+/// cuts of its bracketing (`lo` where there is none). τ(v_c) = T − t₁ − t₂ is linear in v_c
+/// below, between and above v₀ and v_f, so each zero is one linear solve. The residual's
+/// continuation with τ = 0 meets the family there with a zero of its own, and the family's
+/// root lies next to it when T is just below the longest duration without a velocity
+/// reversal: both within one grid step, no sign change was seen, and the synchronized
+/// duration jumped past the DOF's blocked interval (a 3-DOF `second_order` problem: 4.93 s
+/// where 2.149 s is feasible). Third order has its closed forms ([`cruise_closed`]) first.
+fn cruise_vanishes<C>(
+    order: ProfileOrder,
+    dof: &Dof1,
+    lo: f64,
+    hi: f64,
+    parts: &impl Fn(f64) -> Option<(C, C, f64)>,
+) -> [f64; 3] {
+    let mut z = [lo; 3];
+    if order != ProfileOrder::Second || !(lo.is_finite() && hi.is_finite() && lo < hi) {
+        return z;
+    }
+    let (b1, b2) = (dof.v0.min(dof.vf), dof.v0.max(dof.vf));
+    let pieces = [(lo, b1.min(hi)), (b1.max(lo), b2.min(hi)), (b2.max(lo), hi)];
+    for (zk, (x0, x1)) in z.iter_mut().zip(pieces) {
+        if x0 >= x1 {
+            continue;
+        }
+        if let (Some((_, _, t0)), Some((_, _, t1))) = (parts(x0), parts(x1)) {
+            if (t0 < 0.0) != (t1 < 0.0) {
+                *zk = x0 + (x1 - x0) * (t0 / (t0 - t1));
+            }
+        }
+    }
+    z
 }
 
 /// Hold families (third order): a₀ ↗ α₁ ↘ α₂ ↗ a_f with a zero-jerk hold at the peak α₁
