@@ -120,6 +120,38 @@ pub trait Trajectory {
             }
         }
     }
+
+    /// The rows of this trajectory played `factor` times slower (what
+    /// [`crate::topp::Scaled`] samples): [`Trajectory::eval_rows`] at the times
+    /// `times[i] / factor`, with velocity, acceleration and jerk then multiplied by
+    /// `factor.powi(-1)`, `factor.powi(-2)` and `factor.powi(-3)`.
+    ///
+    /// The default does exactly that, a block of times at a time. A trajectory whose row pass
+    /// can apply the factors as it writes its rows (one pass over the output instead of two)
+    /// overrides it with the same operations, bitwise equal. Allocates nothing; a buffer
+    /// shorter than `times.len() × dof()` is a programming error and panics.
+    fn eval_rows_scaled(&self, times: &[f64], factor: f64, mut out: [&mut [f64]; 4]) {
+        let (k, dof) = (factor, self.dof());
+        let mut buf = [0.0; ROW_BLOCK];
+        for (b, chunk) in times.chunks(ROW_BLOCK).enumerate() {
+            for (x, &t) in buf.iter_mut().zip(chunk) {
+                *x = t / k;
+            }
+            let from = b * ROW_BLOCK;
+            let block = row_block(&mut out, dof, from, from + chunk.len());
+            self.eval_rows(&buf[..chunk.len()], block);
+        }
+        for (c, col) in scale_factors(k).into_iter().zip(out.into_iter().skip(1)) {
+            col[..times.len() * dof].iter_mut().for_each(|v| *v *= c);
+        }
+    }
+}
+
+/// The factors of a trajectory played `k` times slower for velocity, acceleration and jerk:
+/// `k.powi(-1)`, `k.powi(-2)`, `k.powi(-3)` ([`Trajectory::eval_rows_scaled`]).
+#[inline]
+pub(crate) fn scale_factors(k: f64) -> [f64; 3] {
+    [Order::Velocity, Order::Acceleration, Order::Jerk].map(|o| k.powi(-(o.index() as i32)))
 }
 
 /// Times per block in the [`Trajectory::eval_rows`] overrides that transform time (scaling,
@@ -171,6 +203,9 @@ impl<T: Trajectory + ?Sized> Trajectory for &T {
     fn eval_rows(&self, times: &[f64], out: [&mut [f64]; 4]) {
         (**self).eval_rows(times, out)
     }
+    fn eval_rows_scaled(&self, times: &[f64], factor: f64, out: [&mut [f64]; 4]) {
+        (**self).eval_rows_scaled(times, factor, out)
+    }
 }
 
 impl<T: Trajectory + ?Sized> Trajectory for Box<T> {
@@ -185,6 +220,9 @@ impl<T: Trajectory + ?Sized> Trajectory for Box<T> {
     }
     fn eval_rows(&self, times: &[f64], out: [&mut [f64]; 4]) {
         (**self).eval_rows(times, out)
+    }
+    fn eval_rows_scaled(&self, times: &[f64], factor: f64, out: [&mut [f64]; 4]) {
+        (**self).eval_rows_scaled(times, factor, out)
     }
 }
 

@@ -160,14 +160,40 @@ impl<P: Path, L: TimeLaw> Trajectory for Retimed<P, L> {
     /// One law evaluation per time and one path sweep for orders 0..=3
     /// ([`Path::eval_many_orders`]), in blocks of 64 times; the chain rule as in `eval`, term
     /// by term.
-    fn eval_rows(&self, times: &[f64], mut out: [&mut [f64]; 4]) {
-        use crate::traj::{row_block, ROW_BLOCK};
+    fn eval_rows(&self, times: &[f64], out: [&mut [f64]; 4]) {
+        self.rows::<false>(times, 1.0, out);
+    }
+
+    /// `eval_rows` at `times[i] / factor` with the factors applied as the chain rule writes
+    /// each row (the same products as the default's pass after it, bitwise equal).
+    fn eval_rows_scaled(&self, times: &[f64], factor: f64, out: [&mut [f64]; 4]) {
+        self.rows::<true>(times, factor, out);
+    }
+}
+
+impl<P: Path, L: TimeLaw> Retimed<P, L> {
+    /// The rows of [`Trajectory::eval_rows`] (`SCALED` false) or of
+    /// [`Trajectory::eval_rows_scaled`] with factor `k` (`SCALED` true): the law at `t` (or
+    /// `t / k`), the path's orders 0..=3 at its s values, the chain rule (then times
+    /// `k.powi(-1..=-3)`) row by row.
+    fn rows<const SCALED: bool>(&self, times: &[f64], k: f64, mut out: [&mut [f64]; 4]) {
+        use crate::traj::{row_block, scale_factors, ROW_BLOCK};
         let n = self.path.dim();
         let mut law = [[0.0; 4]; ROW_BLOCK];
         let mut s = [0.0; ROW_BLOCK];
+        let mut at = [0.0; ROW_BLOCK];
+        let c = if SCALED { scale_factors(k) } else { [1.0; 3] };
         for (b, chunk) in times.chunks(ROW_BLOCK).enumerate() {
             let m = chunk.len();
             let from = b * ROW_BLOCK;
+            let chunk = if SCALED {
+                for (x, &t) in at.iter_mut().zip(chunk) {
+                    *x = t / k;
+                }
+                &at[..m]
+            } else {
+                chunk
+            };
             self.law.eval_many(chunk, &mut law[..m]);
             for (si, l) in s.iter_mut().zip(&law[..m]) {
                 *si = l[0];
@@ -180,10 +206,10 @@ impl<P: Path, L: TimeLaw> Trajectory for Retimed<P, L> {
                 let (d1, d2, d3) = (&mut v[r.clone()], &mut a[r.clone()], &mut jk[r]);
                 let law = [sd, sdd, sddd];
                 match (3.0 * sd * sdd != 0.0, sddd != 0.0) {
-                    (true, true) => chain_rule::<true, true>(d1, d2, d3, law),
-                    (true, false) => chain_rule::<true, false>(d1, d2, d3, law),
-                    (false, true) => chain_rule::<false, true>(d1, d2, d3, law),
-                    (false, false) => chain_rule::<false, false>(d1, d2, d3, law),
+                    (true, true) => chain_rule::<true, true, SCALED>(d1, d2, d3, law, c),
+                    (true, false) => chain_rule::<true, false, SCALED>(d1, d2, d3, law, c),
+                    (false, true) => chain_rule::<false, true, SCALED>(d1, d2, d3, law, c),
+                    (false, false) => chain_rule::<false, false, SCALED>(d1, d2, d3, law, c),
                 }
             }
         }
@@ -193,13 +219,15 @@ impl<P: Path, L: TimeLaw> Trajectory for Retimed<P, L> {
 /// The chain rule of [`Retimed::eval`] on one row, in place: σ′, σ″, σ‴ in `d1`, `d2`, `d3`
 /// become ξ̇, ξ̈, ξ⃛ for the law's `[ṡ, s̈, s⃛]`. The terms `3ṡs̈·σ″` (`C2`) and `s⃛·σ′` (`S3`)
 /// are added only where their factor is not zero, as `eval` does; the choice is made once per
-/// row, so the joint loop has no branch.
+/// row, so the joint loop has no branch. With `SCALED` each result is then multiplied by its
+/// factor of `scale` (velocity, acceleration, jerk), as [`Scaled`] multiplies its rows.
 #[inline(always)]
-fn chain_rule<const C2: bool, const S3: bool>(
+fn chain_rule<const C2: bool, const S3: bool, const SCALED: bool>(
     d1: &mut [f64],
     d2: &mut [f64],
     d3: &mut [f64],
     [sd, sdd, sddd]: [f64; 3],
+    scale: [f64; 3],
 ) {
     let (c3, c2, x) = (sd * sd * sd, 3.0 * sd * sdd, sd * sd);
     for ((v, a), jk) in d1.iter_mut().zip(d2.iter_mut()).zip(d3.iter_mut()) {
@@ -210,9 +238,13 @@ fn chain_rule<const C2: bool, const S3: bool>(
         if S3 {
             jerk += sddd * *v;
         }
-        *jk = jerk;
-        *a = *v * sdd + *a * x;
-        *v *= sd;
+        let acc = *v * sdd + *a * x;
+        let vel = *v * sd;
+        if SCALED {
+            (*v, *a, *jk) = (vel * scale[0], acc * scale[1], jerk * scale[2]);
+        } else {
+            (*v, *a, *jk) = (vel, acc, jerk);
+        }
     }
 }
 
@@ -345,24 +377,10 @@ impl<T: Trajectory> Trajectory for Scaled<T> {
         }
     }
 
-    /// The inner rows at `t/k` in blocks of 64, then scaled as in
-    /// `eval`.
-    fn eval_rows(&self, times: &[f64], mut out: [&mut [f64]; 4]) {
-        use crate::traj::{row_block, ROW_BLOCK};
-        let (k, dof) = (self.factor, self.inner.dof());
-        let mut buf = [0.0; ROW_BLOCK];
-        for (b, chunk) in times.chunks(ROW_BLOCK).enumerate() {
-            for (x, &t) in buf.iter_mut().zip(chunk) {
-                *x = t / k;
-            }
-            let from = b * ROW_BLOCK;
-            let block = row_block(&mut out, dof, from, from + chunk.len());
-            self.inner.eval_rows(&buf[..chunk.len()], block);
-        }
-        for (order, col) in Order::ALL.into_iter().zip(out).skip(1) {
-            let c = k.powi(-(order.index() as i32));
-            col[..times.len() * dof].iter_mut().for_each(|v| *v *= c);
-        }
+    /// The inner trajectory's [`Trajectory::eval_rows_scaled`]: its rows at `t/k`, scaled
+    /// as in `eval`.
+    fn eval_rows(&self, times: &[f64], out: [&mut [f64]; 4]) {
+        self.inner.eval_rows_scaled(times, self.factor, out);
     }
 }
 
@@ -497,6 +515,63 @@ mod tests {
         assert!((a[2] - b[2] / 8.0).abs() < 1e-12);
         assert!(Scaled::new(&traj, 0.0).is_err());
         assert!(Scaled::new(&traj, f64::NAN).is_err());
+    }
+
+    /// Forwards everything but [`Trajectory::eval_rows_scaled`]: the trait's default then
+    /// scales after the rows are written.
+    struct Plain<T>(T);
+    impl<T: Trajectory> Trajectory for Plain<T> {
+        fn dof(&self) -> usize {
+            self.0.dof()
+        }
+        fn duration(&self) -> f64 {
+            self.0.duration()
+        }
+        fn eval(&self, t: f64, order: Order, out: &mut [f64]) {
+            self.0.eval(t, order, out)
+        }
+        fn eval_rows(&self, times: &[f64], out: [&mut [f64]; 4]) {
+            self.0.eval_rows(times, out)
+        }
+    }
+
+    #[test]
+    fn scaled_rows_fold_the_factors_bitwise() {
+        let traj = Retimed::new(Curve, QuinticLaw::new(0.1, 1.8, 1.5).unwrap()).unwrap();
+        // More than two blocks of times, past both ends, unsorted at the end.
+        let mut times: Vec<f64> = (0..150).map(|i| i as f64 * 0.0173 - 0.1).collect();
+        times.extend([0.3, 2.9, 0.0]);
+        let rows = times.len() * 3;
+        for k in [1.0, 1.37, 0.61, 3.0] {
+            let [mut fused, mut plain] = [0, 1].map(|_| [0; 4].map(|_| vec![0.0; rows]));
+            let [a, b, c, d] = &mut fused;
+            Scaled::new(&traj, k)
+                .unwrap()
+                .eval_rows(&times, [a, b, c, d]);
+            let [a, b, c, d] = &mut plain;
+            Scaled::new(Plain(&traj), k)
+                .unwrap()
+                .eval_rows(&times, [a, b, c, d]);
+            let bits = |m: &[Vec<f64>; 4]| {
+                m.clone()
+                    .map(|c| c.iter().map(|v| v.to_bits()).collect::<Vec<_>>())
+            };
+            assert_eq!(bits(&fused), bits(&plain), "factor {k}");
+            // And each row is what `eval` gives.
+            let scaled = Scaled::new(&traj, k).unwrap();
+            let mut one = [0.0; 3];
+            for (i, &t) in times.iter().enumerate() {
+                for (order, col) in Order::ALL.into_iter().zip(&fused) {
+                    scaled.eval(t, order, &mut one);
+                    let row = &col[i * 3..(i + 1) * 3];
+                    assert_eq!(
+                        one.map(f64::to_bits),
+                        [row[0], row[1], row[2]].map(f64::to_bits),
+                        "factor {k}, t {t}, {order:?}"
+                    );
+                }
+            }
+        }
     }
 
     #[test]

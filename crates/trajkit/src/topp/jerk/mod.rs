@@ -151,7 +151,7 @@ impl FilteredProfile {
 
     /// `[s, ṡ, s̈]` of the unfiltered law at any t (rest outside `[0, T*]`); `hint` is the
     /// piece to search from, updated to the piece found.
-    #[inline]
+    #[inline(always)]
     fn raw(&self, t: f64, hint: &mut usize) -> [f64; 3] {
         let p = &self.profile;
         let (s, times) = (p.gridpoints(), p.times());
@@ -178,6 +178,7 @@ impl FilteredProfile {
     /// cancellation; the first piece is searched from `hint`. An interval covered whole takes
     /// its terms from `whole` (the same values: its τ-range is exactly `[0, hᵢ]`), so only the
     /// term of `s_ref` is computed per call.
+    #[inline(always)]
     fn integral(&self, a: f64, b: f64, s_ref: f64, hint: usize) -> f64 {
         let p = &self.profile;
         let (s, times) = (p.gridpoints(), p.times());
@@ -220,7 +221,7 @@ impl FilteredProfile {
     }
 
     /// [`TimeLaw::eval`] with the pieces of t − w and t searched from `hints` (updated).
-    #[inline]
+    #[inline(always)]
     fn eval_from(&self, t: f64, hints: &mut [usize; 2]) -> [f64; 4] {
         let t = crate::traj::clamp_time(t, self.duration());
         let w = self.window;
