@@ -34,6 +34,21 @@ pub struct PhaseProfile {
     t: Vec<f64>,
 }
 
+/// Whether the gridpoints `s` (as many as `sd`) are finite and strictly increasing and the
+/// velocities `sd` finite and ≥ 0: one pass without early exits, the common case.
+fn valid_points(s: &[f64], sd: &[f64]) -> bool {
+    // s_0 finite (then every later s_i is, when it is finite and above s_{i−1}: checked as
+    // s_{i−1} < s_i < ∞); NaN fails every comparison.
+    let mut ok = s[0].is_finite();
+    for w in s.windows(2) {
+        ok &= (w[0] < w[1]) & (w[1] < f64::INFINITY);
+    }
+    for &v in sd {
+        ok &= (0.0..f64::INFINITY).contains(&v);
+    }
+    ok
+}
+
 impl PhaseProfile {
     /// A profile from gridpoints (strictly increasing) and path velocities `sd` (≥ 0, finite,
     /// one per gridpoint). Two consecutive zero velocities would take infinite time and are
@@ -53,22 +68,8 @@ impl PhaseProfile {
                 found: sd.len(),
             });
         }
-        for i in 0..s.len() {
-            crate::error::finite(|| format!("profile gridpoint {i}"), s[i])?;
-            if i > 0 && s[i].partial_cmp(&s[i - 1]) != Some(std::cmp::Ordering::Greater) {
-                return Err(Error::InvalidValue {
-                    field: format!("profile gridpoint {i}"),
-                    value: s[i],
-                    reason: "does not increase",
-                });
-            }
-            if !(sd[i] >= 0.0 && sd[i].is_finite()) {
-                return Err(Error::InvalidValue {
-                    field: format!("profile path velocity {i}"),
-                    value: sd[i],
-                    reason: "is not a finite number >= 0",
-                });
-            }
+        if !valid_points(s, sd) {
+            Self::explain_points(s, sd)?;
         }
         let n = s.len() - 1;
         let mut sdd = Vec::with_capacity(n);
@@ -98,6 +99,29 @@ impl PhaseProfile {
             sdd,
             t,
         })
+    }
+
+    /// The error for the first gridpoint or velocity that [`valid_points`] refuses (none
+    /// when all are valid).
+    fn explain_points(s: &[f64], sd: &[f64]) -> Result<()> {
+        for i in 0..s.len() {
+            crate::error::finite(|| format!("profile gridpoint {i}"), s[i])?;
+            if i > 0 && s[i].partial_cmp(&s[i - 1]) != Some(std::cmp::Ordering::Greater) {
+                return Err(Error::InvalidValue {
+                    field: format!("profile gridpoint {i}"),
+                    value: s[i],
+                    reason: "does not increase",
+                });
+            }
+            if !(sd[i] >= 0.0 && sd[i].is_finite()) {
+                return Err(Error::InvalidValue {
+                    field: format!("profile path velocity {i}"),
+                    value: sd[i],
+                    reason: "is not a finite number >= 0",
+                });
+            }
+        }
+        Ok(())
     }
 
     /// Gridpoints s_i.
@@ -196,6 +220,45 @@ mod tests {
         assert!(PhaseProfile::new(&[0.0, 1.0, 2.0], &[1.0, 0.0, 0.0]).is_err());
         assert!(PhaseProfile::new(&[0.0, 1.0], &[1.0, -1.0]).is_err());
         assert!(PhaseProfile::new(&[0.0, 0.0], &[1.0, 1.0]).is_err());
+    }
+
+    /// The one-pass screen refuses exactly what the point-by-point checks name, and the
+    /// error names the first offending gridpoint or velocity.
+    #[test]
+    fn invalid_points_are_named() {
+        let (inf, nan) = (f64::INFINITY, f64::NAN);
+        let field = |s: &[f64], sd: &[f64]| match PhaseProfile::new(s, sd) {
+            Err(Error::InvalidValue { field, .. }) => Some(field),
+            Ok(_) => None,
+            Err(e) => panic!("{e}"),
+        };
+        let sd = [1.0; 4];
+        for (s, want) in [
+            ([-inf, 0.0, 1.0, 2.0], "profile gridpoint 0"),
+            ([nan, 0.0, 1.0, 2.0], "profile gridpoint 0"),
+            ([0.0, 1.0, 2.0, inf], "profile gridpoint 3"),
+            ([0.0, 1.0, nan, 2.0], "profile gridpoint 2"),
+            ([0.0, 1.0, 1.0, 2.0], "profile gridpoint 2"),
+            ([0.0, 2.0, 1.0, 3.0], "profile gridpoint 2"),
+        ] {
+            assert!(!valid_points(&s, &sd), "{s:?}");
+            assert_eq!(field(&s, &sd).as_deref(), Some(want), "{s:?}");
+        }
+        let s = [0.0, 1.0, 2.0, 3.0];
+        for (sd, want) in [
+            ([1.0, -1e-300, 1.0, 1.0], Some("profile path velocity 1")),
+            ([1.0, 1.0, 1.0, inf], Some("profile path velocity 3")),
+            ([nan, 1.0, 1.0, 1.0], Some("profile path velocity 0")),
+            ([-0.0, 1.0, 0.0, 1.0], None),
+        ] {
+            assert_eq!(valid_points(&s, &sd), want.is_none(), "{sd:?}");
+            assert_eq!(field(&s, &sd).as_deref(), want, "{sd:?}");
+        }
+        // Points are checked in order, each for all it must meet.
+        let f = field(&[0.0, 1.0, 0.5, 2.0], &[1.0, -1.0, 1.0, 1.0]);
+        assert_eq!(f.as_deref(), Some("profile path velocity 1"));
+        let f = field(&[0.0, 0.5, 0.5, 2.0], &[1.0, 1.0, 1.0, -1.0]);
+        assert_eq!(f.as_deref(), Some("profile gridpoint 2"));
     }
 
     /// `eval_many` (forward walk) gives `eval`'s values bit for bit: increasing times on and
