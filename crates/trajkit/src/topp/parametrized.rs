@@ -54,6 +54,25 @@ impl PhaseProfile {
     /// one per gridpoint). Two consecutive zero velocities would take infinite time and are
     /// refused.
     pub fn new(s: &[f64], sd: &[f64]) -> Result<Self> {
+        Self::check_points(s, sd)?;
+        let (sdd, t) = Self::timing(s, sd)?;
+        Ok(PhaseProfile {
+            s: s.to_vec(),
+            sd: sd.to_vec(),
+            sdd,
+            t,
+        })
+    }
+
+    /// [`PhaseProfile::new`] taking the gridpoints and velocities as they are (no copies).
+    pub(crate) fn from_vecs(s: Vec<f64>, sd: Vec<f64>) -> Result<Self> {
+        Self::check_points(&s, &sd)?;
+        let (sdd, t) = Self::timing(&s, &sd)?;
+        Ok(PhaseProfile { s, sd, sdd, t })
+    }
+
+    /// The checks of [`PhaseProfile::new`] on its arguments.
+    fn check_points(s: &[f64], sd: &[f64]) -> Result<()> {
         if s.len() < 2 {
             return Err(Error::DimensionMismatch {
                 what: "profile gridpoint count".into(),
@@ -71,34 +90,35 @@ impl PhaseProfile {
         if !valid_points(s, sd) {
             Self::explain_points(s, sd)?;
         }
+        Ok(())
+    }
+
+    /// The path accelerations and gridpoint times of checked gridpoints and velocities.
+    fn timing(s: &[f64], sd: &[f64]) -> Result<(Vec<f64>, Vec<f64>)> {
         let n = s.len() - 1;
         let mut sdd = Vec::with_capacity(n);
         let mut t = Vec::with_capacity(n + 1);
-        t.push(0.0);
-        for i in 0..n {
-            let d = s[i + 1] - s[i];
-            let v = sd[i] + sd[i + 1];
+        let mut ti = 0.0;
+        t.push(ti);
+        for (sw, vw) in s.windows(2).zip(sd.windows(2)) {
+            let d = sw[1] - sw[0];
+            let v = vw[0] + vw[1];
             if v <= 0.0 {
                 return Err(Error::Infeasible(format!(
                     "the path velocity is zero on [{}, {}]: the motion would take forever",
-                    s[i],
-                    s[i + 1]
+                    sw[0], sw[1]
                 )));
             }
-            sdd.push((sd[i + 1] - sd[i]) * v / (2.0 * d));
-            t.push(t[i] + 2.0 * d / v);
+            sdd.push((vw[1] - vw[0]) * v / (2.0 * d));
+            ti += 2.0 * d / v;
+            t.push(ti);
         }
-        if !t[n].is_finite() {
+        if !ti.is_finite() {
             return Err(Error::Infeasible(
                 "the duration is not finite (path velocity too close to zero)".into(),
             ));
         }
-        Ok(PhaseProfile {
-            s: s.to_vec(),
-            sd: sd.to_vec(),
-            sdd,
-            t,
-        })
+        Ok((sdd, t))
     }
 
     /// The error for the first gridpoint or velocity that [`valid_points`] refuses (none

@@ -290,7 +290,7 @@ impl<'c, P: Path> Toppra<'c, P> {
         let mut ws = Workspace::take_spare();
         let x = self.solve_on(&mut ws, &mut grid);
         ws.keep_spare();
-        profile_from(&grid, &x?)
+        profile_from(grid, x?)
     }
 
     /// Solves on `grid` (changed where the check between gridpoints cuts intervals); returns
@@ -350,9 +350,13 @@ impl<'c, P: Path> Toppra<'c, P> {
     }
 }
 
-fn profile_from(grid: &[f64], x: &[f64]) -> Result<PhaseProfile> {
-    let sd: Vec<f64> = x.iter().map(|v| v.max(0.0).sqrt()).collect();
-    PhaseProfile::new(grid, &sd)
+/// The profile on `grid` with ṡ² = `x` (negative rounding clamped to 0); both vectors become
+/// the profile's.
+fn profile_from(grid: Vec<f64>, mut x: Vec<f64>) -> Result<PhaseProfile> {
+    for v in &mut x {
+        *v = v.max(0.0).sqrt();
+    }
+    PhaseProfile::from_vecs(grid, x)
 }
 
 /// Constraint data at every gridpoint and scratch space.

@@ -93,7 +93,7 @@ impl<P: Path> Toppra<'_, P> {
     fn solve_design(&self, ws: &mut Workspace, grid: Vec<f64>) -> Result<Solved> {
         let mut solved = grid.clone();
         let x = self.solve_on(ws, &mut solved)?;
-        let profile = profile_from(&solved, &x)?;
+        let profile = profile_from(solved, x)?;
         let dt = interval_times(&grid, &profile);
         Ok(Solved { grid, dt, profile })
     }
