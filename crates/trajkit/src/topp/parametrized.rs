@@ -34,11 +34,45 @@ pub struct PhaseProfile {
     t: Vec<f64>,
 }
 
+/// Whether the gridpoints `s` (as many as `sd`) are finite and strictly increasing and the
+/// velocities `sd` finite and ≥ 0: one pass without early exits, the common case.
+fn valid_points(s: &[f64], sd: &[f64]) -> bool {
+    // s_0 finite (then every later s_i is, when it is finite and above s_{i−1}: checked as
+    // s_{i−1} < s_i < ∞); NaN fails every comparison.
+    let mut ok = s[0].is_finite();
+    for w in s.windows(2) {
+        ok &= (w[0] < w[1]) & (w[1] < f64::INFINITY);
+    }
+    for &v in sd {
+        ok &= (0.0..f64::INFINITY).contains(&v);
+    }
+    ok
+}
+
 impl PhaseProfile {
     /// A profile from gridpoints (strictly increasing) and path velocities `sd` (≥ 0, finite,
     /// one per gridpoint). Two consecutive zero velocities would take infinite time and are
     /// refused.
     pub fn new(s: &[f64], sd: &[f64]) -> Result<Self> {
+        Self::check_points(s, sd)?;
+        let (sdd, t) = Self::timing(s, sd)?;
+        Ok(PhaseProfile {
+            s: s.to_vec(),
+            sd: sd.to_vec(),
+            sdd,
+            t,
+        })
+    }
+
+    /// [`PhaseProfile::new`] taking the gridpoints and velocities as they are (no copies).
+    pub(crate) fn from_vecs(s: Vec<f64>, sd: Vec<f64>) -> Result<Self> {
+        Self::check_points(&s, &sd)?;
+        let (sdd, t) = Self::timing(&s, &sd)?;
+        Ok(PhaseProfile { s, sd, sdd, t })
+    }
+
+    /// The checks of [`PhaseProfile::new`] on its arguments.
+    fn check_points(s: &[f64], sd: &[f64]) -> Result<()> {
         if s.len() < 2 {
             return Err(Error::DimensionMismatch {
                 what: "profile gridpoint count".into(),
@@ -53,6 +87,43 @@ impl PhaseProfile {
                 found: sd.len(),
             });
         }
+        if !valid_points(s, sd) {
+            Self::explain_points(s, sd)?;
+        }
+        Ok(())
+    }
+
+    /// The path accelerations and gridpoint times of checked gridpoints and velocities.
+    fn timing(s: &[f64], sd: &[f64]) -> Result<(Vec<f64>, Vec<f64>)> {
+        let n = s.len() - 1;
+        let mut sdd = Vec::with_capacity(n);
+        let mut t = Vec::with_capacity(n + 1);
+        let mut ti = 0.0;
+        t.push(ti);
+        for (sw, vw) in s.windows(2).zip(sd.windows(2)) {
+            let d = sw[1] - sw[0];
+            let v = vw[0] + vw[1];
+            if v <= 0.0 {
+                return Err(Error::Infeasible(format!(
+                    "the path velocity is zero on [{}, {}]: the motion would take forever",
+                    sw[0], sw[1]
+                )));
+            }
+            sdd.push((vw[1] - vw[0]) * v / (2.0 * d));
+            ti += 2.0 * d / v;
+            t.push(ti);
+        }
+        if !ti.is_finite() {
+            return Err(Error::Infeasible(
+                "the duration is not finite (path velocity too close to zero)".into(),
+            ));
+        }
+        Ok((sdd, t))
+    }
+
+    /// The error for the first gridpoint or velocity that [`valid_points`] refuses (none
+    /// when all are valid).
+    fn explain_points(s: &[f64], sd: &[f64]) -> Result<()> {
         for i in 0..s.len() {
             crate::error::finite(|| format!("profile gridpoint {i}"), s[i])?;
             if i > 0 && s[i].partial_cmp(&s[i - 1]) != Some(std::cmp::Ordering::Greater) {
@@ -70,34 +141,7 @@ impl PhaseProfile {
                 });
             }
         }
-        let n = s.len() - 1;
-        let mut sdd = Vec::with_capacity(n);
-        let mut t = Vec::with_capacity(n + 1);
-        t.push(0.0);
-        for i in 0..n {
-            let d = s[i + 1] - s[i];
-            let v = sd[i] + sd[i + 1];
-            if v <= 0.0 {
-                return Err(Error::Infeasible(format!(
-                    "the path velocity is zero on [{}, {}]: the motion would take forever",
-                    s[i],
-                    s[i + 1]
-                )));
-            }
-            sdd.push((sd[i + 1] - sd[i]) * v / (2.0 * d));
-            t.push(t[i] + 2.0 * d / v);
-        }
-        if !t[n].is_finite() {
-            return Err(Error::Infeasible(
-                "the duration is not finite (path velocity too close to zero)".into(),
-            ));
-        }
-        Ok(PhaseProfile {
-            s: s.to_vec(),
-            sd: sd.to_vec(),
-            sdd,
-            t,
-        })
+        Ok(())
     }
 
     /// Gridpoints s_i.
@@ -196,6 +240,45 @@ mod tests {
         assert!(PhaseProfile::new(&[0.0, 1.0, 2.0], &[1.0, 0.0, 0.0]).is_err());
         assert!(PhaseProfile::new(&[0.0, 1.0], &[1.0, -1.0]).is_err());
         assert!(PhaseProfile::new(&[0.0, 0.0], &[1.0, 1.0]).is_err());
+    }
+
+    /// The one-pass screen refuses exactly what the point-by-point checks name, and the
+    /// error names the first offending gridpoint or velocity.
+    #[test]
+    fn invalid_points_are_named() {
+        let (inf, nan) = (f64::INFINITY, f64::NAN);
+        let field = |s: &[f64], sd: &[f64]| match PhaseProfile::new(s, sd) {
+            Err(Error::InvalidValue { field, .. }) => Some(field),
+            Ok(_) => None,
+            Err(e) => panic!("{e}"),
+        };
+        let sd = [1.0; 4];
+        for (s, want) in [
+            ([-inf, 0.0, 1.0, 2.0], "profile gridpoint 0"),
+            ([nan, 0.0, 1.0, 2.0], "profile gridpoint 0"),
+            ([0.0, 1.0, 2.0, inf], "profile gridpoint 3"),
+            ([0.0, 1.0, nan, 2.0], "profile gridpoint 2"),
+            ([0.0, 1.0, 1.0, 2.0], "profile gridpoint 2"),
+            ([0.0, 2.0, 1.0, 3.0], "profile gridpoint 2"),
+        ] {
+            assert!(!valid_points(&s, &sd), "{s:?}");
+            assert_eq!(field(&s, &sd).as_deref(), Some(want), "{s:?}");
+        }
+        let s = [0.0, 1.0, 2.0, 3.0];
+        for (sd, want) in [
+            ([1.0, -1e-300, 1.0, 1.0], Some("profile path velocity 1")),
+            ([1.0, 1.0, 1.0, inf], Some("profile path velocity 3")),
+            ([nan, 1.0, 1.0, 1.0], Some("profile path velocity 0")),
+            ([-0.0, 1.0, 0.0, 1.0], None),
+        ] {
+            assert_eq!(valid_points(&s, &sd), want.is_none(), "{sd:?}");
+            assert_eq!(field(&s, &sd).as_deref(), want, "{sd:?}");
+        }
+        // Points are checked in order, each for all it must meet.
+        let f = field(&[0.0, 1.0, 0.5, 2.0], &[1.0, -1.0, 1.0, 1.0]);
+        assert_eq!(f.as_deref(), Some("profile path velocity 1"));
+        let f = field(&[0.0, 0.5, 0.5, 2.0], &[1.0, 1.0, 1.0, -1.0]);
+        assert_eq!(f.as_deref(), Some("profile gridpoint 2"));
     }
 
     /// `eval_many` (forward walk) gives `eval`'s values bit for bit: increasing times on and

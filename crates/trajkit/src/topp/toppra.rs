@@ -290,7 +290,7 @@ impl<'c, P: Path> Toppra<'c, P> {
         let mut ws = Workspace::take_spare();
         let x = self.solve_on(&mut ws, &mut grid);
         ws.keep_spare();
-        profile_from(&grid, &x?)
+        profile_from(grid, x?)
     }
 
     /// Solves on `grid` (changed where the check between gridpoints cuts intervals); returns
@@ -350,9 +350,13 @@ impl<'c, P: Path> Toppra<'c, P> {
     }
 }
 
-fn profile_from(grid: &[f64], x: &[f64]) -> Result<PhaseProfile> {
-    let sd: Vec<f64> = x.iter().map(|v| v.max(0.0).sqrt()).collect();
-    PhaseProfile::new(grid, &sd)
+/// The profile on `grid` with ṡ² = `x` (negative rounding clamped to 0); both vectors become
+/// the profile's.
+fn profile_from(grid: Vec<f64>, mut x: Vec<f64>) -> Result<PhaseProfile> {
+    for v in &mut x {
+        *v = v.max(0.0).sqrt();
+    }
+    PhaseProfile::from_vecs(grid, x)
 }
 
 /// Constraint data at every gridpoint and scratch space.
@@ -365,6 +369,8 @@ pub(super) struct Workspace {
     /// relative to it, so that a problem whose limits are all multiplied by c > 0 is solved
     /// with the same relative precision (ṡ² scales by c, or c² for velocity limits).
     scale: f64,
+    /// Scratch space of [`x_scale`].
+    scale_keys: Vec<u64>,
     /// Controllable sets.
     klo: Vec<f64>,
     khi: Vec<f64>,
@@ -486,18 +492,22 @@ const X_BIG: f64 = 1e30;
 /// where the path nearly stops (ṡ unbounded) and the zeros where it must rest; an absolute
 /// tolerance instead would be as large as ṡ² itself under tiny limits (ṡ² ~ 1e-12 for a
 /// velocity limit of 1e-6) and let the solution exceed them.
-fn x_scale(xhi: &[f64]) -> f64 {
-    let mut finite: Vec<f64> = xhi
-        .iter()
-        .copied()
-        .filter(|&v| v > 0.0 && v < X_BIG)
-        .collect();
-    if finite.is_empty() {
+///
+/// `keys` is scratch space (kept between rounds). The bounds taken are positive and finite,
+/// whose bit patterns order as their values do: the selection compares integers.
+fn x_scale(xhi: &[f64], keys: &mut Vec<u64>) -> f64 {
+    keys.clear();
+    keys.extend(
+        xhi.iter()
+            .filter(|&&v| v > 0.0 && v < X_BIG)
+            .map(|v| v.to_bits()),
+    );
+    if keys.is_empty() {
         return 1.0;
     }
-    let mid = finite.len() / 2;
-    let (_, m, _) = finite.select_nth_unstable_by(mid, f64::total_cmp);
-    *m
+    let mid = keys.len() / 2;
+    let (_, m, _) = keys.select_nth_unstable(mid);
+    f64::from_bits(*m)
 }
 
 impl Workspace {
@@ -538,7 +548,7 @@ impl Workspace {
         self.cr.rows.clear();
         let result = self.evaluate_rows(path, cons, grid);
         self.pts.rows = std::mem::replace(&mut self.cr.rows, own);
-        self.scale = x_scale(&self.pts.xhi);
+        self.scale = x_scale(&self.pts.xhi, &mut self.scale_keys);
         // Kept for the next grid of this solve when small enough to be reused.
         self.pts.grid.clear();
         if grid.len() <= REUSE_POINTS {
@@ -993,6 +1003,38 @@ fn contradiction(s: f64, lo: f64, hi: f64, by: &str) -> Error {
 mod tests {
     use super::*;
     use crate::rng::SplitMix64;
+
+    /// The median found on the bounds' bit patterns is the one of their values (`total_cmp`
+    /// selection), with zeros, huge, infinite, NaN and subnormal bounds among them.
+    #[test]
+    fn x_scale_is_the_median_of_the_finite_positive_bounds() {
+        let mut rng = SplitMix64::new(17);
+        let mut keys = Vec::new();
+        for n in 0..60 {
+            let xhi: Vec<f64> = (0..n)
+                .map(|_| match (rng.uniform(0.0, 8.0)) as u32 {
+                    0 => 0.0,
+                    1 => f64::INFINITY,
+                    2 => f64::NAN,
+                    3 => 2e30,
+                    4 => 1e-310 * rng.uniform(0.0, 1.0),
+                    _ => 10f64.powf(rng.uniform(-12.0, 12.0)),
+                })
+                .collect();
+            let mut finite: Vec<f64> = xhi
+                .iter()
+                .copied()
+                .filter(|&v| v > 0.0 && v < X_BIG)
+                .collect();
+            finite.sort_by(f64::total_cmp);
+            let want = finite.get(finite.len() / 2).copied().unwrap_or(1.0);
+            assert_eq!(
+                x_scale(&xhi, &mut keys).to_bits(),
+                want.to_bits(),
+                "{xhi:?}"
+            );
+        }
+    }
     use crate::spline::{BoundedSpline, CubicSpline};
     use crate::topp::grid::subdivide;
 
