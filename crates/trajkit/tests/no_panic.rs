@@ -159,26 +159,6 @@ fn input(d: &[[f64; 9]; 2], o: Options) -> InputParameter<2> {
     inp
 }
 
-/// The dynamic-DOF input with the same fields.
-fn dyn_input(inp: &InputParameter<2>) -> DynInputParameter {
-    let mut d = DynInputParameter::new(2);
-    d.current_position = inp.current_position.to_vec();
-    d.current_velocity = inp.current_velocity.to_vec();
-    d.current_acceleration = inp.current_acceleration.to_vec();
-    d.target_position = inp.target_position.to_vec();
-    d.target_velocity = inp.target_velocity.to_vec();
-    d.target_acceleration = inp.target_acceleration.to_vec();
-    d.max_velocity = inp.max_velocity.to_vec();
-    d.max_acceleration = inp.max_acceleration.to_vec();
-    d.max_jerk = inp.max_jerk.to_vec();
-    d.min_velocity = inp.min_velocity.map(|v| v.to_vec());
-    d.min_acceleration = inp.min_acceleration.map(|v| v.to_vec());
-    d.per_dof_synchronization = inp.per_dof_synchronization.map(|v| v.to_vec());
-    d.per_dof_control_interface = inp.per_dof_control_interface.map(|v| v.to_vec());
-    d.options = inp.options;
-    d
-}
-
 /// Samples a trajectory at its ends and middle (evaluation must not panic either).
 fn sample<T: Trajectory>(t: &T, dof: usize) {
     let mut out = vec![0.0; dof];
@@ -236,7 +216,7 @@ fn check_otg(d: &[[f64; 9]; 2], o: Options) {
             sample(&t, 2);
         }
     }
-    let dynamic = dyn_input(&inp);
+    let dynamic = DynInputParameter::from(&inp);
     if let Ok(t) = calculate_dyn(&dynamic, 0.001) {
         sample(&t, 2);
     }

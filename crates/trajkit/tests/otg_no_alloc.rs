@@ -86,24 +86,6 @@ fn calculate_update_and_queries_allocate_nothing() {
     assert!(into_ok >= 60);
 }
 
-/// The same problems as a run-time-sized input.
-fn to_dyn(p: &InputParameter<7>) -> DynInputParameter {
-    let mut d = DynInputParameter::new(7);
-    d.current_position = p.current_position.to_vec();
-    d.current_velocity = p.current_velocity.to_vec();
-    d.current_acceleration = p.current_acceleration.to_vec();
-    d.target_position = p.target_position.to_vec();
-    d.target_velocity = p.target_velocity.to_vec();
-    d.target_acceleration = p.target_acceleration.to_vec();
-    d.max_velocity = p.max_velocity.to_vec();
-    d.max_acceleration = p.max_acceleration.to_vec();
-    d.max_jerk = p.max_jerk.to_vec();
-    d.max_position = p.max_position.to_vec();
-    d.min_position = p.min_position.to_vec();
-    d.options = p.options;
-    d
-}
-
 #[test]
 fn the_run_time_sized_generator_allocates_nothing_once_sized_and_matches_the_fixed_one() {
     let mut r = SplitMix64::new(11);
@@ -124,7 +106,7 @@ fn the_run_time_sized_generator_allocates_nothing_once_sized_and_matches_the_fix
         }
         fixed.push(p);
     }
-    let dyns: Vec<DynInputParameter> = fixed.iter().map(to_dyn).collect();
+    let dyns: Vec<DynInputParameter> = fixed.iter().map(DynInputParameter::from).collect();
     // Reference: the compile-time-sized generator (durations and update states).
     let mut otg7 = Otg::<7>::new(0.001);
     let mut out7 = OutputParameter::<7>::default();

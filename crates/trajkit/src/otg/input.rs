@@ -286,6 +286,33 @@ impl Clone for DynInputParameter {
     }
 }
 
+/// The same problem with a run-time number of degrees of freedom: every field copied
+/// (the arrays become vectors of length `DOF`). Allocates; for setting up a [`super::DynOtg`],
+/// not for its update loop.
+impl<const DOF: usize> From<&InputParameter<DOF>> for DynInputParameter {
+    fn from(p: &InputParameter<DOF>) -> Self {
+        DynInputParameter {
+            current_position: p.current_position.to_vec(),
+            current_velocity: p.current_velocity.to_vec(),
+            current_acceleration: p.current_acceleration.to_vec(),
+            target_position: p.target_position.to_vec(),
+            target_velocity: p.target_velocity.to_vec(),
+            target_acceleration: p.target_acceleration.to_vec(),
+            max_velocity: p.max_velocity.to_vec(),
+            max_acceleration: p.max_acceleration.to_vec(),
+            max_jerk: p.max_jerk.to_vec(),
+            min_velocity: p.min_velocity.map(|v| v.to_vec()),
+            min_acceleration: p.min_acceleration.map(|v| v.to_vec()),
+            max_position: p.max_position.to_vec(),
+            min_position: p.min_position.to_vec(),
+            enabled: p.enabled.to_vec(),
+            per_dof_synchronization: p.per_dof_synchronization.map(|v| v.to_vec()),
+            per_dof_control_interface: p.per_dof_control_interface.map(|v| v.to_vec()),
+            options: p.options,
+        }
+    }
+}
+
 impl DynInputParameter {
     /// `dof` degrees of freedom, all zero, limits infinite, all enabled.
     pub fn new(dof: usize) -> Self {
@@ -770,6 +797,45 @@ mod tests {
         p.target_velocity = [0.5, -0.5];
         p.target_acceleration = [0.2, -0.3];
         p
+    }
+
+    #[test]
+    fn the_run_time_sized_input_copies_every_field() {
+        let mut p = valid();
+        p.current_position = [0.1, 0.2];
+        p.current_velocity = [0.3, 0.4];
+        p.current_acceleration = [0.5, 0.6];
+        p.target_position = [0.7, 0.8];
+        p.min_velocity = Some([-0.9, -1.0]);
+        p.min_acceleration = Some([-1.1, -1.2]);
+        p.max_position = [1.3, 1.4];
+        p.min_position = [-1.5, -1.6];
+        p.enabled = [true, false];
+        p.per_dof_synchronization = Some([Synchronization::None, Synchronization::Phase]);
+        p.per_dof_control_interface =
+            Some([ControlInterface::Velocity, ControlInterface::Position]);
+        p.options.minimum_duration = Some(2.0);
+        let d = DynInputParameter::from(&p);
+        let mut e = DynInputParameter::new(2);
+        e.current_position = vec![0.1, 0.2];
+        e.current_velocity = vec![0.3, 0.4];
+        e.current_acceleration = vec![0.5, 0.6];
+        e.target_position = vec![0.7, 0.8];
+        e.target_velocity = vec![0.5, -0.5];
+        e.target_acceleration = vec![0.2, -0.3];
+        e.max_velocity = vec![1.0, 2.0];
+        e.max_acceleration = vec![3.0, 4.0];
+        e.max_jerk = vec![5.0, 6.0];
+        e.min_velocity = Some(vec![-0.9, -1.0]);
+        e.min_acceleration = Some(vec![-1.1, -1.2]);
+        e.max_position = vec![1.3, 1.4];
+        e.min_position = vec![-1.5, -1.6];
+        e.enabled = vec![true, false];
+        e.per_dof_synchronization = Some(vec![Synchronization::None, Synchronization::Phase]);
+        e.per_dof_control_interface =
+            Some(vec![ControlInterface::Velocity, ControlInterface::Position]);
+        e.options.minimum_duration = Some(2.0);
+        assert_eq!(d, e);
     }
 
     fn field_of(p: &InputParameter<2>) -> Option<(usize, &'static str)> {

@@ -54,14 +54,7 @@ impl PhaseProfile {
     /// one per gridpoint). Two consecutive zero velocities would take infinite time and are
     /// refused.
     pub fn new(s: &[f64], sd: &[f64]) -> Result<Self> {
-        Self::check_points(s, sd)?;
-        let (sdd, t) = Self::timing(s, sd)?;
-        Ok(PhaseProfile {
-            s: s.to_vec(),
-            sd: sd.to_vec(),
-            sdd,
-            t,
-        })
+        Self::from_vecs(s.to_vec(), sd.to_vec())
     }
 
     /// [`PhaseProfile::new`] taking the gridpoints and velocities as they are (no copies).
