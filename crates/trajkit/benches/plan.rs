@@ -26,23 +26,10 @@ use criterion::{criterion_group, BenchmarkId, Criterion};
 use std::hint::black_box;
 use trajkit::io::Waypoints;
 use trajkit::plan::{plan, JerkStage, PlanOptions};
-use trajkit::rng::SplitMix64;
 use trajkit::topp::jerk::{filter_window, scale_bound, FilteredProfile};
 use trajkit::topp::messy;
 use trajkit::topp::{min_time_scale, Gridpoints, Retimed};
 use trajkit::{Limits, Trajectory};
-
-fn random_waypoints(n: usize) -> Waypoints {
-    let lim = Limits::preset("panda").unwrap();
-    let mut rng = SplitMix64::new(4242);
-    let mut wp = Vec::with_capacity(n * 7);
-    for _ in 0..n {
-        for j in lim.joints() {
-            wp.push(rng.uniform(j.position_min + 0.1, j.position_max - 0.1));
-        }
-    }
-    Waypoints::new(wp, 7, vec![]).unwrap()
-}
 
 /// The Panda preset with the `standard_7wp_natural_N1000` fixture's velocity and acceleration
 /// limits, positions and jerk unbounded: the limits of `tools/bench_python.py`'s plan row.
@@ -90,7 +77,7 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("plan_default");
     let mut cases = vec![("std7".to_string(), std7.clone()), ("line".into(), line)];
     for n in [10usize, 100] {
-        cases.push((format!("random_{n}"), random_waypoints(n)));
+        cases.push((format!("random_{n}"), common::random_panda_waypoints(n)));
     }
     for (name, w) in &cases {
         g.bench_with_input(BenchmarkId::from_parameter(name), w, |b, w| {
@@ -109,7 +96,7 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("toppra_default");
     let mut cases = vec![("std7".to_string(), std7.clone())];
     for n in [10usize, 100, 1000] {
-        cases.push((format!("random_{n}"), random_waypoints(n)));
+        cases.push((format!("random_{n}"), common::random_panda_waypoints(n)));
     }
     for (name, w) in &cases {
         if name == "random_1000" {

@@ -17,7 +17,6 @@ mod common;
 
 use criterion::{criterion_group, BenchmarkId, Criterion};
 use std::hint::black_box;
-use trajkit::rng::SplitMix64;
 use trajkit::spline::CubicSpline;
 use trajkit::topp::{Gridpoints, Toppra, ToppraOptions};
 use trajkit::{Limits, Order, Trajectory};
@@ -32,16 +31,9 @@ fn standard_path() -> CubicSpline {
 /// A natural spline through `n` seeded random Panda configurations (0.1 inside the position
 /// range), at s = 0, 1, …, n − 1.
 fn random_path(n: usize) -> CubicSpline {
-    let lim = Limits::preset("panda").unwrap();
-    let mut rng = SplitMix64::new(4242);
-    let mut wp = Vec::with_capacity(n * 7);
-    for _ in 0..n {
-        for j in lim.joints() {
-            wp.push(rng.uniform(j.position_min + 0.1, j.position_max - 0.1));
-        }
-    }
+    let wp = common::random_panda_waypoints(n);
     let ss: Vec<f64> = (0..n).map(|i| i as f64).collect();
-    CubicSpline::natural(&ss, &wp, 7).unwrap()
+    CubicSpline::natural(&ss, wp.points(), 7).unwrap()
 }
 
 fn bench(c: &mut Criterion) {

@@ -22,6 +22,8 @@
 //!
 //! Run: `cargo bench -p trajkit --bench topp_scaling` (about two minutes).
 
+mod common;
+
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 use trajkit::io::Waypoints;
@@ -29,18 +31,6 @@ use trajkit::plan::{plan, PlanOptions};
 use trajkit::rng::SplitMix64;
 use trajkit::topp::messy;
 use trajkit::Limits;
-
-/// W waypoints drawn uniformly in the Panda's range (0.1 rad inside each limit).
-fn random_waypoints(n: usize, limits: &Limits) -> Waypoints {
-    let mut rng = SplitMix64::new(4242);
-    let mut wp = Vec::with_capacity(n * 7);
-    for _ in 0..n {
-        for j in limits.joints() {
-            wp.push(rng.uniform(j.position_min + 0.1, j.position_max - 0.1));
-        }
-    }
-    Waypoints::new(wp, 7, vec![]).unwrap()
-}
 
 /// W waypoints of a random walk from the middle of the Panda's range: each joint moves by up
 /// to ±0.4 rad per waypoint, staying 0.1 rad inside its limits.
@@ -130,7 +120,7 @@ const JOBS: [(&str, &str, &[usize]); 3] = [
 fn job<'a>(name: &str, w: usize, limits: &'a Limits) -> Box<dyn Fn() -> f64 + 'a> {
     match name {
         "toppra" => {
-            let waypoints = random_waypoints(w, limits);
+            let waypoints = common::random_panda_waypoints(w);
             Box::new(move || {
                 let options = messy::PlanOptions::default();
                 let paths = messy::piece_paths(waypoints.points(), 7, limits, &options).unwrap();
@@ -139,7 +129,7 @@ fn job<'a>(name: &str, w: usize, limits: &'a Limits) -> Box<dyn Fn() -> f64 + 'a
             })
         }
         "plan" => {
-            let waypoints = random_waypoints(w, limits);
+            let waypoints = common::random_panda_waypoints(w);
             Box::new(move || {
                 plan(&waypoints, limits, &PlanOptions::default())
                     .unwrap()

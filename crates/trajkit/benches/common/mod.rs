@@ -1,4 +1,23 @@
-//! Inputs shared by the TOPP benchmarks.
+//! Inputs shared by the TOPP benchmarks (each uses some of them).
+#![allow(dead_code)]
+
+use trajkit::io::Waypoints;
+use trajkit::rng::SplitMix64;
+use trajkit::Limits;
+
+/// `n` seeded random Panda configurations (uniform, 0.1 rad inside each joint's range): the
+/// waypoints of the `random_W` benchmarks.
+pub fn random_panda_waypoints(n: usize) -> Waypoints {
+    let lim = Limits::preset("panda").unwrap();
+    let mut rng = SplitMix64::new(4242);
+    let mut wp = Vec::with_capacity(n * 7);
+    for _ in 0..n {
+        for j in lim.joints() {
+            wp.push(rng.uniform(j.position_min + 0.1, j.position_max - 0.1));
+        }
+    }
+    Waypoints::new(wp, 7, vec![]).unwrap()
+}
 
 /// The `standard_7wp_natural_N1000` TOPP-RA fixture problem (waypoints, limits, toppra's
 /// answer) as JSON.
