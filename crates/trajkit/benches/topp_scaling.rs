@@ -20,7 +20,7 @@
 //! in a new process (this binary started again for one run), what a single `trajkit plan`
 //! pays.
 //!
-//! Run: `cargo bench -p trajkit --bench topp_scaling` (about two minutes).
+//! Run: `cargo bench -p trajkit --bench topp_scaling` (about three minutes).
 
 mod common;
 
