@@ -128,16 +128,12 @@ fn job<'a>(name: &str, w: usize, limits: &'a Limits) -> Box<dyn Fn() -> f64 + 'a
                 trajkit::Trajectory::duration(&raw)
             })
         }
-        "plan" => {
-            let waypoints = common::random_panda_waypoints(w);
-            Box::new(move || {
-                plan(&waypoints, limits, &PlanOptions::default())
-                    .unwrap()
-                    .duration()
-            })
-        }
         _ => {
-            let waypoints = random_walk(w, limits);
+            let waypoints = if name == "plan" {
+                common::random_panda_waypoints(w)
+            } else {
+                random_walk(w, limits)
+            };
             Box::new(move || {
                 plan(&waypoints, limits, &PlanOptions::default())
                     .unwrap()

@@ -468,9 +468,8 @@ impl Workspace {
 
     /// Keeps this workspace for the next solve on this thread, unless it is very large.
     fn keep_spare(self) {
-        let f = std::mem::size_of::<f64>();
-        let bytes = 3 * f * (self.pts.rows.capacity() + self.mid.capacity())
-            + f * (self.pts.off.capacity() + self.pts.at_points.capacity())
+        let bytes = self.pts.bytes()
+            + std::mem::size_of::<[f64; 3]>() * self.mid.capacity()
             + self.prev.bytes()
             + self.pieces.bytes();
         if bytes <= SPARE_BYTES {
